@@ -1,0 +1,158 @@
+"""Bound-constrained conjugate gradient (Polonsky & Keer 1999), shared by the normal and
+tangential contact problems.
+
+Both are quadratic programmes with a symmetric positive definite operator K (an instantaneous
+compliance times a DC-FFT influence matrix):
+
+    minimise 1/2 x.K x - b.x   subject to  lower <= x <= upper   [and  sum(x) dA = total],
+
+whose optimality conditions are the contact conditions: with g = K x - b,
+
+* normal (seed Eqs. 7-8, 10): x = p, lower = 0, upper = inf, g = gap; under load control the sum
+  constraint holds and its multiplier is the approach delta_z (g is then taken relative to its mean
+  over the contact, as in Polonsky & Keer);
+* tangential (seed Eqs. 9, 11): x = q_x, bounds -/+ mu_f p, g = slip s_x: s = 0 where the bounds are
+  inactive (stick), q opposes s where they are active (slip).
+
+The iteration is Polonsky & Keer's: conjugate directions restricted to the free set, a projection on
+the bounds, release of the bound points whose gradient points inwards, and a restart of conjugacy
+whenever the free set changes. Convergence is measured as the relative change of x between
+iterations; the solve raises :class:`~viscontact.errors.ConvergenceError` at the iteration cap.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from .errors import ConvergenceError
+
+Operator = Callable[[np.ndarray], np.ndarray]
+
+
+@dataclass(frozen=True)
+class ConstrainedSolution:
+    """Result of :func:`constrained_cg`.
+
+    Attributes
+    ----------
+    x
+        The solution.
+    gradient
+        g = K x - b at the solution (for the load-controlled normal problem: minus its contact mean).
+    multiplier
+        Mean of K x - b over the free set when a sum constraint is imposed (the approach), else 0.
+    iterations
+        Iterations used (each costs one application of K plus one for the gradient).
+    residual
+        Last relative change of x.
+    """
+
+    x: np.ndarray
+    gradient: np.ndarray
+    multiplier: float
+    iterations: int
+    residual: float
+
+
+def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.ndarray | float,
+                   upper: np.ndarray | float, *, total: float | None = None, cell_area: float = 1.0,
+                   tolerance: float = 1e-10, max_iterations: int = 2000,
+                   what: str = "constrained conjugate gradient") -> ConstrainedSolution:
+    """Polonsky-Keer bound-constrained conjugate gradient.
+
+    Parameters
+    ----------
+    apply_k
+        x -> K x, a symmetric positive definite operator on (n, n) arrays.
+    b
+        Right-hand side, same shape.
+    x0
+        Starting point (warm start); projected on the bounds.
+    lower, upper
+        Bounds (arrays or scalars; ``upper`` may be ``np.inf``).
+    total
+        When given, impose sum(x) * cell_area = total (only with lower = 0 and upper = inf: the
+        load-controlled normal problem, Polonsky & Keer 1999, Eqs. 14-23).
+    tolerance, max_iterations
+        Stop when sum|x - x_old| / sum|x| < tolerance; raise ConvergenceError after max_iterations.
+    """
+    lower = np.broadcast_to(np.asarray(lower, dtype=float), b.shape)
+    upper = np.broadcast_to(np.asarray(upper, dtype=float), b.shape)
+    x = np.clip(np.array(x0, dtype=float), lower, upper)
+    fixed = lower >= upper
+    if total is not None:
+        if total <= 0:
+            zero = np.zeros_like(x)
+            g = apply_k(zero) - b
+            return ConstrainedSolution(zero, g - g.min(), float(g.min()), 0, 0.0)
+        if x.sum() <= 0:
+            x = np.where(fixed, 0.0, 1.0)
+        x *= total / (cell_area * x.sum())
+    if np.all(fixed):
+        g = apply_k(x) - b
+        return ConstrainedSolution(x, g, 0.0, 0, 0.0)
+
+    direction = np.zeros_like(x)
+    g_norm_old = 1.0
+    conjugate = False
+    multiplier = 0.0
+    residual = np.inf
+    kx = apply_k(x)
+    for it in range(1, max_iterations + 1):
+        free = (x > lower) & (x < upper)
+        if it % 25 == 0:  # refresh the incrementally updated K x against round-off drift
+            kx = apply_k(x)
+        g = kx - b
+        if total is not None:
+            multiplier = float(g[free].mean()) if free.any() else float(g.min())
+            g = g - multiplier
+        if not free.any():
+            # nothing free: release the bound points whose gradient points inwards
+            inward = ((x <= lower) & (g < 0)) | ((x >= upper) & (g > 0))
+            inward &= ~fixed
+            if not inward.any():
+                return ConstrainedSolution(x, g, multiplier, it, 0.0)
+            free = inward
+        g_norm = float(np.sum(g[free] ** 2))
+        if conjugate:
+            direction = np.where(free, g + (g_norm / g_norm_old) * direction, 0.0)
+        else:
+            direction = np.where(free, g, 0.0)
+        g_norm_old = g_norm if g_norm > 0 else 1.0
+        k_direction = apply_k(direction)
+        r = k_direction - k_direction[free].mean() if total is not None else k_direction
+        denom = float(np.sum(r[free] * direction[free]))
+        if denom <= 0 or g_norm == 0:
+            return ConstrainedSolution(x, g, multiplier, it, 0.0)
+        step = float(np.sum(g[free] * direction[free])) / denom
+        x_old = x.copy()
+        x = np.where(free, x - step * direction, x)
+        clipped = (x < lower) | (x > upper)
+        x = np.clip(x, lower, upper)
+        release = ((x <= lower) & (g < 0)) | ((x >= upper) & (g > 0))
+        release &= ~free & ~fixed
+        if release.any():
+            x = np.where(release, np.clip(x - step * g, lower, upper), x)
+        conjugate = not (release.any() or clipped.any())
+        if conjugate:
+            kx = kx - step * k_direction  # exact: x moved by -step * direction only
+        else:
+            kx = apply_k(x)
+        if total is not None:
+            s = x.sum()
+            if s > 0:
+                x *= total / (cell_area * s)
+                kx *= total / (cell_area * s)
+        scale = float(np.sum(np.abs(x)))
+        residual = float(np.sum(np.abs(x - x_old))) / scale if scale > 0 else 0.0
+        if residual < tolerance:
+            g = apply_k(x) - b
+            if total is not None:
+                fr = x > lower
+                multiplier = float(g[fr].mean()) if fr.any() else multiplier
+                g = g - multiplier
+            return ConstrainedSolution(x, g, multiplier, it, residual)
+    raise ConvergenceError(what, max_iterations, residual, tolerance,
+                           hint="raise solver.max_iterations or refine the grid")

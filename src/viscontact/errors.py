@@ -1,0 +1,33 @@
+"""Exceptions and warnings of viscontact. Each names its cause and, where there is one, the remedy."""
+from __future__ import annotations
+
+
+class ViscontactError(Exception):
+    """Base class of every error viscontact raises on purpose."""
+
+
+class ParameterError(ViscontactError, ValueError):
+    """An input value is invalid. ``key`` is the dotted case-file key (``material.poisson_ratio``)."""
+
+    def __init__(self, key: str, message: str) -> None:
+        self.key = key
+        self.message = message
+        super().__init__(f"{key}: {message}")
+
+
+class ConvergenceError(ViscontactError, RuntimeError):
+    """An iterative solve did not reach its tolerance within its iteration cap."""
+
+    def __init__(self, what: str, iterations: int, residual: float, tolerance: float, hint: str = "") -> None:
+        self.what, self.iterations, self.residual, self.tolerance = what, iterations, residual, tolerance
+        msg = (f"{what} did not converge: residual {residual:.3e} > tolerance {tolerance:.1e} "
+               f"after {iterations} iterations")
+        super().__init__(msg + (f"; {hint}" if hint else ""))
+
+
+class NumericalGuardError(ViscontactError, RuntimeError):
+    """The solution left its domain of validity (contact at the edge, NaN, load imbalance, ...)."""
+
+
+class ViscontactWarning(UserWarning):
+    """A result is usable but something may bias it (history dropped, coarse time step, ...)."""

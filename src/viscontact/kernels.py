@@ -1,0 +1,111 @@
+"""Surface influence coefficients of a uniformly loaded rectangle on a half-space, at G = 1.
+
+Boussinesq (normal point force P into the solid) and Cerruti (tangential point force Q in +x)
+surface displacements for shear modulus G and Poisson ratio nu (Johnson, *Contact Mechanics*,
+Eqs. 3.19-3.20 and 3.86-3.87; Love 1929), u_z positive into the half-space:
+
+    u_z = (1 - nu) / (2 pi G) P / r                     (zz)
+    u_x = -(1 - 2 nu) / (4 pi G) P x / r^2              (xz)
+    u_x = 1 / (2 pi G) [(1 - nu) / r + nu x^2 / r^3] Q  (xx)
+    u_z = +(1 - 2 nu) / (4 pi G) Q x / r^2              (zx)
+
+(the signs of xz and zx follow from each other by Betti's reciprocity: IC_xz(x) = IC_zx(-x)).
+
+Integrating over a rectangle [x' in (xc - a, xc + a)] x [y' in (yc - b, yc + b)] gives closed forms
+F(xi, eta) summed over the four corners with xi = x - x', eta = y - y':
+
+    int int 1/r        = xi asinh(eta/|xi|) + eta asinh(xi/|eta|)
+    int int xi^2/r^3   = eta asinh(xi/|eta|)
+    int int xi/r^2     = 1/2 eta ln(xi^2 + eta^2) + xi atan(eta/xi)   (up to terms linear in eta)
+
+With a Prony compliance every coefficient is IC(x, y) J(t) (constant nu, correspondence principle),
+so the kernels here are computed once per grid at unit shear modulus.
+"""
+from __future__ import annotations
+
+from typing import Mapping
+
+import numpy as np
+
+from .grid import Grid
+
+COMPONENTS = ("zz", "xx", "xz", "zx")
+
+
+def point_force_displacement(x: np.ndarray, y: np.ndarray, poisson_ratio: float) -> dict[str, np.ndarray]:
+    """Surface displacements [m per N] at (x, y) [m] of unit point forces at the origin, G = 1 Pa."""
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    nu = poisson_ratio
+    r2 = x**2 + y**2
+    r = np.sqrt(r2)
+    return {
+        "zz": (1 - nu) / (2 * np.pi * r),
+        "xx": ((1 - nu) / r + nu * x**2 / (r * r2)) / (2 * np.pi),
+        "xz": -(1 - 2 * nu) / (4 * np.pi) * x / r2,
+        "zx": (1 - 2 * nu) / (4 * np.pi) * x / r2,
+    }
+
+
+def _asinh_ratio(num: np.ndarray, den: np.ndarray) -> np.ndarray:
+    """num * asinh(den / |num|), with the limit 0 at num = 0."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = num * np.arcsinh(den / np.abs(num))
+    return np.where(num == 0, 0.0, out)
+
+
+def _corner_primitives(xi: np.ndarray, eta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(F_inv_r, F_xi2_r3, F_xi_r2): primitives of 1/r, xi^2/r^3 and xi/r^2 over (xi, eta)."""
+    a = _asinh_ratio(xi, eta)  # xi asinh(eta/|xi|)
+    b = _asinh_ratio(eta, xi)  # eta asinh(xi/|eta|)
+    r2 = xi**2 + eta**2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        log_term = np.where(r2 > 0, 0.5 * eta * np.log(np.where(r2 > 0, r2, 1.0)), 0.0)
+        atan_term = np.where(xi != 0, xi * np.arctan(eta / np.where(xi != 0, xi, 1.0)), 0.0)
+    return a + b, b, log_term + atan_term
+
+
+def rectangle_influence(dx: np.ndarray, dy: np.ndarray, half_x: float, half_y: float,
+                        poisson_ratio: float) -> dict[str, np.ndarray]:
+    """Displacements [m per Pa of traction] at offsets (dx, dy) [m] from the centre of a rectangle
+    of half-sides ``half_x``, ``half_y`` [m] loaded by a unit uniform traction, at G = 1 Pa.
+
+    Returns the four components ``zz``, ``xx``, ``xz``, ``zx`` (first index: displacement,
+    second: traction), each with the broadcast shape of ``dx`` and ``dy``.
+    """
+    dx = np.asarray(dx, dtype=float)
+    dy = np.asarray(dy, dtype=float)
+    nu = poisson_ratio
+    inv_r = np.zeros(np.broadcast(dx, dy).shape)
+    xi2_r3 = np.zeros_like(inv_r)
+    xi_r2 = np.zeros_like(inv_r)
+    for sx in (-1.0, 1.0):
+        for sy in (-1.0, 1.0):
+            f1, f2, f3 = _corner_primitives(dx + sx * half_x, dy + sy * half_y)
+            sign = sx * sy
+            inv_r += sign * f1
+            xi2_r3 += sign * f2
+            xi_r2 += sign * f3
+    return {
+        "zz": (1 - nu) / (2 * np.pi) * inv_r,
+        "xx": ((1 - nu) * inv_r + nu * xi2_r3) / (2 * np.pi),
+        "xz": -(1 - 2 * nu) / (4 * np.pi) * xi_r2,
+        "zx": (1 - 2 * nu) / (4 * np.pi) * xi_r2,
+    }
+
+
+def influence_coefficients(grid: Grid, poisson_ratio: float) -> Mapping[str, np.ndarray]:
+    """Influence coefficients on the DC-FFT offset grid, shape (2n, 2n) indexed [y, x] in FFT
+    wrap-around order (see :meth:`Grid.offsets`), at unit shear modulus [m/Pa per Pa... i.e. m^3/N
+    times traction: displacement = IC * traction / G]. Row/column n (offset n dx) is zeroed: it is
+    never used by a linear convolution of two n x n arrays (Liu, Wang & Liu 2000, DC-FFT).
+    """
+    off = grid.offsets()
+    dx, dy = np.meshgrid(off, off, indexing="xy")
+    h = grid.spacing / 2.0
+    ics = rectangle_influence(dx, dy, h, h, poisson_ratio)
+    n = grid.n
+    for name in ics:
+        ics[name][n, :] = 0.0
+        ics[name][:, n] = 0.0
+    return ics

@@ -1,0 +1,148 @@
+"""Validated physical description of one simulation, free of file formats.
+
+These frozen dataclasses are what the numerical core consumes. ``viscontact.case`` turns a TOML
+case file into them; a script may build them directly. All quantities are SI (m, s, N, Pa).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+
+from .grid import Grid
+from .materials import Material
+
+NormalControl = Literal["load", "displacement"]
+TangentialMode = Literal["none", "frictionless_sliding", "gross_sliding", "partial_slip"]
+TimeScheme = Literal["constant", "linear"]
+
+#: phase codes written to ``phase(t)``
+PHASE_INDENTATION, PHASE_PARTIAL_SLIP, PHASE_GROSS_SLIDING = 0, 1, 2
+
+
+@dataclass(frozen=True)
+class PiecewiseLinear:
+    """A piecewise-linear history f(t) through the points (times[i], values[i]).
+
+    Held constant before the first and after the last point.
+    """
+
+    times: tuple[float, ...]
+    values: tuple[float, ...]
+
+    @classmethod
+    def constant(cls, value: float) -> "PiecewiseLinear":
+        return cls((0.0,), (float(value),))
+
+    def __call__(self, t: float) -> float:
+        return float(np.interp(t, self.times, self.values))
+
+    @property
+    def reference(self) -> float:
+        """The largest value of the history (used to normalise: Hertz a0, p0)."""
+        return float(max(self.values))
+
+
+@dataclass(frozen=True)
+class NormalLoading:
+    """Normal boundary condition (seed Eqs. 7-8): load W(t) [N] or approach delta_z(t) [m]."""
+
+    control: NormalControl
+    history: PiecewiseLinear
+
+
+@dataclass(frozen=True)
+class TangentialLoading:
+    """Tangential motion of the indenter.
+
+    Attributes
+    ----------
+    mode
+        ``none`` (pure indentation), ``frictionless_sliding`` (seed case 1),
+        ``gross_sliding`` (q_x = mu_f p from t = 0, seed case 2) or ``partial_slip``
+        (delta_x ramped at ``displacement_rate`` until the stick zone vanishes, then sliding).
+    friction_coefficient
+        Coulomb coefficient mu_f [-].
+    displacement_rate
+        d(delta_x)/dt during partial slip [m/s].
+    sliding_speed
+        Speed v of the indenter in +x once sliding [m/s].
+    steps_per_cell
+        k >= 1: time steps per grid cell of sliding (v dt = dx / k).
+    """
+
+    mode: TangentialMode = "none"
+    friction_coefficient: float = 0.0
+    displacement_rate: float = 0.0
+    sliding_speed: float = 0.0
+    steps_per_cell: int = 1
+
+    @property
+    def slides(self) -> bool:
+        return self.mode != "none"
+
+    @property
+    def effective_friction(self) -> float:
+        """mu_f acting in this mode: 0 for ``none`` and ``frictionless_sliding``."""
+        return self.friction_coefficient if self.mode in ("gross_sliding", "partial_slip") else 0.0
+
+
+@dataclass(frozen=True)
+class TimeStepping:
+    """Time discretisation.
+
+    ``scheme = "constant"`` is the seed's: tractions constant within a step, increments act at the
+    start of the step (first order). ``"linear"`` treats tractions as linear within a step
+    (exact integration of the exponential compliance over the step; second order).
+    """
+
+    t_end: float
+    dt: float
+    scheme: TimeScheme = "constant"
+
+    @property
+    def n_steps(self) -> int:
+        """Number of steps, the one at t = 0 included."""
+        return int(np.floor(self.t_end / self.dt + 1e-9)) + 1
+
+
+@dataclass(frozen=True)
+class SolverSettings:
+    """Tolerances and iteration caps. Failing to converge raises ``ConvergenceError``."""
+
+    tolerance: float = 1e-8           # relative change of the traction field per CG iteration
+    max_iterations: int = 2000        # per constrained CG solve
+    coupling_tolerance: float = 1e-8  # relative change between normal/tangential alternations
+    max_coupling_iterations: int = 100
+    workers: int = -1                 # scipy.fft workers (-1: all cores)
+    history: Literal["recursive", "direct"] = "recursive"  # direct: literal sum of seed Eq. 5 (reference)
+
+
+@dataclass(frozen=True)
+class OutputSettings:
+    """What is recorded: every ``every``-th step (and always the last) and which fields."""
+
+    every: int = 1
+    fields: tuple[str, ...] = ("pressure", "shear_x", "stick")
+
+
+@dataclass(frozen=True)
+class Problem:
+    """Everything the transient and steady solvers need.
+
+    ``gap`` is the undeformed gap h0(x, y) [m] on the grid, in the frame of the indenter
+    (origin under its centre). ``radius`` [m] is the sphere radius when the indenter is a sphere
+    (used for Hertz normalisation and sub-cell shifts), else ``None``.
+    """
+
+    material: Material
+    grid: Grid
+    gap: np.ndarray = field(repr=False)
+    normal: NormalLoading
+    tangential: TangentialLoading = TangentialLoading()
+    time: TimeStepping = TimeStepping(t_end=0.0, dt=1.0)
+    solver: SolverSettings = SolverSettings()
+    output: OutputSettings = OutputSettings()
+    radius: float | None = None
+    title: str = ""

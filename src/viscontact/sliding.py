@@ -1,0 +1,88 @@
+"""Moving frame and sliding outputs: hysteresis friction (seed Eq. 15) and the dropped wake.
+
+Once sliding, the grid follows the indenter (seed Sec. 2.2): with v dt = dx / k, the stored
+material history moves one cell towards -x every k steps, and the indenter sits at
+``frame_offset = j dx / k`` (j = 0..k-1) within the grid between two shifts. Material leaving at
+the trailing edge takes its unrecovered history with it; :class:`Wake` keeps track of that history
+and estimates how much it would still change the apparent friction.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .grid import Grid
+from .materials import Material
+
+
+def hysteresis_force(pressure: np.ndarray, displacement_z: np.ndarray, grid: Grid) -> float:
+    """F_T = -sum p du_z/dx dA [N] (seed Eq. 15 with the sign that makes it positive when it resists
+    sliding in +x); central finite differences, rectangle rule."""
+    slope = np.gradient(displacement_z, grid.spacing, axis=1)
+    return float(-np.sum(pressure * slope) * grid.cell_area)
+
+
+def pressure_centroid(pressure: np.ndarray, grid: Grid) -> float:
+    """x-centroid of the pressure [m] (the contact shift, positive in +x); 0 without contact."""
+    total = pressure.sum()
+    if total <= 0:
+        return 0.0
+    return float(np.sum(pressure.sum(axis=0) * grid.x) / total)
+
+
+@dataclass
+class Wake:
+    """History that left the grid at the trailing edge, kept to estimate its effect.
+
+    Each strip is the internal history (M, n) of one dropped column, its distance behind the
+    trailing cell centre (in cells) and its age (steps). The material behind the contact recovers
+    as sum_m J_m A_m^age H_m; its x-gradient over the contact, weighted by the load, is the error in
+    F_T (seed Eq. 15) that truncating the domain makes.
+    """
+
+    strips: list[np.ndarray] = field(default_factory=list)
+    distance: list[int] = field(default_factory=list)
+    age: list[int] = field(default_factory=list)
+
+    def drop(self, dropped_internal: np.ndarray) -> None:
+        """A shift happened: every strip moves one cell further; the new one enters at distance 1."""
+        self.distance = [d + 1 for d in self.distance]
+        self.strips.append(dropped_internal[..., 0].copy())
+        self.distance.append(1)
+        self.age.append(0)
+
+    def tick(self, material: Material, dt: float) -> None:
+        """One time step [s] passed; forget strips whose history has decayed below 1e-9."""
+        self.age = [a + 1 for a in self.age]
+        lam_max = float(material.creep.retardation_times.max(initial=0.0))
+        keep = [i for i, a in enumerate(self.age) if lam_max > 0 and a * dt / lam_max < 20.7]
+        self.strips = [self.strips[i] for i in keep]
+        self.distance = [self.distance[i] for i in keep]
+        self.age = [self.age[i] for i in keep]
+
+    def friction_error(self, material: Material, grid: Grid, dt: float, pressure: np.ndarray) -> float:
+        """Estimated |delta F_T| / W [-]: the apparent-friction error of the dropped history.
+
+        The lost surface displacement u_lost(x, y) = sum over strips of the point-force Boussinesq
+        field of their remaining history traction; delta F_T = -sum p du_lost/dx dA is evaluated with
+        du_lost/dx at the pressure centroid (u_lost is smooth over the contact, its sources being
+        outside the grid).
+        """
+        if not self.strips or pressure.sum() <= 0:
+            return 0.0
+        c = material.creep
+        nu = material.poisson_ratio
+        xc = pressure_centroid(pressure, grid)
+        yc = float(np.sum(pressure.sum(axis=1) * grid.y) / pressure.sum())
+        x_trail = grid.x[0]
+        slope = 0.0
+        for strip, dist, age in zip(self.strips, self.distance, self.age):
+            decay = np.exp(-age * dt / c.retardation_times)
+            traction = -np.tensordot(c.amplitudes * decay, strip, axes=1)  # (n,) along y
+            dx = xc - (x_trail - dist * grid.spacing)
+            dy = yc - grid.y
+            r2 = dx * dx + dy * dy
+            # d/dx of (1 - nu) / (2 pi r) per unit force
+            slope += float(np.sum(traction * (-(1 - nu) * dx / (2 * np.pi * r2**1.5)))) * grid.cell_area
+        return abs(slope)
