@@ -59,7 +59,8 @@ class ConstrainedSolution:
 def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.ndarray | float,
                    upper: np.ndarray | float, *, total: float | None = None, cell_area: float = 1.0,
                    tolerance: float = 1e-10, max_iterations: int = 2000,
-                   what: str = "constrained conjugate gradient") -> ConstrainedSolution:
+                   what: str = "constrained conjugate gradient",
+                   preconditioner: Operator | None = None) -> ConstrainedSolution:
     """Polonsky-Keer bound-constrained conjugate gradient.
 
     Parameters
@@ -115,11 +116,18 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             if not inward.any():
                 return ConstrainedSolution(x, g, multiplier, it, 0.0)
             free = inward
-        g_norm = float(np.sum(g[free] ** 2))
-        if conjugate:
-            direction = np.where(free, g + (g_norm / g_norm_old) * direction, 0.0)
+        if preconditioner is not None:
+            z = preconditioner(np.where(free, g, 0.0))
+            if total is not None:
+                z = z - z[free].mean()
+            z = np.where(free, z, 0.0)
         else:
-            direction = np.where(free, g, 0.0)
+            z = np.where(free, g, 0.0)
+        g_norm = float(np.sum(g[free] * z[free]))
+        if conjugate:
+            direction = np.where(free, z + (g_norm / g_norm_old) * direction, 0.0)
+        else:
+            direction = z
         g_norm_old = g_norm if g_norm > 0 else 1.0
         k_direction = apply_k(direction)
         r = k_direction - k_direction[free].mean() if total is not None else k_direction
@@ -148,7 +156,7 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         scale = float(np.sum(np.abs(x)))
         residual = float(np.sum(np.abs(x - x_old))) / scale if scale > 0 else 0.0
         if residual < tolerance:
-            g = apply_k(x) - b
+            g = kx - b  # K x kept exactly up to round-off (refreshed every 25 iterations)
             if total is not None:
                 fr = x > lower
                 multiplier = float(g[fr].mean()) if fr.any() else multiplier

@@ -25,7 +25,8 @@ from typing import Callable, Iterator
 import numpy as np
 
 from .constrained import constrained_cg
-from .convolution import Convolver, coupled_displacements
+from .convolution import Convolver, FourierPreconditioner, coupled_displacements
+from .kernels import influence_coefficients
 from .errors import ConvergenceError, NumericalGuardError, ParameterError, ViscontactWarning
 from .history import DirectHistory, PronyHistory, StepCoefficients, step_coefficients
 from .problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP, Problem
@@ -45,6 +46,7 @@ class Operators:
     conv: Convolver
     first: StepCoefficients
     regular: StepCoefficients
+    preconditioners: dict[str, FourierPreconditioner] = field(default_factory=dict)
 
 
 def operators(problem: Problem) -> Operators:
@@ -55,10 +57,13 @@ def operators(problem: Problem) -> Operators:
         comps += ["xx"]
     if nu < 0.5 and problem.tangential.mode in ("partial_slip", "gross_sliding"):
         comps += ["xz", "zx"]
-    conv = Convolver.for_grid(problem.grid, nu, workers=problem.solver.workers, components=comps)
+    workers = problem.solver.workers
+    ics = influence_coefficients(problem.grid, nu)
+    conv = Convolver.from_kernels(problem.grid.n, {c: ics[c] for c in comps}, workers)
+    precond = {c: FourierPreconditioner.for_kernel(ics[c], 1.0, workers) for c in ("zz", "xx") if c in comps}
     dt, scheme = problem.time.dt, problem.time.scheme
     return Operators(conv, step_coefficients(problem.material, dt, scheme, True),
-                     step_coefficients(problem.material, dt, scheme, False))
+                     step_coefficients(problem.material, dt, scheme, False), precond)
 
 
 @dataclass
@@ -147,20 +152,27 @@ def _advance_history(hist: PronyHistory | DirectHistory, value: np.ndarray, coef
 
 def _solve_normal(problem: Problem, ops: Operators, j_inst: float, gap: np.ndarray,
                   known_uz: np.ndarray, warm: np.ndarray, value: float):
-    """Polonsky-Keer solve of the normal problem with known displacement ``known_uz`` [m]."""
+    """Polonsky-Keer solve of the normal problem with known displacement ``known_uz`` [m].
+
+    Returns (pressure [Pa], approach delta_z [m], iterations, total u_z [m] at the solution)."""
     grid, s = problem.grid, problem.solver
 
     def apply_k(x: np.ndarray) -> np.ndarray:
         return j_inst * ops.conv.apply("zz", x)
 
+    def precondition(r: np.ndarray) -> np.ndarray:
+        return ops.preconditioners["zz"](r) / j_inst
+
     if problem.normal.control == "load":
         sol = constrained_cg(apply_k, -(gap + known_uz), warm, 0.0, np.inf, total=value,
                              cell_area=grid.cell_area, tolerance=s.tolerance,
-                             max_iterations=s.max_iterations, what="normal contact (load control)")
-        return sol.x, sol.multiplier, sol.iterations
+                             max_iterations=s.max_iterations, what="normal contact (load control)",
+                             preconditioner=precondition)
+        return sol.x, sol.multiplier, sol.iterations, sol.gradient + sol.multiplier - gap
     sol = constrained_cg(apply_k, value - (gap + known_uz), warm, 0.0, np.inf, tolerance=s.tolerance,
-                         max_iterations=s.max_iterations, what="normal contact (displacement control)")
-    return sol.x, value, sol.iterations
+                         max_iterations=s.max_iterations, what="normal contact (displacement control)",
+                         preconditioner=precondition)
+    return sol.x, value, sol.iterations, sol.gradient + value - gap
 
 
 def _solve_tangential(problem: Problem, ops: Operators, j_inst: float, pressure: np.ndarray,
@@ -172,9 +184,12 @@ def _solve_tangential(problem: Problem, ops: Operators, j_inst: float, pressure:
     def apply_k(x: np.ndarray) -> np.ndarray:
         return j_inst * ops.conv.apply("xx", x)
 
+    def precondition(r: np.ndarray) -> np.ndarray:
+        return ops.preconditioners["xx"](r) / j_inst
+
     sol = constrained_cg(apply_k, delta_x - known_ux, np.clip(warm, -bound, bound), -bound, bound,
                          tolerance=s.tolerance, max_iterations=s.max_iterations,
-                         what="tangential contact (partial slip)")
+                         what="tangential contact (partial slip)", preconditioner=precondition)
     return sol.x, sol.iterations
 
 
@@ -228,7 +243,7 @@ def step(problem: Problem, ops: Operators, state: State) -> tuple[State, StepRec
     if state.phase == PHASE_PARTIAL_SLIP and mu > 0:
         for coupling_iterations in range(1, solver.max_coupling_iterations + 1):
             known_uz = hist_uz + (j_inst * ops.conv.apply("zx", q) if coupled else 0.0)
-            p_new, delta_z, it_n = _solve_normal(problem, ops, j_inst, gap, known_uz, p, value)
+            p_new, delta_z, it_n, u_z = _solve_normal(problem, ops, j_inst, gap, known_uz, p, value)
             known_ux = hist_ux + (j_inst * ops.conv.apply("xz", p_new) if coupled else 0.0)
             q_new, it_t = _solve_tangential(problem, ops, j_inst, p_new, known_ux, q, state.delta_x)
             iterations += it_n + it_t
@@ -242,7 +257,7 @@ def step(problem: Problem, ops: Operators, state: State) -> tuple[State, StepRec
     elif state.phase == PHASE_GROSS_SLIDING and mu > 0 and coupled:
         for coupling_iterations in range(1, solver.max_coupling_iterations + 1):
             known_uz = hist_uz + j_inst * mu * ops.conv.apply("zx", p)
-            p_new, delta_z, it_n = _solve_normal(problem, ops, j_inst, gap, known_uz, p, value)
+            p_new, delta_z, it_n, u_z = _solve_normal(problem, ops, j_inst, gap, known_uz, p, value)
             iterations += it_n
             change = _relative_change(p_new, p)
             p = p_new
@@ -253,7 +268,7 @@ def step(problem: Problem, ops: Operators, state: State) -> tuple[State, StepRec
                                    change, solver.coupling_tolerance, hint="raise solver.max_coupling_iterations")
         q = mu * p
     else:
-        p, delta_z, iterations = _solve_normal(problem, ops, j_inst, gap, hist_uz, p, value)
+        p, delta_z, iterations, u_z = _solve_normal(problem, ops, j_inst, gap, hist_uz, p, value)
         coupling_iterations = 1
         q = mu * p if state.phase == PHASE_GROSS_SLIDING else np.zeros_like(p)
 
@@ -269,9 +284,10 @@ def step(problem: Problem, ops: Operators, state: State) -> tuple[State, StepRec
     _advance_history(state.history_p, p, coef, t, first, problem.time.scheme)
     _advance_history(state.history_q, q, coef, t, first, problem.time.scheme)
 
-    # total displacement for the hysteresis friction
-    u_z, _ = coupled_displacements(ops.conv, j_inst * p, j_inst * q if coupled else None, need_x=False)
-    u_z += hist_uz
+    if state.phase == PHASE_PARTIAL_SLIP and mu > 0 and coupled:
+        # the last tangential update changed the coupling term of u_z: recompute it
+        u_z, _ = coupled_displacements(ops.conv, j_inst * p, j_inst * q, need_x=False)
+        u_z += hist_uz
     phase_now = state.phase
     if state.phase == PHASE_PARTIAL_SLIP and (stick_ratio == 0.0 or mu == 0):
         phase_now = PHASE_GROSS_SLIDING

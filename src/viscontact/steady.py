@@ -1,0 +1,257 @@
+"""Direct steady-state solver for sliding at constant speed v.
+
+In the frame of the indenter the half-space moves at -v along x, so a material point now at x was
+at x + xi a time xi/v ago. With the tractions steady in this frame, the hereditary integral of
+seed Eq. 5 becomes (integration by parts, J(t) = J_0 + sum_m J_m (1 - exp(-t/lambda_m)))
+
+    u(x) = J_0 [IC * p](x) + sum_m J_m int_0^inf exp(-xi/L_m)/L_m [IC * p](x + xi) dxi,  L_m = v lambda_m,
+
+i.e. a convolution with the *effective steady kernel*
+
+    K(d) = J_0 IC(d) + sum_m J_m F_m(d),   F_m(d) = int_0^inf exp(-xi/L_m)/L_m IC(d + xi) dxi.
+
+F_m integrates the whole past of the material, far beyond the grid, so only the contact needs to
+be on the grid (no wake truncation). It is built once per speed on the DC-FFT offset grid: a tail
+quadrature at the largest offset (composite Gauss-Legendre on geometrically growing intervals)
+and the exact backward recursion F(d) = int_0^dx E(xi) IC(d + xi) dxi + exp(-dx/L) F(d + dx).
+
+The kernel is not symmetric, so the contact problem (p >= 0, gap >= 0, complementarity, load or
+approach given) is solved by a primal-dual active-set method (Hintermueller, Ito & Kunisch 2002):
+on the current contact set the linear system is solved with GMRES (FFT matrix-vector products),
+then points with negative pressure leave and points with negative gap enter, until the set is
+stable. Each solve uses at most ``solver.max_iterations`` Krylov iterations.
+
+For gross sliding (q_x = mu_f p) the operator is K_zz + mu_f K_zx.
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Sequence
+
+import numpy as np
+from scipy.sparse.linalg import LinearOperator, gmres
+
+from .convolution import Convolver, FourierPreconditioner
+from .errors import ConvergenceError, ParameterError
+from .grid import Grid
+from .kernels import rectangle_influence
+from .problem import PHASE_GROSS_SLIDING, Problem
+from .records import StepRecord
+from .sliding import hysteresis_force, pressure_centroid
+
+_GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(8)
+
+
+def _integrate(fun, breaks: np.ndarray) -> np.ndarray:
+    """Composite 8-point Gauss-Legendre of fun(xi) (returns arrays) over consecutive breaks."""
+    a, b = breaks[:-1], breaks[1:]
+    xi = (0.5 * (b - a))[:, None] * (_GL_NODES[None, :] + 1.0) + a[:, None]
+    w = (0.5 * (b - a))[:, None] * _GL_WEIGHTS[None, :]
+    xi, w = xi.ravel(), w.ravel()
+    total = 0.0
+    for chunk in range(0, xi.size, 64):
+        vals = fun(xi[chunk:chunk + 64])  # (..., q)
+        total = total + np.tensordot(vals, w[chunk:chunk + 64], axes=([-1], [0]))
+    return total
+
+
+def history_kernels(grid: Grid, poisson_ratio: float, length: float,
+                    components: Sequence[str] = ("zz", "zx")) -> dict[str, np.ndarray]:
+    """F(d) = int_0^inf exp(-xi/L)/L IC(d + xi) dxi on the (2n, 2n) DC-FFT offset grid [unit G].
+
+    Parameters
+    ----------
+    grid
+        The grid (cell-centred, spacing dx).
+    poisson_ratio
+        nu.
+    length
+        Decay length L = v lambda [m] of one retardation mode.
+    """
+    n, dx, h = grid.n, grid.spacing, grid.spacing / 2.0
+    dy = grid.offsets()[:, None]  # (2n, 1): all y offsets, wrap order
+    decay = np.exp(-dx / length)
+
+    def ic(d: float):
+        def f(xi: np.ndarray) -> dict:
+            res = rectangle_influence(d + xi[None, :], dy, h, h, poisson_ratio)
+            ex = np.exp(-xi / length) / length
+            return np.stack([res[c] * ex[None, :] for c in components])  # (C, 2n, q)
+        return f
+
+    # local interval [0, dx], split at dx/2 (cell edge crossing) and graded when L < dx
+    local = {0.0, 0.5 * dx, dx}
+    s = min(length, dx) / 16.0
+    while s < dx:
+        local.add(s)
+        s *= 2.0
+    local_breaks = np.array(sorted(local))
+    # tail from the largest offset to infinity
+    tail = [0.0]
+    s = min(length, dx) / 16.0
+    while s < 60.0 * length + 4.0 * dx:
+        tail.append(s)
+        s *= 1.3
+    tail.append(s)
+    tail_breaks = np.array(tail)
+
+    offsets = dx * np.arange(-(n - 1), n)
+    values = np.empty((len(components), 2 * n, offsets.size))
+    running = _integrate(ic(offsets[-1]), tail_breaks)
+    values[:, :, -1] = running
+    for idx in range(offsets.size - 2, -1, -1):
+        running = _integrate(ic(offsets[idx]), local_breaks) + decay * running
+        values[:, :, idx] = running
+    out = {}
+    cols = np.where(np.arange(-(n - 1), n) >= 0, np.arange(-(n - 1), n), np.arange(-(n - 1), n) + 2 * n)
+    for ci, c in enumerate(components):
+        k = np.zeros((2 * n, 2 * n))
+        k[:, cols] = values[ci]
+        k[n, :] = 0.0
+        k[:, n] = 0.0
+        out[c] = k
+    return out
+
+
+def steady_convolver(problem: Problem, speed: float) -> tuple[Convolver, dict[str, np.ndarray]]:
+    """DC-FFT convolver of the effective steady kernel (displacement u_z from p and q_x), 1/Pa units
+    included: ``apply("zz", p)`` is u_z [m] of the pressure p [Pa]. Also returns the kernels."""
+    from .kernels import influence_coefficients
+
+    mat, grid = problem.material, problem.grid
+    comps = ["zz"] + (["zx"] if problem.tangential.effective_friction > 0 and mat.poisson_ratio < 0.5 else [])
+    base = influence_coefficients(grid, mat.poisson_ratio)
+    c = mat.creep
+    kernels = {k: c.instantaneous * base[k] for k in comps}
+    for amp, lam in zip(c.amplitudes, c.retardation_times):
+        hist = history_kernels(grid, mat.poisson_ratio, speed * lam, comps)
+        for k in comps:
+            kernels[k] += amp * hist[k]
+    return Convolver.from_kernels(grid.n, kernels, problem.solver.workers), kernels
+
+
+def _restricted(fun, idx: np.ndarray, shape: tuple[int, int]) -> LinearOperator:
+    """The operator v -> fun(v on the grid)[idx] acting on the values at the flat indices idx."""
+    def matvec(v: np.ndarray) -> np.ndarray:
+        full = np.zeros(shape)
+        full.ravel()[idx] = v
+        return fun(full).ravel()[idx]
+
+    return LinearOperator((idx.size, idx.size), matvec=matvec, dtype=float)
+
+
+def _solve_on_set(apply_k, rhs: np.ndarray, active: np.ndarray, x0: np.ndarray, tol: float, maxiter: int,
+                  preconditioner=None) -> np.ndarray:
+    idx = np.flatnonzero(active)
+    shape = active.shape
+    op = _restricted(apply_k, idx, shape)
+    m = _restricted(preconditioner, idx, shape) if preconditioner is not None else None
+    sol, info = gmres(op, rhs.ravel()[idx], x0=x0.ravel()[idx], rtol=tol, atol=0.0, M=m,
+                      restart=min(60, idx.size), maxiter=max(1, maxiter // 60 + 1))
+    if info != 0:
+        res = np.linalg.norm(op.matvec(sol) - rhs.ravel()[idx]) / max(np.linalg.norm(rhs.ravel()[idx]), 1e-300)
+        raise ConvergenceError("steady-state GMRES", maxiter, float(res), tol)
+    out = np.zeros(shape)
+    out.ravel()[idx] = sol
+    return out
+
+
+def solve_contact_active_set(apply_k, gap: np.ndarray, *, control: str, value: float, cell_area: float,
+                             initial: np.ndarray | None = None, tolerance: float = 1e-10,
+                             max_iterations: int = 2000, max_sets: int = 100,
+                             preconditioner=None) -> tuple[np.ndarray, float, int]:
+    """Primal-dual active set for p >= 0, h = K p + gap - delta >= 0, p h = 0, with a general
+    (non-symmetric) K. Returns (p [Pa], delta [m], number of active-set iterations)."""
+    active = initial > 0 if initial is not None and np.any(initial > 0) else gap <= np.quantile(gap, 0.05)
+    p = initial.copy() if initial is not None else np.zeros_like(gap)
+    delta = 0.0
+    seen: list[np.ndarray] = []
+    a_prev = np.zeros_like(gap)
+    b_prev = np.zeros_like(gap)
+    for it in range(1, max_sets + 1):
+        if control == "load":
+            a = _solve_on_set(apply_k, np.ones_like(gap), active, a_prev, tolerance, max_iterations, preconditioner)
+            b = _solve_on_set(apply_k, -gap, active, b_prev, tolerance, max_iterations, preconditioner)
+            a_prev, b_prev = a, b
+            delta = (value / cell_area - b.sum()) / a.sum()
+            p = b + delta * a
+        else:
+            delta = value
+            p = _solve_on_set(apply_k, delta - gap, active, p, tolerance, max_iterations, preconditioner)
+        h = apply_k(p) + gap - delta
+        scale = np.abs(gap[active]).max() if active.any() else 1.0
+        new_active = np.where(active, p > 0, h < -1e-12 * max(scale, abs(delta)))
+        if np.array_equal(new_active, active):
+            return np.maximum(p, 0.0), float(delta), it
+        if any(np.array_equal(new_active, s) for s in seen):  # cycling: keep the union, then stop on repeat
+            new_active = new_active | active
+        seen.append(active)
+        active = new_active
+    raise ConvergenceError("steady-state active set", max_sets, float(np.sum(new_active != active)), 0.0,
+                           hint="the contact set did not settle")
+
+
+def _symmetric_guess(conv: Convolver, problem: Problem, value: float, coupled: bool, mu: float) -> np.ndarray:
+    """Polonsky-Keer solution with the symmetric part of the steady operator (spectrum Re K^):
+    the right contact size, a good first active set for the non-symmetric solve."""
+    from .constrained import constrained_cg
+
+    spec = conv.spectra["zz"].real.astype(complex)
+    if coupled:
+        spec = spec + mu * conv.spectra["zx"].real
+    sym = Convolver(conv.n, {"s": spec}, conv.workers)
+    grid = problem.grid
+    b = -problem.gap if problem.normal.control == "load" else value - problem.gap
+    sol = constrained_cg(lambda x: sym.apply("s", x), b, np.zeros_like(b), 0.0, np.inf,
+                         total=value if problem.normal.control == "load" else None,
+                         cell_area=grid.cell_area, tolerance=1e-6, max_iterations=problem.solver.max_iterations)
+    return sol.x
+
+
+def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.ndarray | None = None) -> StepRecord:
+    """Steady state of sliding at ``speed`` [m/s] (default: the problem's sliding speed).
+
+    Frictionless (``frictionless_sliding``) or with q_x = mu_f p (``gross_sliding``,
+    ``partial_slip`` once sliding). The normal condition is the history's final value.
+    """
+    v = problem.tangential.sliding_speed if speed is None else speed
+    if not v > 0:
+        raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s for a steady state, got {v}")
+    grid = problem.grid
+    mu = problem.tangential.effective_friction if problem.tangential.mode != "none" else 0.0
+    conv, kernels = steady_convolver(problem, v)
+    coupled = "zx" in conv.spectra
+    precondition = FourierPreconditioner.for_kernel(kernels["zz"], 1.0, problem.solver.workers)
+
+    def apply_k(p: np.ndarray) -> np.ndarray:
+        return conv.combine([("zz", 1.0, p)] + ([("zx", mu, p)] if coupled else []))
+
+    value = problem.normal.history(problem.time.t_end)
+    if initial is None:
+        initial = _symmetric_guess(conv, problem, value, coupled, mu)
+    p, delta, sets = solve_contact_active_set(apply_k, problem.gap, control=problem.normal.control,
+                                              value=value, cell_area=grid.cell_area, initial=initial,
+                                              tolerance=min(problem.solver.tolerance, 1e-10),
+                                              max_iterations=problem.solver.max_iterations,
+                                              preconditioner=precondition)
+    u_z = apply_k(p)
+    load = float(p.sum() * grid.cell_area)
+    f_t = hysteresis_force(p, u_z, grid)
+    q = mu * p
+    return StepRecord(step=0, t=problem.time.t_end, phase=PHASE_GROSS_SLIDING, load=load, delta_z=delta,
+                      delta_x=0.0, sliding_distance=float("inf"), contact_area=float((p > 0).sum() * grid.cell_area),
+                      stick_ratio=0.0, friction_force=float(q.sum() * grid.cell_area), hysteresis_force=f_t,
+                      mu_app=f_t / load if load > 0 else 0.0, contact_shift=pressure_centroid(p, grid),
+                      iterations=sets, coupling_iterations=1, pressure=p, shear_x=q,
+                      stick=np.zeros(p.shape, dtype=bool), displacement_z=u_z)
+
+
+def speed_sweep(problem: Problem, speeds: Sequence[float]) -> list[StepRecord]:
+    """Steady states at each speed [m/s], in the given order, each warm-started from the previous."""
+    out: list[StepRecord] = []
+    previous = None
+    for v in speeds:
+        rec = solve_steady(problem, v, initial=previous)
+        previous = rec.pressure
+        out.append(rec)
+    return out
