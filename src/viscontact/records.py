@@ -36,8 +36,8 @@ class StepRecord:
     frame_offset
         Position of the indenter centre in the grid frame [m] (0 unless steps_per_cell > 1).
     wake_loss
-        Fraction of the hereditary (history) displacement load dropped at the trailing edge by
-        this step's frame shift [-].
+        Estimated relative error [-] of mu_app (and, under displacement control, of the load) caused
+        by the history dropped at the trailing edge of the moving frame (:mod:`viscontact.sliding`).
     iterations, coupling_iterations
         Constrained-CG iterations (all solves of the step) and normal/tangential alternations.
     """

@@ -61,28 +61,30 @@ class Wake:
         self.distance = [self.distance[i] for i in keep]
         self.age = [self.age[i] for i in keep]
 
-    def friction_error(self, material: Material, grid: Grid, dt: float, pressure: np.ndarray) -> float:
-        """Estimated |delta F_T| / W [-]: the apparent-friction error of the dropped history.
+    def lost_displacement(self, material: Material, grid: Grid, dt: float,
+                          pressure: np.ndarray) -> tuple[float, float]:
+        """(u_lost [m], du_lost/dx [-]) at the pressure centroid: the surface displacement that the
+        history dropped at the trailing edge would still produce there.
 
-        The lost surface displacement u_lost(x, y) = sum over strips of the point-force Boussinesq
-        field of their remaining history traction; delta F_T = -sum p du_lost/dx dA is evaluated with
-        du_lost/dx at the pressure centroid (u_lost is smooth over the contact, its sources being
-        outside the grid).
+        Each strip is a line of point sources (Boussinesq, u_z = (1 - nu) / (2 pi G r) F) carrying its
+        remaining history traction -sum_m J_m A_m^age H_m; u_lost is smooth over the contact since its
+        sources lie outside the grid. Under load control a uniform u_lost only shifts delta_z; its
+        slope changes F_T (seed Eq. 15) by about -W du_lost/dx.
         """
         if not self.strips or pressure.sum() <= 0:
-            return 0.0
+            return 0.0, 0.0
         c = material.creep
         nu = material.poisson_ratio
         xc = pressure_centroid(pressure, grid)
         yc = float(np.sum(pressure.sum(axis=1) * grid.y) / pressure.sum())
-        x_trail = grid.x[0]
-        slope = 0.0
-        for strip, dist, age in zip(self.strips, self.distance, self.age):
-            decay = np.exp(-age * dt / c.retardation_times)
-            traction = -np.tensordot(c.amplitudes * decay, strip, axes=1)  # (n,) along y
-            dx = xc - (x_trail - dist * grid.spacing)
-            dy = yc - grid.y
-            r2 = dx * dx + dy * dy
-            # d/dx of (1 - nu) / (2 pi r) per unit force
-            slope += float(np.sum(traction * (-(1 - nu) * dx / (2 * np.pi * r2**1.5)))) * grid.cell_area
-        return abs(slope)
+        dists = np.asarray(self.distance, dtype=float)
+        ages = np.asarray(self.age, dtype=float)
+        decay = np.exp(-np.outer(ages * dt, 1.0 / c.retardation_times))          # (S, M)
+        traction = -np.einsum("sm,smy->sy", decay * c.amplitudes, np.asarray(self.strips))  # (S, n)
+        dx = (xc - (grid.x[0] - dists * grid.spacing))[:, None]                  # (S, 1)
+        dy = (yc - grid.y)[None, :]
+        r = np.sqrt(dx * dx + dy * dy)
+        area = grid.cell_area
+        u = float(np.sum(traction * (1 - nu) / (2 * np.pi * r))) * area
+        slope = float(np.sum(traction * (-(1 - nu) * dx / (2 * np.pi * r**3)))) * area
+        return u, slope
