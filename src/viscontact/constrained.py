@@ -60,7 +60,8 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
                    upper: np.ndarray | float, *, total: float | None = None, cell_area: float = 1.0,
                    tolerance: float = 1e-10, max_iterations: int = 2000,
                    what: str = "constrained conjugate gradient",
-                   preconditioner: Operator | None = None) -> ConstrainedSolution:
+                   preconditioner: Operator | None = None,
+                   apply_k_sparse: Operator | None = None, sparse_limit: int = 8) -> ConstrainedSolution:
     """Polonsky-Keer bound-constrained conjugate gradient.
 
     Parameters
@@ -137,6 +138,7 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         step = float(np.sum(g[free] * direction[free])) / denom
         x_old = x.copy()
         x = np.where(free, x - step * direction, x)
+        x_linear = x
         clipped = (x < lower) | (x > upper)
         x = np.clip(x, lower, upper)
         release = ((x <= lower) & (g < 0)) | ((x >= upper) & (g > 0))
@@ -144,10 +146,13 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         if release.any():
             x = np.where(release, np.clip(x - step * g, lower, upper), x)
         conjugate = not (release.any() or clipped.any())
-        if conjugate:
-            kx = kx - step * k_direction  # exact: x moved by -step * direction only
-        else:
-            kx = apply_k(x)
+        kx = kx - step * k_direction  # exact for the move x -> x - step * direction
+        if not conjugate:  # bound corrections at a few points: add their effect
+            correction = x - x_linear
+            if apply_k_sparse is not None and np.count_nonzero(correction) <= sparse_limit:
+                kx = kx + apply_k_sparse(correction)
+            else:
+                kx = apply_k(x)
         if total is not None:
             s = x.sum()
             if s > 0:

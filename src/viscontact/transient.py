@@ -163,15 +163,18 @@ def _solve_normal(problem: Problem, ops: Operators, j_inst: float, gap: np.ndarr
     def precondition(r: np.ndarray) -> np.ndarray:
         return ops.preconditioners["zz"](r) / j_inst
 
+    def apply_k_sparse(x: np.ndarray) -> np.ndarray:
+        return j_inst * ops.conv.apply_sparse("zz", x)
+
     if problem.normal.control == "load":
         sol = constrained_cg(apply_k, -(gap + known_uz), warm, 0.0, np.inf, total=value,
                              cell_area=grid.cell_area, tolerance=s.tolerance,
                              max_iterations=s.max_iterations, what="normal contact (load control)",
-                             preconditioner=precondition)
+                             preconditioner=precondition, apply_k_sparse=apply_k_sparse)
         return sol.x, sol.multiplier, sol.iterations, sol.gradient + sol.multiplier - gap
     sol = constrained_cg(apply_k, value - (gap + known_uz), warm, 0.0, np.inf, tolerance=s.tolerance,
                          max_iterations=s.max_iterations, what="normal contact (displacement control)",
-                         preconditioner=precondition)
+                         preconditioner=precondition, apply_k_sparse=apply_k_sparse)
     return sol.x, value, sol.iterations, sol.gradient + value - gap
 
 
