@@ -117,6 +117,7 @@ class SolverSettings:
     max_coupling_iterations: int = 100
     workers: int = -1                 # scipy.fft workers (-1: all cores)
     history: Literal["recursive", "direct"] = "recursive"  # direct: literal sum of seed Eq. 5 (reference)
+    coupling: bool = True             # False: drop the (1 - 2 nu) normal/tangential cross terms
 
 
 @dataclass(frozen=True)

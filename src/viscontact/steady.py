@@ -119,7 +119,8 @@ def steady_convolver(problem: Problem, speed: float) -> tuple[Convolver, dict[st
     from .kernels import influence_coefficients
 
     mat, grid = problem.material, problem.grid
-    comps = ["zz"] + (["zx"] if problem.tangential.effective_friction > 0 and mat.poisson_ratio < 0.5 else [])
+    coupled = problem.tangential.effective_friction > 0 and mat.poisson_ratio < 0.5 and problem.solver.coupling
+    comps = ["zz"] + (["zx"] if coupled else [])
     base = influence_coefficients(grid, mat.poisson_ratio)
     c = mat.creep
     kernels = {k: c.instantaneous * base[k] for k in comps}

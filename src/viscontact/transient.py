@@ -55,7 +55,7 @@ def operators(problem: Problem) -> Operators:
     comps = ["zz"]
     if problem.tangential.mode == "partial_slip":
         comps += ["xx"]
-    if nu < 0.5 and problem.tangential.mode in ("partial_slip", "gross_sliding"):
+    if nu < 0.5 and problem.solver.coupling and problem.tangential.mode in ("partial_slip", "gross_sliding"):
         comps += ["xz", "zx"]
     workers = problem.solver.workers
     ics = influence_coefficients(problem.grid, nu)

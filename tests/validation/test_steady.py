@@ -1,0 +1,78 @@
+"""Steady-state solver against Hertz limits, and the transient solver against the steady solver.
+
+References (independent of the transient solver):
+* slow sliding: the material is fully relaxed, Hertz with G(inf); fast sliding: Hertz with G(0)
+  (SPEC section 5). Tolerance 1 %: the grid resolves the Hertz peak to ~0.1 % at these sizes and
+  v tau/a = 1e-4 / 1e4 leaves a residual viscous effect below 1e-3.
+* the transient at long times must converge to the steady state on the same grid. With the wake
+  on the grid (+-5.12 a0), the remaining difference is the time discretisation of the moving frame
+  (v dt = dx): first order for the seed's piecewise-constant scheme, about second order for the
+  linear scheme (measured 2.5e-3, 7.5e-4, 2.4e-4 in mu_app at n = 64, 128, 256).
+"""
+import warnings
+
+import numpy as np
+import pytest
+
+from viscontact.steady import solve_steady, speed_sweep
+from viscontact.transient import simulate
+from viscontact.reference import hertz_from_load
+
+from vc_testing import SEED_A0, SEED_RADIUS, SEED_TAU, observed_order, seed_material, sphere_problem
+
+LOAD = 0.148
+
+
+@pytest.mark.parametrize("speed_ratio, modulus", [(1e-4, "long"), (1e4, "instantaneous")])
+def test_steady_limits_are_hertz(speed_ratio, modulus):
+    mat = seed_material()
+    g = mat.shear_modulus_long_term if modulus == "long" else mat.shear_modulus_instantaneous
+    ref = hertz_from_load(LOAD, SEED_RADIUS, g, mat.poisson_ratio)
+    v = speed_ratio * SEED_A0 / SEED_TAU
+    pb = sphere_problem(mat, 64, 1.6 * ref.radius, value=LOAD, mode="frictionless_sliding", speed=v, t_end=1.0)
+    rec = solve_steady(pb)
+    assert rec.load == pytest.approx(LOAD, rel=1e-9)
+    assert rec.pressure.max() == pytest.approx(ref.peak_pressure, rel=0.01)
+    assert rec.delta_z == pytest.approx(ref.approach, rel=0.01)
+    assert abs(rec.mu_app) < 1e-3
+    assert abs(rec.contact_shift) < 0.01 * ref.radius
+
+
+def test_mu_app_against_speed_has_one_maximum():
+    """mu_app rises then falls with speed (Carbone & Putignano; seed Sec. 3)."""
+    pb = sphere_problem(seed_material(), 48, 2.6 * SEED_A0, value=LOAD, mode="frictionless_sliding",
+                        speed=SEED_A0 / SEED_TAU, t_end=1.0)
+    speeds = SEED_A0 / SEED_TAU * np.logspace(-2, 2.5, 10)
+    mu = np.array([r.mu_app for r in speed_sweep(pb, speeds)])
+    assert np.all(mu > 0)
+    peak = int(np.argmax(mu))
+    assert 0 < peak < len(mu) - 1
+    assert np.all(np.diff(mu[: peak + 1]) > 0) and np.all(np.diff(mu[peak:]) < 0)
+
+
+def _transient_vs_steady(n: int, scheme: str) -> float:
+    v = 0.8 * SEED_A0 / SEED_TAU
+    pb = sphere_problem(seed_material(), n, 5.12 * SEED_A0, control="displacement", value=34.45e-6,
+                        mode="frictionless_sliding", speed=v, t_end=6 * SEED_TAU, scheme=scheme, every=10**6)
+    with warnings.catch_warnings():
+        warnings.filterwarnings("error", message="history dropped")  # the wake must fit on the grid
+        last = list(simulate(pb))[-1]
+    ref = solve_steady(pb)
+    return abs(last.mu_app - ref.mu_app) / ref.mu_app
+
+
+@pytest.mark.parametrize("scheme, low, high", [("constant", 0.7, 1.3), ("linear", 1.4, 2.5)])
+def test_transient_converges_to_steady_with_order(scheme, low, high):
+    ns = [64, 128]  # n = 32 (dx = 0.32 a0) is not yet in the asymptotic range
+    errors = [_transient_vs_steady(n, scheme) for n in ns]
+    order = observed_order([1.0 / n for n in ns], errors)
+    assert low < order < high, (errors, order)
+    if scheme == "linear":
+        assert errors[-1] < 2e-3
+    else:
+        assert errors[-1] < 0.1
+
+
+@pytest.mark.slow
+def test_transient_matches_steady_at_256():
+    assert _transient_vs_steady(256, "linear") < 5e-4
