@@ -67,6 +67,39 @@ def step_coefficients(material: Material, dt: float, scheme: str, first: bool) -
     return StepCoefficients(decay, weight, float(c.long_term - np.dot(c.amplitudes, weight)))
 
 
+def amplification(material: Material, dt: float, scheme: str) -> float:
+    """Spectral radius of the step-to-step amplification of a traction disturbance [-].
+
+    A disturbance e_k = z^k of the traction under a held displacement satisfies (recursive form above)
+    J_inst + sum_m J_m beta_m (1 - A_m) / (z - A_m) = 0. The scheme is stable when every root has
+    |z| <= 1. For one mode (Zener) z = A - J_1 beta (1 - A) / J_inst; with the seed's constant scheme
+    it falls below -1 once dt > -lambda ln(1 - 2 G(inf)/G(0)): the solution then oscillates with
+    growing amplitude. The linear scheme is stable for any dt.
+    """
+    coef = step_coefficients(material, dt, scheme, first=False)
+    amps = material.creep.amplitudes
+    if not amps.size:
+        return 0.0
+    poly = coef.instantaneous * np.polynomial.polynomial.polyfromroots(coef.decay)
+    for m in range(amps.size):
+        others = np.polynomial.polynomial.polyfromroots(np.delete(coef.decay, m))
+        poly = np.polynomial.polynomial.polyadd(poly, amps[m] * coef.weight[m] * (1 - coef.decay[m]) * others)
+    return float(np.max(np.abs(np.polynomial.polynomial.polyroots(poly))))
+
+
+def stable_step_limit(material: Material, scheme: str) -> float:
+    """Largest dt [s] for which :func:`amplification` <= 1 (inf when stable for every dt)."""
+    if scheme == "linear" or not material.creep.amplitudes.size:
+        return float("inf")
+    lo, hi = 0.0, float(material.creep.retardation_times.max()) * 1e3
+    if amplification(material, hi, scheme) <= 1.0:
+        return float("inf")
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if amplification(material, mid, scheme) <= 1.0 else (lo, mid)
+    return lo
+
+
 @dataclass
 class PronyHistory:
     """Recursive hereditary state of one traction component: H (M, n, n) and the previous traction."""

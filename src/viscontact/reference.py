@@ -136,7 +136,7 @@ def lee_radok_centre_pressure(load: float, sphere_radius: float, material, t: np
     for idx, ti in np.ndenumerate(t):
         integral = 0.0
         if ti > 0 and creep.amplitudes.size:
-            integral, _ = quad(lambda s: float(material.relaxation_modulus(ti - s)) * rate(s), 0.0, ti,
+            integral, _ = quad(lambda s, ti=ti: float(material.relaxation_modulus(ti - s)) * rate(s), 0.0, ti,
                                epsabs=0.0, epsrel=1e-11, limit=200)
         out[idx] = factor * (float(material.relaxation_modulus(ti)) * a0 + integral)
     return out

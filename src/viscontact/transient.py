@@ -28,7 +28,7 @@ from .constrained import constrained_cg
 from .convolution import Convolver, FourierPreconditioner, coupled_displacements
 from .kernels import influence_coefficients
 from .errors import ConvergenceError, NumericalGuardError, ParameterError, ViscontactWarning
-from .history import DirectHistory, PronyHistory, StepCoefficients, step_coefficients
+from .history import DirectHistory, PronyHistory, StepCoefficients, stable_step_limit, step_coefficients
 from .problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP, Problem
 from .records import StepRecord
 from .sliding import Wake, hysteresis_force, pressure_centroid
@@ -120,6 +120,12 @@ def validate(problem: Problem) -> None:
                                  "> 1 needs an analytic indenter (shape = \"sphere\"); use 1 with a height file")
     if tan.mode == "partial_slip" and not tan.displacement_rate > 0:
         raise ParameterError("tangential.displacement_rate", f"must be > 0 m/s for partial_slip, got {tan.displacement_rate}")
+    limit = stable_step_limit(problem.material, problem.time.scheme)
+    if problem.time.dt > limit:
+        raise ParameterError(
+            "time.dt", f"{problem.time.dt:.4g} s exceeds the stability limit {limit:.4g} s of the piecewise-constant "
+            "(seed) scheme for this material: the result would oscillate and grow. Use time.scheme = \"linear\" "
+            "(stable for any dt) or a smaller dt (with sliding: a larger grid.n or tangential.steps_per_cell)")
     ratio = problem.time.dt / problem.material.shortest_time
     if ratio > 1.0:
         warnings.warn(f"time.dt = {problem.time.dt:.3g} s is {ratio:.1f} x the shortest material time "
