@@ -10,23 +10,49 @@ Public API::
 """
 from importlib.metadata import version as _v
 
-from .api import run, steady
+from . import steady  # the steady-state solver module (viscontact.steady.solve_steady, speed_sweep)
+from .api import run, run_steady
 from .case import Case, load_case
 from .errors import ConvergenceError, NumericalGuardError, ParameterError, ViscontactError, ViscontactWarning
 from .grid import Grid
 from .materials import Material
-from .problem import (NormalLoading, OutputSettings, PiecewiseLinear, Problem, SolverSettings, TangentialLoading,
-                      TimeStepping)
+from .problem import (
+    NormalLoading,
+    OutputSettings,
+    PiecewiseLinear,
+    Problem,
+    SolverSettings,
+    TangentialLoading,
+    TimeStepping,
+)
 from .records import StepRecord
 from .results import open_result, to_dataset, write_netcdf
 
 __version__ = _v("viscontact")
 
 __all__ = [
+    "Case",
+    "ConvergenceError",
+    "Grid",
+    "Material",
+    "NormalLoading",
+    "NumericalGuardError",
+    "OutputSettings",
+    "ParameterError",
+    "PiecewiseLinear",
+    "Problem",
+    "SolverSettings",
+    "StepRecord",
+    "TangentialLoading",
+    "TimeStepping",
+    "ViscontactError",
+    "ViscontactWarning",
     "__version__",
-    "load_case", "Case", "run", "steady",
-    "Material", "Grid", "Problem", "NormalLoading", "PiecewiseLinear", "TangentialLoading", "TimeStepping",
-    "SolverSettings", "OutputSettings", "StepRecord",
-    "to_dataset", "write_netcdf", "open_result",
-    "ViscontactError", "ParameterError", "ConvergenceError", "NumericalGuardError", "ViscontactWarning",
+    "load_case",
+    "open_result",
+    "run",
+    "run_steady",
+    "steady",
+    "to_dataset",
+    "write_netcdf",
 ]

@@ -1,0 +1,508 @@
+"""Case files: TOML text -> validated pydantic models -> :class:`~viscontact.problem.Problem`.
+
+The keys of SPEC §3 plus extensions (``tangential.steps_per_cell``, ``time.scheme``, ``[output]``,
+``[solver]``). Every problem with the input -- not TOML, unknown key, wrong type, value out of
+range, missing file -- is raised as one :class:`~viscontact.errors.ParameterError` whose ``key`` is
+the dotted case-file key and whose message gives the allowed range or values (and, for an unknown
+key, the closest valid one).
+
+Example
+-------
+>>> case = load_case("cases/creep_indentation.toml")            # doctest: +SKIP
+>>> fast = case.with_overrides({"tangential.sliding_speed": 0.1})  # doctest: +SKIP
+>>> problem = fast.to_problem()                                  # doctest: +SKIP
+"""
+from __future__ import annotations
+
+import copy
+import difflib
+import typing
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+import numpy as np
+import tomllib
+from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, model_validator
+
+from .errors import ParameterError
+from .grid import Grid
+from .materials import Material
+from .problem import (
+    NormalLoading,
+    OutputSettings,
+    PiecewiseLinear,
+    Problem,
+    SolverSettings,
+    TangentialLoading,
+    TimeStepping,
+)
+from .records import StepRecord
+
+__all__ = ["MIN_GRID_N", "Case", "load_case"]
+
+#: smallest grid accepted (cells per side)
+MIN_GRID_N = 8
+_SLIDING_MODES = ("frictionless_sliding", "gross_sliding", "partial_slip")
+
+
+def _num(default: Any = ..., unit: str = "", **constraints: Any) -> Any:
+    """A finite float field with a unit (shown in error messages)."""
+    return Field(default, allow_inf_nan=False, json_schema_extra={"unit": unit}, **constraints)
+
+
+def _int(default: Any = ..., **constraints: Any) -> Any:
+    return Field(default, json_schema_extra={"unit": ""}, **constraints)
+
+
+class _Section(BaseModel):
+    # strict: TOML is typed, so "0.3" (a string) is not a number; ints are accepted as floats.
+    model_config = ConfigDict(extra="forbid", frozen=True, strict=True)
+
+
+# --- [material] ---------------------------------------------------------------------------------
+class ZenerMaterial(_Section):
+    """Standard linear solid: G(0), G(inf) [Pa] and the retardation (creep) time [s]."""
+
+    type: Literal["zener"]
+    shear_modulus_instantaneous: float = _num(unit="Pa", gt=0)
+    shear_modulus_long_term: float = _num(unit="Pa", gt=0)
+    retardation_time: float = _num(unit="s", gt=0)
+    poisson_ratio: float = _num(unit="", ge=0, le=0.5)
+
+    @model_validator(mode="after")
+    def _ordered(self) -> ZenerMaterial:
+        if self.shear_modulus_long_term > self.shear_modulus_instantaneous:
+            raise ParameterError("material.shear_modulus_long_term",
+                                 f"must be <= shear_modulus_instantaneous = {self.shear_modulus_instantaneous:g} Pa, "
+                                 f"got {self.shear_modulus_long_term:g} Pa")
+        return self
+
+    def build(self) -> Material:
+        return Material.zener(self.shear_modulus_instantaneous, self.shear_modulus_long_term,
+                              self.retardation_time, self.poisson_ratio)
+
+
+class PronyMaterial(_Section):
+    """Generalized Maxwell: G(t) = g_inf + sum g_i exp(-t/tau_i) [Pa]; tau in s."""
+
+    type: Literal["prony"]
+    g_inf: float = _num(unit="Pa", gt=0)
+    g: list[Annotated[float, Field(gt=0, allow_inf_nan=False)]] = Field(json_schema_extra={"unit": "Pa"})
+    tau: list[Annotated[float, Field(gt=0, allow_inf_nan=False)]] = Field(json_schema_extra={"unit": "s"})
+    poisson_ratio: float = _num(unit="", ge=0, le=0.5)
+
+    @model_validator(mode="after")
+    def _same_length(self) -> PronyMaterial:
+        if len(self.g) != len(self.tau):
+            raise ParameterError("material.tau", f"must have as many entries as material.g ({len(self.g)}), "
+                                 f"got {len(self.tau)}")
+        return self
+
+    def build(self) -> Material:
+        return Material.prony(self.g_inf, self.g, self.tau, self.poisson_ratio)
+
+
+class ElasticMaterial(_Section):
+    """Elastic half-space: shear modulus G [Pa]."""
+
+    type: Literal["elastic"]
+    shear_modulus: float = _num(unit="Pa", gt=0)
+    poisson_ratio: float = _num(unit="", ge=0, le=0.5)
+
+    def build(self) -> Material:
+        return Material.elastic(self.shear_modulus, self.poisson_ratio)
+
+
+_MATERIALS: dict[str, type[_Section]] = {"zener": ZenerMaterial, "prony": PronyMaterial,
+                                          "elastic": ElasticMaterial}
+MaterialSection = Annotated[ZenerMaterial | PronyMaterial | ElasticMaterial, Field(discriminator="type")]
+
+
+# --- the other sections --------------------------------------------------------------------------
+class IndenterSection(_Section):
+    """``shape = "sphere"`` with ``radius`` [m], or ``shape = "surface"`` with ``file``: a .npy of
+    heights h0 [m] on the grid (n x n, indexed [y, x]), relative to the case file's folder."""
+
+    shape: Literal["sphere", "surface"] = "sphere"
+    radius: float | None = _num(None, unit="m", gt=0)
+    file: str | None = None
+
+    @model_validator(mode="after")
+    def _consistent(self) -> IndenterSection:
+        if self.shape == "sphere":
+            if self.radius is None:
+                raise ParameterError("indenter.radius", "required for shape = 'sphere' (> 0 m)")
+            if self.file is not None:
+                raise ParameterError("indenter.file", "only with shape = 'surface'")
+        else:
+            if self.file is None:
+                raise ParameterError("indenter.file", "required for shape = 'surface' (a .npy of heights in m)")
+            if self.radius is not None:
+                raise ParameterError("indenter.radius", "only with shape = 'sphere'")
+        return self
+
+
+class GridSection(_Section):
+    """n x n cells on [-half_width, half_width]^2 [m]."""
+
+    n: int = _int(ge=MIN_GRID_N)
+    half_width: float = _num(unit="m", gt=0)
+
+
+class NormalSection(_Section):
+    """Load W [N] or approach delta_z [m]: a held ``value`` or a piecewise-linear ``history``."""
+
+    control: Literal["load", "displacement"]
+    value: float | None = _num(None, unit="N or m", gt=0)
+    history: list[list[float]] | None = Field(None, json_schema_extra={"unit": "[s, N or m]"})
+
+    @model_validator(mode="after")
+    def _one_of(self) -> NormalSection:
+        if (self.value is None) == (self.history is None):
+            raise ParameterError("normal.value" if self.value is not None else "normal",
+                                 "give exactly one of 'value' (held from t = 0) or 'history' "
+                                 "([[t, value], ...], piecewise linear)")
+        if self.history is not None:
+            pts = self.history
+            if not pts or any(len(p) != 2 for p in pts):
+                raise ParameterError("normal.history", "must be a non-empty list of [t, value] pairs")
+            arr = np.asarray(pts, dtype=float)
+            if not np.all(np.isfinite(arr)):
+                raise ParameterError("normal.history", "must contain finite numbers only")
+            if arr[0, 0] < 0 or np.any(np.diff(arr[:, 0]) <= 0):
+                raise ParameterError("normal.history", "times must be >= 0 s and strictly increasing")
+            if np.any(arr[:, 1] < 0) or not arr[:, 1].max() > 0:
+                raise ParameterError("normal.history", "values must be >= 0 (N or m) with a positive maximum")
+        return self
+
+    def build(self) -> NormalLoading:
+        if self.history is None:
+            return NormalLoading(self.control, PiecewiseLinear.constant(self.value))
+        return NormalLoading(self.control, PiecewiseLinear(tuple(float(p[0]) for p in self.history),
+                                                           tuple(float(p[1]) for p in self.history)))
+
+
+class TangentialSection(_Section):
+    """Tangential motion: ``mode`` and the friction coefficient, rates and speed [m/s]."""
+
+    mode: Literal["none", "frictionless_sliding", "gross_sliding", "partial_slip"] = "none"
+    friction_coefficient: float = _num(0.0, unit="", ge=0)
+    displacement_rate: float = _num(0.0, unit="m/s", ge=0)
+    sliding_speed: float = _num(0.0, unit="m/s", ge=0)
+    steps_per_cell: int = _int(1, ge=1)
+
+    @model_validator(mode="after")
+    def _mode_needs(self) -> TangentialSection:
+        if self.mode in _SLIDING_MODES and not self.sliding_speed > 0:
+            raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s with mode = '{self.mode}', "
+                                 f"got {self.sliding_speed:g}")
+        if self.mode == "partial_slip":
+            if not self.displacement_rate > 0:
+                raise ParameterError("tangential.displacement_rate",
+                                     f"must be > 0 m/s with mode = 'partial_slip', got {self.displacement_rate:g}")
+            if not self.friction_coefficient > 0:
+                raise ParameterError("tangential.friction_coefficient",
+                                     f"must be > 0 with mode = 'partial_slip', got {self.friction_coefficient:g}")
+        return self
+
+    def build(self) -> TangentialLoading:
+        return TangentialLoading(self.mode, self.friction_coefficient, self.displacement_rate,
+                                 self.sliding_speed, self.steps_per_cell)
+
+
+class TimeSection(_Section):
+    """End time and step [s]; ``dt`` defaults to one cell of sliding per ``steps_per_cell`` steps."""
+
+    t_end: float = _num(unit="s", gt=0)
+    dt: float | None = _num(None, unit="s", gt=0)
+    scheme: Literal["constant", "linear"] = "constant"
+
+
+_FIELD_NAMES = Literal["pressure", "shear_x", "stick", "displacement_z"]
+
+
+class OutputSection(_Section):
+    """Record every ``every``-th step (and the last) and these fields."""
+
+    every: int = _int(OutputSettings.every, ge=1)
+    fields: list[_FIELD_NAMES] = Field(list(OutputSettings.fields), json_schema_extra={"unit": ""})
+
+
+class SolverSection(_Section):
+    """Tolerances (relative) and iteration caps of the constrained CG and the coupling loop."""
+
+    tolerance: float = _num(SolverSettings.tolerance, unit="", gt=0, lt=1)
+    max_iterations: int = _int(SolverSettings.max_iterations, ge=1)
+    coupling_tolerance: float = _num(SolverSettings.coupling_tolerance, unit="", gt=0, lt=1)
+    max_coupling_iterations: int = _int(SolverSettings.max_coupling_iterations, ge=1)
+    workers: int = _int(SolverSettings.workers, ge=-1)
+    history: Literal["recursive", "direct"] = SolverSettings.history
+
+    @model_validator(mode="after")
+    def _workers(self) -> SolverSection:
+        if self.workers == 0:
+            raise ParameterError("solver.workers", "must be -1 (all cores) or >= 1, got 0")
+        return self
+
+
+# --- the case -----------------------------------------------------------------------------------
+class Case(_Section):
+    """A validated case file. Build it with :func:`load_case` or :meth:`from_toml_text`.
+
+    ``text`` is the TOML text it came from; ``base_dir`` the folder that relative paths in it
+    (``indenter.file``) refer to.
+    """
+
+    title: str = ""
+    material: MaterialSection
+    indenter: IndenterSection
+    grid: GridSection
+    normal: NormalSection
+    tangential: TangentialSection = TangentialSection()
+    time: TimeSection
+    output: OutputSection = OutputSection()
+    solver: SolverSection = SolverSection()
+
+    _text: str = PrivateAttr("")
+    _base_dir: Path = PrivateAttr(default_factory=Path)
+    _data: dict = PrivateAttr(default_factory=dict)
+
+    @model_validator(mode="after")
+    def _cross_checks(self) -> Case:
+        if self.time.dt is None and self.tangential.mode not in _SLIDING_MODES:
+            raise ParameterError("time.dt", "required (> 0 s) when tangential.mode = 'none'")
+        if self.time.dt is not None and self.time.dt > self.time.t_end:
+            raise ParameterError("time.dt", f"must be <= time.t_end = {self.time.t_end:g} s, got {self.time.dt:g} s")
+        return self
+
+    # --- construction -------------------------------------------------------------------------
+    @classmethod
+    def from_toml_text(cls, text: str, base_dir: str | Path = ".", *, source: str = "case file") -> Case:
+        """Parse and validate TOML ``text``; relative paths in it are taken from ``base_dir``."""
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
+            raise ParameterError("case file", f"{source} is not valid TOML: {exc}") from None
+        return cls._from_data(data, text, Path(base_dir))
+
+    @classmethod
+    def _from_data(cls, data: dict, text: str, base_dir: Path) -> Case:
+        try:
+            case = cls.model_validate(data)
+        except ValidationError as exc:
+            raise _parameter_error(exc) from None
+        case._text, case._base_dir, case._data = text, base_dir, data
+        return case
+
+    @property
+    def text(self) -> str:
+        """The TOML text of the case (with applied overrides listed as comments at its end)."""
+        return self._text
+
+    @property
+    def base_dir(self) -> Path:
+        return self._base_dir
+
+    def with_overrides(self, overrides: Mapping[str, Any]) -> Case:
+        """A new case with dotted keys replaced, e.g. ``{"tangential.sliding_speed": 0.1}``.
+
+        A value of ``None`` removes the key (its default applies). Setting ``normal.value`` drops
+        ``normal.history`` and vice versa. The new case is validated
+        as a whole; its ``text`` is the original one followed by the overrides as comments.
+        """
+        data = copy.deepcopy(self._data)
+        lines = []
+        for key, value in overrides.items():
+            value = value.item() if isinstance(value, np.generic) else value
+            parts = key.split(".")
+            node = data
+            for i, part in enumerate(parts[:-1]):
+                node = node.setdefault(part, {})
+                if not isinstance(node, dict):
+                    raise ParameterError(".".join(parts[:i + 1]), f"is not a table, cannot set {key}")
+            if value is None:
+                node.pop(parts[-1], None)
+                lines.append(f"# {key} removed")
+                continue
+            node[parts[-1]] = value
+            if parts[:-1] == ["normal"] and parts[-1] in ("value", "history"):
+                node.pop("history" if parts[-1] == "value" else "value", None)
+            lines.append(f"# {key} = {value!r}")
+        text = self._text.rstrip("\n") + "\n\n# overrides applied by viscontact:\n" + "\n".join(lines) + "\n"
+        return self._from_data(data, text, self._base_dir)
+
+    # --- to the core --------------------------------------------------------------------------
+    def default_dt(self) -> float:
+        """dt [s]: as given, else one grid cell of sliding per ``steps_per_cell`` steps."""
+        if self.time.dt is not None:
+            return self.time.dt
+        tan = self.tangential
+        return (2.0 * self.grid.half_width / self.grid.n) / tan.sliding_speed / tan.steps_per_cell
+
+    def gap(self, grid: Grid) -> np.ndarray:
+        """Undeformed gap h0(x, y) [m] on ``grid``: (x^2 + y^2)/(2R) for a sphere, else the height
+        file shifted so that its lowest point is 0 (first touch at delta_z = 0)."""
+        ind = self.indenter
+        if ind.shape == "sphere":
+            x, y = grid.mesh()
+            return (x**2 + y**2) / (2.0 * ind.radius)
+        path = self._base_dir / ind.file
+        try:
+            h0 = np.load(path, allow_pickle=False)
+        except FileNotFoundError:
+            raise ParameterError("indenter.file", f"no such file: {path}") from None
+        except (OSError, ValueError) as exc:
+            raise ParameterError("indenter.file", f"cannot read {path} as a .npy array: {exc}") from None
+        if h0.shape != (grid.n, grid.n):
+            raise ParameterError("indenter.file", f"{path} holds an array of shape {h0.shape}; it must be "
+                                 f"(grid.n, grid.n) = ({grid.n}, {grid.n}), heights in m indexed [y, x]")
+        if not np.issubdtype(h0.dtype, np.number) or not np.all(np.isfinite(h0)):
+            raise ParameterError("indenter.file", f"{path} must hold finite numbers (heights in m)")
+        h0 = np.asarray(h0, dtype=float)
+        return h0 - h0.min()
+
+    def to_problem(self) -> Problem:
+        """The :class:`~viscontact.problem.Problem` the solvers consume."""
+        grid = Grid(self.grid.n, self.grid.half_width)
+        s = self.solver
+        fields = tuple(f for f in StepRecord.FIELDS if f in self.output.fields)
+        return Problem(
+            material=self.material.build(),
+            grid=grid,
+            gap=self.gap(grid),
+            normal=self.normal.build(),
+            tangential=self.tangential.build(),
+            time=TimeStepping(self.time.t_end, self.default_dt(), self.time.scheme),
+            solver=SolverSettings(s.tolerance, s.max_iterations, s.coupling_tolerance,
+                                  s.max_coupling_iterations, s.workers, s.history),
+            output=OutputSettings(self.output.every, fields),
+            radius=self.indenter.radius,
+            title=self.title,
+        )
+
+
+def load_case(path: str | Path) -> Case:
+    """Read and validate a TOML case file. Raises :class:`ParameterError` (key ``"case file"``)
+    when it is missing, unreadable or not TOML."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ParameterError("case file", f"no such file: {path}") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ParameterError("case file", f"cannot read {path}: {exc}") from None
+    return Case.from_toml_text(text, path.parent, source=str(path))
+
+
+# --- ValidationError -> ParameterError ------------------------------------------------------------
+def _model_of(annotation: Any) -> type[BaseModel] | None:
+    """The pydantic model in a field annotation (through Optional/Annotated), if any."""
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return annotation
+    for arg in typing.get_args(annotation):
+        found = _model_of(arg)
+        if found is not None:
+            return found
+    return None
+
+
+def _resolve(loc: tuple) -> tuple[list[str], type[BaseModel] | None, Any]:
+    """Dotted key parts, the model holding the key and the key's FieldInfo (None when unknown).
+
+    The discriminator tag pydantic puts after ``material`` (``material.zener.x``) is dropped from
+    the key and selects the material model.
+    """
+    loc = list(loc)
+    material_model = None
+    if len(loc) >= 2 and loc[0] == "material" and loc[1] in _MATERIALS:
+        material_model = _MATERIALS[loc.pop(1)]
+    parts: list[str] = []
+    model: type[BaseModel] | None = Case
+    parent, info = None, None
+    for item in loc:
+        if isinstance(item, int):  # index into an array: keep the array's FieldInfo
+            parts[-1] = f"{parts[-1]}[{item}]"
+            model = None
+            continue
+        parts.append(str(item))
+        parent = model
+        info = model.model_fields.get(item) if model is not None else None
+        if model is Case and item == "material":
+            model = material_model
+        else:
+            model = _model_of(info.annotation) if info is not None else None
+    return parts, parent, info
+
+
+def _kind(value: Any) -> str:
+    names = {bool: "a boolean", int: "an integer", float: "a number", str: "a string", list: "an array",
+             dict: "a table"}
+    return names.get(type(value), type(value).__name__)
+
+
+def _unit(info: Any) -> str:
+    extra = getattr(info, "json_schema_extra", None) or {}
+    unit = extra.get("unit", "") if isinstance(extra, dict) else ""
+    return f" {unit}" if unit else ""
+
+
+def _paren(unit: str) -> str:
+    return f" ({unit.strip()})" if unit else ""
+
+
+def _describe(err: dict, info: Any, key: str, parent: type[BaseModel] | None) -> str:
+    kind, ctx, value = err["type"], err.get("ctx", {}), err.get("input")
+    unit = _unit(info)
+    bounds = {"greater_than": ">", "greater_than_equal": ">=", "less_than": "<", "less_than_equal": "<="}
+    if kind in bounds:
+        limit = next(iter(ctx.values()))
+        return f"must be {bounds[kind]} {limit:g}{unit}, got {value!r}"
+    if kind == "missing":
+        if info is not None and _model_of(info.annotation) is not None:
+            return f"required section [{key}] is missing"
+        return "required key is missing"
+    if kind == "extra_forbidden":
+        name = key.rsplit(".", 1)[-1]
+        valid = sorted(parent.model_fields) if parent is not None else []
+        close = difflib.get_close_matches(name, valid, n=1, cutoff=0.6)
+        hint = f"did you mean '{close[0]}'? " if close else ""
+        return f"unknown key; {hint}valid keys here: {', '.join(valid)}"
+    if kind == "literal_error":
+        return f"must be one of {ctx.get('expected')}, got {value!r}"
+    if kind in ("union_tag_invalid", "union_tag_not_found"):
+        allowed = ", ".join(repr(t) for t in _MATERIALS)
+        got = f", got {ctx.get('tag')!r}" if kind == "union_tag_invalid" else " (missing)"
+        return f"must be one of {allowed}{got}"
+    if kind == "finite_number":
+        return f"must be a finite number{_paren(unit)}, got {value!r}"
+    if kind in ("int_type", "int_from_float", "int_parsing"):
+        return f"must be an integer, got {_kind(value)} {value!r}"
+    if kind in ("float_type", "float_parsing"):
+        return f"must be a number{_paren(unit)}, got {_kind(value)} {value!r}"
+    if kind in ("string_type", "str_type"):
+        return f"must be a string, got {_kind(value)} {value!r}"
+    if kind == "list_type":
+        return f"must be an array, got {_kind(value)} {value!r}"
+    if kind in ("model_type", "model_attributes_type", "dict_type"):
+        return f"must be a table ([{key}] section), got {_kind(value)} {value!r}"
+    return err["msg"]
+
+
+def _parameter_error(exc: ValidationError) -> ParameterError:
+    """The first error of a pydantic ValidationError as a ParameterError naming the dotted key."""
+    errors = exc.errors()
+    # an unknown key first: it usually explains the "missing" error that comes with it (typos)
+    err = next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
+    original = err.get("ctx", {}).get("error")
+    if isinstance(original, ParameterError):
+        return original
+    loc = tuple(err["loc"])
+    if err["type"] in ("union_tag_invalid", "union_tag_not_found"):
+        loc = loc + ("type",)
+    parts, parent, info = _resolve(loc)
+    key = ".".join(parts) or "case file"
+    message = _describe(err, info, key, parent)
+    if len(errors) > 1:
+        message += f" (and {len(errors) - 1} more problem{'s' if len(errors) > 2 else ''})"
+    return ParameterError(key, message)

@@ -1,0 +1,299 @@
+"""Results: solver records -> :class:`xarray.Dataset` -> netCDF-4 (SPEC §3).
+
+The Dataset is the only thing plots and users need: dimensions ``t`` [s], ``y``, ``x`` [m] (frame
+moving with the indenter, origin under its centre), fields ``pressure``, ``shear_x``, ``stick``
+(and ``displacement_z`` when recorded), the scalar histories of
+:class:`~viscontact.records.StepRecord`, and attributes for normalisation (``a0``, ``p0``,
+``retardation_time``) and provenance (``case``, ``version``).
+"""
+from __future__ import annotations
+
+import errno
+import os
+import tempfile
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from .problem import PHASE_GROSS_SLIDING, Problem
+from .records import StepRecord
+from .reference import hertz_from_approach, hertz_from_load
+
+__all__ = [
+    "VARIABLES",
+    "global_attrs",
+    "hertz_scale",
+    "open_result",
+    "sweep_dataset",
+    "to_dataset",
+    "write_netcdf",
+]
+
+#: units and long names of every variable a result may hold
+VARIABLES: dict[str, tuple[str, str]] = {
+    "pressure": ("Pa", "contact pressure p"),
+    "shear_x": ("Pa", "shear traction q_x on the half-space"),
+    "stick": ("1", "node in contact and stuck (|q| < mu_f p)"),
+    "displacement_z": ("m", "normal surface displacement u_z (positive into the half-space)"),
+    "load": ("N", "normal load W = sum p dA"),
+    "delta_z": ("m", "normal approach of the indenter"),
+    "delta_x": ("m", "tangential rigid-body displacement of the indenter"),
+    "sliding_distance": ("m", "distance slid since gross sliding began"),
+    "contact_area": ("m2", "contact area"),
+    "stick_ratio": ("1", "stick area / contact area"),
+    "phase": ("1", "phase: 0 indentation, 1 partial slip, 2 gross sliding"),
+    "friction_force": ("N", "dry friction force sum q_x dA (positive when resisting the motion)"),
+    "hysteresis_force": ("N", "hysteresis force F_T = -sum p du_z/dx dA (seed Eq. 15)"),
+    "mu_app": ("1", "apparent (hysteresis) friction coefficient F_T / W"),
+    "contact_shift": ("m", "x-centroid of the pressure"),
+    "frame_offset": ("m", "indenter centre in the grid frame"),
+    "wake_loss": ("1", "fraction of the history displacement load dropped at the trailing edge"),
+    "iterations": ("1", "constrained-CG iterations of the step"),
+    "coupling_iterations": ("1", "normal/tangential alternations of the step"),
+    "peak_pressure": ("Pa", "largest contact pressure"),
+}
+
+# quantities that are zero by definition in a tangential mode, and why
+_UNDEFINED = {
+    "none": (("shear_x", "stick", "stick_ratio", "friction_force", "delta_x", "sliding_distance",
+              "hysteresis_force", "mu_app"), "zero: no tangential motion (tangential.mode = 'none')"),
+    "frictionless_sliding": (("shear_x", "stick", "stick_ratio", "friction_force"),
+                             "zero: frictionless sliding (tangential.mode = 'frictionless_sliding')"),
+    "gross_sliding": (("stick", "stick_ratio"),
+                      "zero: no stick zone in gross sliding from t = 0 (tangential.mode = 'gross_sliding')"),
+    "partial_slip": ((), ""),
+}
+_COMPRESSION = {"zlib": True, "complevel": 4}
+
+
+def hertz_scale(problem: Problem) -> tuple[float, float]:
+    """Hertz radius a0 [m] and peak pressure p0 [Pa] with G(0) at the reference (largest) normal value.
+
+    Load control: Hertz for the load. Displacement control: a0 = sqrt(R delta), p0 from the Hertz
+    load of that approach. Without a sphere radius, R is the equivalent radius 2/laplacian(h0) at the
+    lowest point of the gap (NaN when the gap is not curved there, e.g. a flat punch).
+    """
+    radius = problem.radius if problem.radius is not None else equivalent_radius(problem)
+    if not np.isfinite(radius):
+        return float("nan"), float("nan")
+    mat = problem.material
+    ref = problem.normal.history.reference
+    build = hertz_from_load if problem.normal.control == "load" else hertz_from_approach
+    h = build(ref, radius, mat.shear_modulus_instantaneous, mat.poisson_ratio)
+    return float(h.radius), float(h.peak_pressure)
+
+
+def equivalent_radius(problem: Problem) -> float:
+    """Radius [m] of the sphere with the gap's curvature at its lowest point (NaN if not convex there)."""
+    h = problem.gap
+    n = h.shape[0]
+    j, i = np.unravel_index(np.argmin(h), h.shape)
+    if not (0 < i < n - 1 and 0 < j < n - 1):
+        return float("nan")
+    dx = problem.grid.spacing
+    lap = (h[j, i + 1] + h[j, i - 1] + h[j + 1, i] + h[j - 1, i] - 4.0 * h[j, i]) / dx**2
+    return float(2.0 / lap) if lap > 0 else float("nan")
+
+
+def retardation_time(problem: Problem) -> float:
+    """Shortest creep retardation time [s] of the material (NaN when elastic)."""
+    lam = problem.material.creep.retardation_times
+    return float(np.min(lam)) if lam.size else float("nan")
+
+
+def global_attrs(problem: Problem, case_text: str = "") -> dict[str, Any]:
+    """Attributes shared by transient and steady results (normalisation and provenance)."""
+    from . import __version__
+
+    a0, p0 = hertz_scale(problem)
+    mat, tan = problem.material, problem.tangential
+    return {
+        "title": problem.title,
+        "a0": a0,
+        "p0": p0,
+        "retardation_time": retardation_time(problem),
+        "tangential_mode": tan.mode,
+        "normal_control": problem.normal.control,
+        "normal_reference": problem.normal.history.reference,
+        "friction_coefficient": tan.effective_friction,
+        "sliding_speed": tan.sliding_speed,
+        "displacement_rate": tan.displacement_rate,
+        "shear_modulus_instantaneous": mat.shear_modulus_instantaneous,
+        "shear_modulus_long_term": mat.shear_modulus_long_term,
+        "poisson_ratio": mat.poisson_ratio,
+        "radius": float("nan") if problem.radius is None else float(problem.radius),
+        "dt": problem.time.dt,
+        "time_scheme": problem.time.scheme,
+        "grid_n": problem.grid.n,
+        "grid_half_width": problem.grid.half_width,
+        "case": case_text,
+        "version": __version__,
+        "Conventions": "CF-1.8",
+    }
+
+
+def _coords(problem: Problem) -> dict[str, Any]:
+    x = problem.grid.x
+    return {
+        "y": ("y", x, {"units": "m", "long_name": "y in the frame of the indenter"}),
+        "x": ("x", x, {"units": "m", "long_name": "x in the frame of the indenter (sliding towards +x)"}),
+    }
+
+
+def _variable(name: str, dims: tuple[str, ...], data: np.ndarray, mode: str) -> xr.Variable:
+    units, long_name = VARIABLES[name]
+    attrs = {"units": units, "long_name": long_name}
+    names, why = _UNDEFINED.get(mode, ((), ""))
+    if name in names:
+        attrs["note"] = why
+    return xr.Variable(dims, data, attrs)
+
+
+def _field_stack(records: Sequence[StepRecord], name: str, n: int) -> np.ndarray:
+    dtype = bool if name == "stick" else float
+    out = np.zeros((len(records), n, n), dtype=dtype)
+    for k, rec in enumerate(records):
+        value = getattr(rec, name)
+        if value is not None:
+            out[k] = value
+    return out
+
+
+def to_dataset(records: Sequence[StepRecord], problem: Problem, *, case_text: str = "",
+               attrs: dict[str, Any] | None = None) -> xr.Dataset:
+    """Dataset of a transient (or single steady) run, SPEC §3.
+
+    Parameters
+    ----------
+    records
+        Recorded steps in time order (possibly none, or only the steps done before a failure).
+    problem
+        The problem they solve (grid, normalisation, requested output fields).
+    case_text
+        The case file's text (stored as attribute ``case``).
+    attrs
+        Extra global attributes; they override the computed ones.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions ``t`` [s], ``y``, ``x`` [m]. The fields in ``problem.output.fields`` (missing
+        ones written as zeros), every scalar of :class:`StepRecord`; attributes ``a0`` [m],
+        ``p0`` [Pa], ``retardation_time`` [s], ``t_gross_sliding`` [s], ``complete`` (1 when the
+        last step of the run is in it), ``case``, ``version``, ...
+    """
+    records = list(records)
+    mode = problem.tangential.mode
+    n = problem.grid.n
+    t = np.array([r.t for r in records], dtype=float)
+    variables: dict[str, xr.Variable] = {}
+    for name in StepRecord.FIELDS:
+        if name in problem.output.fields:
+            variables[name] = _variable(name, ("t", "y", "x"), _field_stack(records, name, n), mode)
+    for name in StepRecord.SCALARS:
+        dtype = int if name in ("phase", "iterations", "coupling_iterations") else float
+        data = np.array([getattr(r, name) for r in records], dtype=dtype)
+        variables[name] = _variable(name, ("t",), data, mode)
+
+    coords = {"t": ("t", t, {"units": "s", "long_name": "time"}),
+              "step": ("t", np.array([r.step for r in records], dtype=int), {"long_name": "time-step index"}),
+              **_coords(problem)}
+    ds = xr.Dataset(variables, coords=coords)
+    ds.attrs.update(global_attrs(problem, case_text))
+    ds.attrs["t_gross_sliding"] = _t_gross_sliding(mode, t, variables["phase"].values)
+    last = records[-1].step if records else -1
+    ds.attrs["complete"] = int(last == problem.time.n_steps - 1)
+    ds.attrs.update(attrs or {})
+    return ds
+
+
+def _t_gross_sliding(mode: str, t: np.ndarray, phase: np.ndarray) -> float:
+    """First recorded time [s] in gross sliding (partial slip), 0 (sliding modes), NaN (otherwise)."""
+    if mode == "partial_slip":
+        hits = np.flatnonzero(phase == PHASE_GROSS_SLIDING)
+        return float(t[hits[0]]) if hits.size else float("nan")
+    return 0.0 if mode in ("frictionless_sliding", "gross_sliding") else float("nan")
+
+
+def sweep_dataset(records: Sequence[StepRecord], speeds: Sequence[float], problem: Problem, *,
+                  case_text: str = "", attrs: dict[str, Any] | None = None) -> xr.Dataset:
+    """Dataset of steady states along dimension ``speed`` [m/s].
+
+    Holds ``mu_app``, ``peak_pressure``, ``contact_area``, ``contact_shift``, ``delta_z``,
+    ``load``, ``hysteresis_force``, ``friction_force``, ``pressure(speed, y, x)`` and the
+    coordinate ``deborah`` = v tau / a0 [-].
+    """
+    records = list(records)
+    mode = problem.tangential.mode
+    speeds = np.asarray(speeds, dtype=float)
+    variables = {
+        name: _variable(name, ("speed",), np.array([getattr(r, name) for r in records], dtype=float), mode)
+        for name in ("mu_app", "contact_area", "contact_shift", "delta_z", "load", "hysteresis_force",
+                     "friction_force")
+    }
+    pressure = _field_stack(records, "pressure", problem.grid.n)
+    variables["peak_pressure"] = _variable("peak_pressure", ("speed",), pressure.max(axis=(1, 2)), mode)
+    variables["pressure"] = _variable("pressure", ("speed", "y", "x"), pressure, mode)
+    base = global_attrs(problem, case_text)
+    deborah = speeds * base["retardation_time"] / base["a0"]
+    coords = {"speed": ("speed", speeds, {"units": "m/s", "long_name": "sliding speed v"}),
+              "deborah": ("speed", deborah, {"units": "1", "long_name": "Deborah number v tau / a0"}),
+              **_coords(problem)}
+    ds = xr.Dataset(variables, coords=coords)
+    ds.attrs.update(base)
+    ds.attrs.update({"solver": "steady", "complete": 1})
+    ds.attrs.update(attrs or {})
+    return ds
+
+
+def write_netcdf(ds: xr.Dataset, path: str | Path, *, force: bool = False) -> Path:
+    """Write ``ds`` to ``path`` as netCDF-4 (h5netcdf), atomically.
+
+    The file is written under a temporary name in the same folder, flushed to disk and renamed over
+    ``path``: readers see the old file, or the complete new one, never a partial one. 3-D fields are
+    zlib-compressed in chunks of one time step.
+
+    Raises
+    ------
+    FileExistsError
+        ``path`` exists and ``force`` is false (``--force`` on the command line).
+    """
+    path = Path(path)
+    if path.exists() and not force:
+        raise FileExistsError(errno.EEXIST, "exists; refusing to overwrite it without --force (force=True)",
+                              str(path))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    encoding = {}
+    for name, var in ds.data_vars.items():
+        if var.ndim == 3:
+            encoding[name] = {**_COMPRESSION, "chunksizes": (1,) + var.shape[1:]} if var.shape[0] else dict(_COMPRESSION)
+    fd, tmp = tempfile.mkstemp(prefix=f"{path.name}.tmp", dir=path.parent)
+    os.close(fd)
+    try:
+        ds.to_netcdf(tmp, engine="h5netcdf", encoding=encoding)
+        with open(tmp, "rb+") as fh:
+            os.fsync(fh.fileno())
+        os.chmod(tmp, 0o644 & ~_umask())
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def open_result(path: str | Path) -> xr.Dataset:
+    """Load a result file fully into memory (the file is closed on return)."""
+    path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(errno.ENOENT, "no such file", str(path))
+    with xr.open_dataset(path, engine="h5netcdf") as ds:
+        return ds.load()

@@ -1,0 +1,68 @@
+"""The scripting API around a fake solver: datasets, partial results on failure, steady layouts."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from test_results import fake_records, make_problem  # tests/unit is on sys.path
+
+import viscontact as vc
+from viscontact import transient
+from viscontact.errors import ConvergenceError
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_steady_is_the_solver_module_and_run_steady_the_api() -> None:
+    from viscontact.steady import solve_steady  # noqa: F401
+
+    assert callable(vc.run_steady) and vc.steady.solve_steady is solve_steady
+
+
+def test_run_accepts_a_path(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    text = (ROOT / "cases" / "creep_indentation.toml").read_text().replace("\nn = 128", "\nn = 16")
+    (tmp_path / "case.toml").write_text(text)
+    seen = []
+
+    def fake(problem, *, progress=None):
+        seen.append(problem.grid.n)
+        for k, rec in enumerate(fake_records(make_problem(), (0, 0))):
+            if progress:
+                progress(k + 1, 2)
+            yield rec
+
+    monkeypatch.setattr(transient, "simulate", fake)
+    calls = []
+    ds = vc.run(tmp_path / "case.toml", progress=lambda d, t: calls.append((d, t)))
+    assert seen == [16] and calls == [(1, 2), (2, 2)]
+    assert ds.attrs["case"] == text
+    assert ds.attrs["complete"] == 0            # 2 of 161 steps
+
+
+def test_failure_keeps_the_steps_done(monkeypatch: pytest.MonkeyPatch) -> None:
+    def failing(problem, *, progress=None):
+        yield from fake_records(problem, (0, 1))
+        raise ConvergenceError("normal contact", 10, 1e-3, 1e-8)
+
+    monkeypatch.setattr(transient, "simulate", failing)
+    with pytest.raises(ConvergenceError) as info:
+        vc.run(make_problem())
+    partial = info.value.partial
+    assert partial.sizes["t"] == 2 and partial.attrs["complete"] == 0 and partial.attrs["case"] == ""
+
+
+def test_steady_layouts(monkeypatch: pytest.MonkeyPatch) -> None:
+    import sys
+
+    steady = sys.modules["viscontact.steady"]
+    problem = make_problem("gross_sliding")
+    record = fake_records(problem, (2,))[0]
+    monkeypatch.setattr(steady, "solve_steady", lambda p, speed=None: record)
+    monkeypatch.setattr(steady, "speed_sweep", lambda p, speeds: [record] * len(speeds))
+    single = vc.run_steady(problem)
+    assert single.sizes["t"] == 1 and single.attrs["complete"] == 1
+    sweep = vc.run_steady(problem, [0.01, 0.1])
+    assert sweep.sizes["speed"] == 2
+    for name in ("mu_app", "peak_pressure", "contact_area", "contact_shift", "delta_z", "load"):
+        assert sweep[name].dims == ("speed",), name
+    assert {"a0", "p0", "retardation_time"} <= set(sweep.attrs)

@@ -1,0 +1,123 @@
+"""Case files: the shipped cases load; each kind of bad input is one ParameterError naming the key."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from viscontact.case import Case, load_case
+from viscontact.errors import ParameterError
+from viscontact.problem import Problem
+
+ROOT = Path(__file__).resolve().parents[2]
+CASES = sorted((ROOT / "cases").glob("*.toml"))
+BASE = (ROOT / "cases" / "creep_indentation.toml").read_text()
+
+
+def parse(text: str, base_dir: Path = ROOT / "cases") -> Case:
+    return Case.from_toml_text(text, base_dir)
+
+
+@pytest.mark.parametrize("path", CASES, ids=[p.name for p in CASES])
+def test_shipped_cases_load(path: Path) -> None:
+    case = load_case(path)
+    problem = case.to_problem()
+    assert isinstance(problem, Problem)
+    assert case.text == path.read_text()
+    assert problem.gap.shape == (problem.grid.n, problem.grid.n)
+    assert problem.gap.min() >= 0
+
+
+def test_seed_material_and_sphere() -> None:
+    problem = load_case(ROOT / "cases" / "creep_indentation.toml").to_problem()
+    mat = problem.material
+    assert mat.shear_modulus_instantaneous == pytest.approx(1.93e6)
+    assert mat.shear_modulus_long_term == pytest.approx(0.193e6)
+    assert mat.creep.retardation_times[0] == pytest.approx(0.01)
+    x, y = problem.grid.mesh()
+    np.testing.assert_allclose(problem.gap, (x**2 + y**2) / (2 * 0.01))
+    assert problem.normal.control == "load" and problem.normal.history(1.0) == pytest.approx(0.15)
+    assert problem.time.dt == pytest.approx(2.5e-4) and problem.time.n_steps == 161
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "key", "words"),
+    [
+        ("\nn = 128", '\nn = "big"', "grid.n", "integer"),                                   # wrong type
+        ("poisson_ratio = 0.3", 'poisson_ratio = "0.3"', "material.poisson_ratio", "number"),
+        ("poisson_ratio = 0.3", "poison_ratio = 0.3", "material.poison_ratio", "did you mean 'poisson_ratio'"),
+        ("[grid]", "[grd]", "grd", "did you mean 'grid'"),                                # unknown section
+        ("poisson_ratio = 0.3", "poisson_ratio = 0.7", "material.poisson_ratio", "<= 0.5"),  # out of range
+        ("\nn = 128", "\nn = 4", "grid.n", ">= 8"),
+        ("dt = 2.5e-4", "dt = -1.0", "time.dt", "> 0"),
+        ("dt = 2.5e-4", "dt = inf", "time.dt", "finite"),
+        ("shear_modulus_long_term = 0.193e6", "shear_modulus_long_term = 5e6",
+         "material.shear_modulus_long_term", "<="),
+        ('type = "zener"', 'type = "maxwell"', "material.type", "'zener', 'prony', 'elastic'"),
+        ('mode = "none"', 'mode = "sliding"', "tangential.mode", "partial_slip"),
+        ('mode = "none"', 'mode = "partial_slip"', "tangential.sliding_speed", "> 0"),
+        ("value = 0.15 ", "value = 0.15\nhistory = [[0.0, 0.0], [0.01, 0.15]] ", "normal.value", "exactly one"),
+        ("value = 0.15 ", "history = [[0.0, 0.0], [0.0, 0.15]] ", "normal.history", "increasing"),
+        ("dt = 2.5e-4", "", "time.dt", "required"),
+        ("[time]", "[time", "case file", "not valid TOML"),
+    ],
+)
+def test_bad_input_names_the_key(old: str, new: str, key: str, words: str) -> None:
+    assert old in BASE
+    with pytest.raises(ParameterError) as info:
+        parse(BASE.replace(old, new, 1))
+    assert info.value.key == key
+    assert words in info.value.message
+
+
+def test_missing_file() -> None:
+    with pytest.raises(ParameterError) as info:
+        load_case(ROOT / "cases" / "no_such_case.toml")
+    assert info.value.key == "case file" and "no such file" in info.value.message
+
+
+def test_missing_section() -> None:
+    start, end = BASE.index("[grid]"), BASE.index("[normal]")
+    with pytest.raises(ParameterError) as info:
+        parse(BASE[:start] + BASE[end:])
+    assert info.value.key == "grid" and "missing" in info.value.message
+
+
+def test_overrides() -> None:
+    case = load_case(ROOT / "cases" / "creep_indentation.toml")
+    fast = case.with_overrides({"grid.n": np.int64(32), "normal.history": [[0.0, 0.0], [0.01, 0.1]]})
+    problem = fast.to_problem()
+    assert problem.grid.n == 32
+    assert problem.normal.history.reference == pytest.approx(0.1)
+    assert case.to_problem().grid.n == 128          # the original is unchanged
+    assert "grid.n" in fast.text
+    with pytest.raises(ParameterError) as info:
+        case.with_overrides({"grid.nn": 3})
+    assert info.value.key == "grid.nn" and "did you mean 'n'" in info.value.message
+
+
+def test_sliding_default_dt() -> None:
+    case = load_case(ROOT / "cases" / "creep_indentation.toml").with_overrides(
+        {"tangential.mode": "frictionless_sliding", "tangential.sliding_speed": 0.05,
+         "tangential.steps_per_cell": 2, "time.dt": None})
+    grid = case.to_problem().grid
+    assert case.to_problem().time.dt == pytest.approx(grid.spacing / 0.05 / 2)
+
+
+def test_surface_file(tmp_path: Path) -> None:
+    n = 16
+    x = (np.arange(n) + 0.5) / n - 0.5
+    heights = 1e-6 + np.add.outer(x**2, x**2)
+    np.save(tmp_path / "h.npy", heights)
+    text = (BASE.replace('shape = "sphere"', 'shape = "surface"\nfile = "h.npy"')
+                .replace("radius = 0.01 ", "# no radius ").replace("\nn = 128", f"\nn = {n}"))
+    problem = parse(text, tmp_path).to_problem()
+    assert problem.radius is None
+    np.testing.assert_allclose(problem.gap, heights - heights.min())
+    with pytest.raises(ParameterError) as info:
+        parse(text.replace("\nn = 16", "\nn = 32"), tmp_path).to_problem()
+    assert info.value.key == "indenter.file" and "shape" in info.value.message
+    with pytest.raises(ParameterError) as info:
+        parse(text, tmp_path / "elsewhere").to_problem()
+    assert info.value.key == "indenter.file" and "no such file" in info.value.message

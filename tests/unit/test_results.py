@@ -1,0 +1,142 @@
+"""Results: fake solver records -> Dataset (SPEC §3) -> netCDF and back; plots from a Dataset."""
+from __future__ import annotations
+
+import dataclasses
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from viscontact.grid import Grid
+from viscontact.materials import Material
+from viscontact.problem import NormalLoading, OutputSettings, PiecewiseLinear, Problem, TangentialLoading, TimeStepping
+from viscontact.records import StepRecord
+from viscontact.reference import hertz_from_load
+from viscontact.results import open_result, sweep_dataset, to_dataset, write_netcdf
+
+SPEC_VARIABLES = ("pressure", "shear_x", "stick", "load", "delta_z", "delta_x", "sliding_distance",
+                  "contact_area", "stick_ratio", "phase", "friction_force", "hysteresis_force", "mu_app")
+N = 16
+
+
+def make_problem(mode: str = "partial_slip", fields: tuple[str, ...] = ("pressure", "shear_x", "stick")) -> Problem:
+    grid = Grid(N, 1e-3)
+    x, y = grid.mesh()
+    return Problem(material=Material.zener(1.93e6, 0.193e6, 0.01, 0.3), grid=grid,
+                   gap=(x**2 + y**2) / 0.02, normal=NormalLoading("load", PiecewiseLinear.constant(0.15)),
+                   tangential=TangentialLoading(mode, 0.3, 0.01, 0.05),
+                   time=TimeStepping(t_end=0.004, dt=1e-3), output=OutputSettings(1, fields),
+                   radius=0.01, title="fake")
+
+
+def fake_records(problem: Problem, phases: tuple[int, ...] = (0, 1, 1, 2, 2)) -> list[StepRecord]:
+    rng = np.random.default_rng(0)
+    out = []
+    for k, phase in enumerate(phases):
+        p = rng.random((N, N)) * 1e5
+        out.append(StepRecord(step=k, t=k * problem.time.dt, phase=phase, load=0.15, delta_z=3e-5 + k * 1e-6,
+                              delta_x=k * 1e-6, sliding_distance=0.0, contact_area=1e-6 * (1 + k),
+                              stick_ratio=0.5, friction_force=0.01, hysteresis_force=0.003, mu_app=0.02,
+                              contact_shift=-1e-6 * k, pressure=p, shear_x=0.3 * p, stick=p > 5e4,
+                              displacement_z=None))
+    return out
+
+
+def test_dataset_has_the_contract() -> None:
+    problem = make_problem()
+    records = fake_records(problem)
+    ds = to_dataset(records, problem, case_text="title = 'x'", attrs={"extra": 7})
+    assert dict(ds.sizes) == {"t": 5, "y": N, "x": N}
+    for name in SPEC_VARIABLES + ("contact_shift", "frame_offset", "wake_loss", "iterations", "coupling_iterations"):
+        assert name in ds, name
+        assert ds[name].attrs["units"] and ds[name].attrs["long_name"], name
+    assert ds["pressure"].dims == ("t", "y", "x") and ds["stick"].dtype == bool
+    assert "displacement_z" not in ds                       # not requested
+    np.testing.assert_array_equal(ds["x"].values, problem.grid.x)
+    np.testing.assert_array_equal(ds["pressure"].values[2], records[2].pressure)
+    hertz = hertz_from_load(0.15, 0.01, 1.93e6, 0.3)
+    assert ds.attrs["a0"] == pytest.approx(hertz.radius) and ds.attrs["p0"] == pytest.approx(hertz.peak_pressure)
+    assert ds.attrs["a0"] == pytest.approx(588.7e-6, rel=1e-3)
+    assert ds.attrs["retardation_time"] == pytest.approx(0.01)
+    assert ds.attrs["t_gross_sliding"] == pytest.approx(3e-3)   # first record in phase 2
+    assert ds.attrs["complete"] == 1
+    assert ds.attrs["case"] == "title = 'x'" and ds.attrs["extra"] == 7
+    assert ds.attrs["tangential_mode"] == "partial_slip" and ds.attrs["version"]
+
+
+def test_incomplete_and_undefined_quantities() -> None:
+    problem = make_problem("none", fields=("pressure", "shear_x", "stick", "displacement_z"))
+    ds = to_dataset(fake_records(problem, (0, 0)), problem)
+    assert ds.attrs["complete"] == 0                        # 2 of 5 steps
+    assert math.isnan(ds.attrs["t_gross_sliding"])
+    assert "note" in ds["stick_ratio"].attrs and "note" in ds["shear_x"].attrs
+    assert "note" not in ds["pressure"].attrs
+    assert not ds["displacement_z"].values.any()            # requested but not recorded: zeros
+
+
+def test_displacement_control_scale() -> None:
+    problem = dataclasses.replace(make_problem(), normal=NormalLoading("displacement",
+                                                                       PiecewiseLinear.constant(34.45e-6)))
+    ds = to_dataset(fake_records(problem), problem)
+    assert ds.attrs["a0"] == pytest.approx(math.sqrt(0.01 * 34.45e-6))
+    assert ds.attrs["p0"] == pytest.approx(0.2067e6, rel=5e-3)  # delta 34.45 um is rounded
+
+
+def test_equivalent_radius_without_sphere() -> None:
+    problem = dataclasses.replace(make_problem(), radius=None)
+    ds = to_dataset(fake_records(problem), problem)
+    assert ds.attrs["a0"] == pytest.approx(588.7e-6, rel=1e-2)   # the gap is the R = 10 mm sphere
+
+
+def test_round_trip(tmp_path: Path) -> None:
+    problem = make_problem()
+    ds = to_dataset(fake_records(problem), problem, case_text="# ü case\n")
+    path = write_netcdf(ds, tmp_path / "sub" / "r.nc")
+    assert sorted(p.name for p in path.parent.iterdir()) == ["r.nc"]     # no temporary file left
+    back = open_result(path)
+    for name in ds.variables:
+        np.testing.assert_array_equal(back[name].values, ds[name].values, err_msg=name)
+        assert back[name].dtype == ds[name].dtype, name
+    assert back.attrs["case"] == "# ü case\n"
+    assert back.attrs["a0"] == ds.attrs["a0"]
+    import h5py
+
+    with h5py.File(path) as f:
+        assert f["pressure"].compression == "gzip"
+
+
+def test_refuses_overwrite(tmp_path: Path) -> None:
+    problem = make_problem()
+    ds = to_dataset(fake_records(problem), problem)
+    path = tmp_path / "r.nc"
+    path.write_bytes(b"keep me")
+    with pytest.raises(FileExistsError, match="--force"):
+        write_netcdf(ds, path)
+    assert path.read_bytes() == b"keep me"
+    write_netcdf(ds, path, force=True)
+    assert open_result(path).sizes["t"] == 5
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.nc"]
+
+
+def test_failed_write_leaves_nothing(tmp_path: Path) -> None:
+    problem = make_problem()
+    ds = to_dataset(fake_records(problem), problem)
+    ds.attrs["bad"] = {"a dict": "cannot be an attribute"}
+    with pytest.raises(TypeError):
+        write_netcdf(ds, tmp_path / "r.nc")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_plots(tmp_path: Path) -> None:
+    from viscontact.plotting import plot_result, plot_speed_curve
+
+    problem = make_problem()
+    records = fake_records(problem)
+    paths = plot_result(to_dataset(records, problem), tmp_path / "figs")
+    assert {p.name for p in paths} == {"pressure_profiles.png", "contact_history.png", "friction.png",
+                                       "stick_map.png"}
+    assert all(p.stat().st_size > 1000 for p in paths)
+    sweep = sweep_dataset(records[:3], [0.01, 0.1, 1.0], problem)
+    assert sweep["deborah"].values[1] == pytest.approx(0.1 * 0.01 / sweep.attrs["a0"])
+    assert [p.name for p in plot_speed_curve(sweep, tmp_path)] == ["speed_curve.png"]
