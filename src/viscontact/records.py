@@ -32,9 +32,11 @@ class StepRecord:
     mu_app
         F_T / W [-].
     contact_shift
-        x-centroid of the pressure [m] (positive in +x).
+        x-centroid of the pressure relative to the indenter centre [m] (positive in +x).
     frame_offset
-        Position of the indenter centre in the grid frame [m] (0 unless steps_per_cell > 1).
+        Position of the indenter centre on the grid [m]: 0 unless steps_per_cell = k > 1, when the
+        indenter moves by dx/k per step between two shifts of the frame. Fields are stored on the
+        grid, so the indenter-frame coordinate of a field value is x - frame_offset.
     wake_loss
         Estimated relative error [-] of mu_app (and, under displacement control, of the load) caused
         by the history dropped at the trailing edge of the moving frame (:mod:`viscontact.sliding`).

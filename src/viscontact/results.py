@@ -49,7 +49,7 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "hysteresis_force": ("N", "hysteresis force F_T = -sum p du_z/dx dA (seed Eq. 15)"),
     "mu_app": ("1", "apparent (hysteresis) friction coefficient F_T / W"),
     "contact_shift": ("m", "x-centroid of the pressure"),
-    "frame_offset": ("m", "indenter centre in the grid frame"),
+    "frame_offset": ("m", "indenter centre on the grid (x - frame_offset is the indenter-frame coordinate)"),
     "wake_loss": ("1", "fraction of the history displacement load dropped at the trailing edge"),
     "iterations": ("1", "constrained-CG iterations of the step"),
     "coupling_iterations": ("1", "normal/tangential alternations of the step"),

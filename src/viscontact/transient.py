@@ -315,7 +315,7 @@ def step(problem: Problem, ops: Operators, state: State) -> tuple[State, StepRec
         sliding_distance=state.sliding_distance, contact_area=n_contact * grid.cell_area,
         stick_ratio=stick_ratio, friction_force=float(q.sum() * grid.cell_area),
         hysteresis_force=f_t, mu_app=f_t / load if load > 0 else 0.0,
-        contact_shift=pressure_centroid(p, grid), frame_offset=offset, wake_loss=wake,
+        contact_shift=pressure_centroid(p, grid) - offset, frame_offset=offset, wake_loss=wake,
         iterations=iterations, coupling_iterations=coupling_iterations,
         pressure=p, shear_x=q, stick=stick, displacement_z=u_z,
     )
