@@ -114,19 +114,20 @@ class PronyHistory:
     def traction(self, material: Material, coef: StepCoefficients) -> np.ndarray:
         """r_k = sum_m J_m (beta_m p_{k-1} - A_m H_m,k-1) [m/Pa x Pa, to convolve with IC at G = 1]."""
         amps = material.creep.amplitudes
-        if not amps.size:
-            return np.zeros_like(self.previous)
-        w = amps * coef.weight
-        d = amps * coef.decay
-        return w.sum() * self.previous - np.tensordot(d, self.internal, axes=1)
+        out = np.multiply(self.previous, float(np.dot(amps, coef.weight)))
+        for m, d in enumerate(amps * coef.decay):
+            out -= d * self.internal[m]
+        return out
 
     def advance(self, current: np.ndarray, coef: StepCoefficients) -> None:
         """H_m,k = A_m H_m,k-1 + beta_m (p_k - p_{k-1}); previous <- p_k (in place)."""
-        inc = current - self.previous
         if self.internal.shape[0]:
-            self.internal *= coef.decay[:, None, None]
-            self.internal += coef.weight[:, None, None] * inc[None]
-        self.previous = current.copy()
+            inc = np.subtract(current, self.previous)
+            for m in range(self.internal.shape[0]):
+                h = self.internal[m]
+                h *= coef.decay[m]
+                h += coef.weight[m] * inc
+        np.copyto(self.previous, current)
 
     def shift(self, cells: int = 1) -> np.ndarray:
         """Move with the frame; returns the dropped internal columns (M, n, cells)."""
