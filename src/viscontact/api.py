@@ -16,7 +16,7 @@ from .case import Case, load_case
 from .problem import Problem
 from .results import sweep_dataset, to_dataset
 
-__all__ = ["prepare", "run", "steady"]
+__all__ = ["prepare", "run", "run_steady", "steady"]
 
 CaseLike = Case | Problem | str | Path
 

@@ -7,7 +7,6 @@ numerical guard) exits with status 1, keeping the steps done in the result file 
 from __future__ import annotations
 
 import argparse
-import importlib
 import sys
 import time
 import warnings
@@ -24,9 +23,6 @@ PROG = "viscontact"
 EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 1, 2, 130
 #: sub-commands defined elsewhere: (module, function adding its parser; the parser sets ``handler``
 #: or ``func`` to a callable taking the parsed arguments and returning the exit status)
-EXTENSIONS = (("sweep", "add_sweep_parser"), ("reproduce", "add_reproduce_parser"))
-
-
 def _version() -> str:
     from . import __version__
 
@@ -61,15 +57,11 @@ def _parser() -> argparse.ArgumentParser:
     run.set_defaults(handler=_cmd_run)
     steady.set_defaults(handler=_cmd_steady)
     plot.set_defaults(handler=_cmd_plot)
-    for module, function in EXTENSIONS:
-        name = f"{__package__}.{module}"
-        try:
-            extension = importlib.import_module(name)
-        except ModuleNotFoundError as exc:  # not part of this installation
-            if exc.name != name:
-                raise
-            continue
-        getattr(extension, function)(sub)
+    from .reproduce import add_reproduce_parser
+    from .sweep import add_sweep_parser
+
+    add_sweep_parser(sub)
+    add_reproduce_parser(sub)
     return parser
 
 

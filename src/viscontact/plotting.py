@@ -191,5 +191,10 @@ def plot_speed_curve(ds: xr.Dataset, out_dir: str | Path) -> list[Path]:
 
 
 def plot_any(ds: xr.Dataset, out_dir: str | Path) -> list[Path]:
-    """:func:`plot_speed_curve` for a speed sweep, :func:`plot_result` otherwise."""
+    """:func:`viscontact.sweep.plot_sweep` for a parameter sweep, :func:`plot_speed_curve` for a steady
+    speed curve, :func:`plot_result` otherwise."""
+    if ds.attrs.get("kind") == "sweep":
+        from .sweep import plot_sweep
+
+        return plot_sweep(ds, out_dir)
     return plot_speed_curve(ds, out_dir) if "speed" in ds.dims else plot_result(ds, out_dir)
