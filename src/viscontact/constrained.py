@@ -61,7 +61,7 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
                    tolerance: float = 1e-10, max_iterations: int = 2000,
                    what: str = "constrained conjugate gradient",
                    preconditioner: Operator | None = None,
-                   apply_k_sparse: Operator | None = None, sparse_limit: int = 8) -> ConstrainedSolution:
+                   apply_k_sparse: Operator | None = None, sparse_limit: int = 48) -> ConstrainedSolution:
     """Polonsky-Keer bound-constrained conjugate gradient.
 
     Parameters

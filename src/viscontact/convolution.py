@@ -35,24 +35,25 @@ class Convolver:
     n: int
     spectra: Mapping[str, np.ndarray]
     workers: int = -1
-    kernels: Mapping[str, np.ndarray] | None = None
+    kernels: Mapping[str, np.ndarray] | None = None  # real-space, centred (see apply_sparse)
 
     @classmethod
     def from_kernels(cls, n: int, kernels: Mapping[str, np.ndarray], workers: int = -1) -> "Convolver":
         """Spectra of kernels given on the (2n, 2n) offset grid (the kernels are kept for
         :meth:`apply_sparse`)."""
-        return cls(n, {k: scipy.fft.rfft2(v, workers=workers) for k, v in kernels.items()}, workers,
-                   dict(kernels))
+        centred = {k: np.roll(v, (n - 1, n - 1), axis=(0, 1)) for k, v in kernels.items()}
+        return cls(n, {k: scipy.fft.rfft2(v, workers=workers) for k, v in kernels.items()}, workers, centred)
 
     def apply_sparse(self, name: str, field: np.ndarray) -> np.ndarray:
-        """Same as :meth:`apply` for a field with few non-zeros, by direct sum of kernel columns
-        (cheaper than a transform for up to ~10 points)."""
+        """Same as :meth:`apply` for a field with few non-zeros, by direct sum of kernel blocks
+        (cheaper than a transform for up to ~50 points). ``kernels`` are stored centred: offset
+        (i - r) sits at index i - r + n - 1, so the block of a source (r, c) is a plain slice."""
+        n = self.n
         rows, cols = np.nonzero(field)
         kernel = self.kernels[name]
-        idx = np.arange(self.n)
-        out = np.zeros((self.n, self.n))
+        out = np.zeros((n, n))
         for r, c in zip(rows, cols):
-            out += field[r, c] * kernel[np.ix_((idx - r) % (2 * self.n), (idx - c) % (2 * self.n))]
+            out += field[r, c] * kernel[n - 1 - r: 2 * n - 1 - r, n - 1 - c: 2 * n - 1 - c]
         return out
 
     @classmethod
@@ -67,8 +68,9 @@ class Convolver:
         return scipy.fft.rfft2(field, s=(2 * self.n, 2 * self.n), workers=self.workers)
 
     def inverse(self, spectrum: np.ndarray) -> np.ndarray:
-        """The (n, n) physical block of the inverse transform of a (2n, n+1) spectrum."""
-        out = scipy.fft.irfft2(spectrum, s=(2 * self.n, 2 * self.n), workers=self.workers)
+        """The (n, n) physical block of the inverse transform of a (2n, n+1) spectrum (which it
+        may overwrite: pass a temporary)."""
+        out = scipy.fft.irfft2(spectrum, s=(2 * self.n, 2 * self.n), workers=self.workers, overwrite_x=True)
         return out[: self.n, : self.n]
 
     def apply(self, name: str, field: np.ndarray) -> np.ndarray:
