@@ -382,17 +382,23 @@ class Case(_Section):
         )
 
 
+def read_input_file(path: str | Path, what: str) -> str:
+    """The UTF-8 text of an input file; :class:`ParameterError` (key ``what``, e.g. ``"case file"``)
+    when it is missing or unreadable."""
+    path = Path(path)
+    try:
+        return path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ParameterError(what, f"no such file: {path}") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ParameterError(what, f"cannot read {path}: {exc}") from None
+
+
 def load_case(path: str | Path) -> Case:
     """Read and validate a TOML case file. Raises :class:`ParameterError` (key ``"case file"``)
     when it is missing, unreadable or not TOML."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ParameterError("case file", f"no such file: {path}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ParameterError("case file", f"cannot read {path}: {exc}") from None
-    return Case.from_toml_text(text, path.parent, source=str(path))
+    return Case.from_toml_text(read_input_file(path, "case file"), path.parent, source=str(path))
 
 
 # --- ValidationError -> ParameterError ------------------------------------------------------------

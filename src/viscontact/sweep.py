@@ -125,12 +125,9 @@ def load_sweep(path: str | Path) -> SweepSpec:
         Missing or unreadable file, not TOML, unknown top-level key, wrong types, empty list.
     """
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ParameterError("sweep file", f"no such file: {path}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ParameterError("sweep file", f"cannot read {path}: {exc}") from None
+    from .case import read_input_file
+
+    text = read_input_file(path, "sweep file")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
