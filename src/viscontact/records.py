@@ -1,7 +1,8 @@
 """What a solver reports for one time step (the raw material of ``viscontact.results``)."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
+from typing import Sequence
 
 import numpy as np
 
@@ -70,3 +71,31 @@ class StepRecord:
                "phase", "friction_force", "hysteresis_force", "mu_app", "contact_shift",
                "frame_offset", "wake_loss", "iterations", "coupling_iterations")
     FIELDS = ("pressure", "shear_x", "stick", "displacement_z")
+
+
+def records_to_arrays(records: Sequence[StepRecord]) -> dict[str, np.ndarray]:
+    """Stack records into arrays (one per scalar, (k, n, n) per recorded field): exact, for checkpoints."""
+    out: dict[str, np.ndarray] = {"count": np.array(len(records))}
+    for f in fields(StepRecord):
+        values = [getattr(r, f.name) for r in records]
+        if f.name in StepRecord.FIELDS:
+            if values and all(v is not None for v in values):
+                out[f.name] = np.stack(values)
+        else:
+            out[f.name] = np.array(values)
+    return out
+
+
+def records_from_arrays(arrays: dict[str, np.ndarray]) -> list[StepRecord]:
+    """Inverse of :func:`records_to_arrays`."""
+    count = int(arrays.get("count", 0))
+    out = []
+    for i in range(count):
+        kwargs = {}
+        for f in fields(StepRecord):
+            if f.name in StepRecord.FIELDS:
+                kwargs[f.name] = arrays[f.name][i].copy() if f.name in arrays else None
+            else:
+                kwargs[f.name] = arrays[f.name][i].item()
+        out.append(StepRecord(**kwargs))
+    return out

@@ -19,7 +19,7 @@ the output settings ask for.
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable, Iterator
 
 import numpy as np
@@ -352,6 +352,33 @@ def _guard(problem: Problem, pressure: np.ndarray, load: float, value: float) ->
         raise NumericalGuardError(f"load balance violated: sum p dA = {load:.6g} N for W = {value:.6g} N")
 
 
+def steps(problem: Problem, *, progress: Callable[[int, int], None] | None = None,
+          state: State | None = None, ops: Operators | None = None) -> Iterator[tuple[State, StepRecord, bool]]:
+    """Run the transient one step at a time: yields (state after the step, its record, whether the
+    output settings record it). Stopping the iteration between two steps leaves a consistent state
+    (what checkpoints and interruptions rely on). Fields not in ``output.fields`` are dropped from
+    the records.
+    """
+    ops = ops or operators(problem)
+    state = state or init(problem)
+    total = problem.time.n_steps
+    every = problem.output.every
+    dropped = {name: None for name in StepRecord.FIELDS if name not in problem.output.fields}
+    warned = False
+    while state.step + 1 < total:
+        state, record = step(problem, ops, state)
+        if not warned and record.wake_loss > WAKE_WARNING:
+            warned = True
+            warnings.warn(
+                f"history dropped at the trailing edge biases the result by about {100 * record.wake_loss:.2g}% "
+                f"(t = {record.t:.4g} s); enlarge grid.half_width (with grid.n) or use `viscontact steady`",
+                ViscontactWarning, stacklevel=2)
+        if progress is not None:
+            progress(state.step + 1, total)
+        recorded = state.step % every == 0 or state.step + 1 == total
+        yield state, (replace(record, **dropped) if dropped else record), recorded
+
+
 def simulate(problem: Problem, *, progress: Callable[[int, int], None] | None = None,
              state: State | None = None, ops: Operators | None = None) -> Iterator[StepRecord]:
     """Run the transient and yield a record every ``output.every`` steps and at the last step.
@@ -365,20 +392,6 @@ def simulate(problem: Problem, *, progress: Callable[[int, int], None] | None = 
     state, ops
         Resume from a state (e.g. a checkpoint) / reuse operators.
     """
-    ops = ops or operators(problem)
-    state = state or init(problem)
-    total = problem.time.n_steps
-    every = problem.output.every
-    warned = False
-    while state.step + 1 < total:
-        state, record = step(problem, ops, state)
-        if not warned and record.wake_loss > WAKE_WARNING:
-            warned = True
-            warnings.warn(
-                f"history dropped at the trailing edge biases the result by about {100 * record.wake_loss:.2g}% "
-                f"(t = {record.t:.4g} s); enlarge grid.half_width (with grid.n) or use `viscontact steady`",
-                ViscontactWarning, stacklevel=2)
-        if progress is not None:
-            progress(state.step + 1, total)
-        if state.step % every == 0 or state.step + 1 == total:
+    for _, record, recorded in steps(problem, progress=progress, state=state, ops=ops):
+        if recorded:
             yield record
