@@ -13,10 +13,11 @@ from pathlib import Path
 import xarray as xr
 
 from .case import Case, load_case
+from .errors import ParameterError
 from .problem import Problem
 from .results import sweep_dataset, to_dataset
 
-__all__ = ["prepare", "run", "run_steady", "steady"]
+__all__ = ["checkpoint_path", "prepare", "run", "run_steady", "steady"]
 
 CaseLike = Case | Problem | str | Path
 
@@ -32,7 +33,15 @@ def prepare(case: CaseLike) -> tuple[Problem, str]:
     raise TypeError(f"expected a case file path, a Case or a Problem, got {type(case).__name__}")
 
 
-def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None) -> xr.Dataset:
+def checkpoint_path(out: str | Path) -> Path:
+    """Where ``viscontact run --out OUT --checkpoint-every N`` keeps its checkpoint: ``OUT.checkpoint.npz``."""
+    out = Path(out)
+    return out.with_name(out.name + ".checkpoint.npz")
+
+
+def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
+        checkpoint: str | Path | None = None, checkpoint_every: int = 0, resume: bool = False,
+        should_stop: Callable[[], str | None] | None = None) -> xr.Dataset:
     """Run the transient simulation of ``case`` and return its result Dataset (SPEC §3).
 
     Parameters
@@ -42,25 +51,57 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None) -
         :class:`~viscontact.problem.Problem`.
     progress
         Called as ``progress(steps_done, steps_total)`` after each time step.
+    checkpoint, checkpoint_every
+        Write the complete solver state and the records so far to ``checkpoint`` (atomically)
+        every ``checkpoint_every`` steps, and when the run is stopped.
+    resume
+        Continue from ``checkpoint`` (written for the same case) instead of starting at t = 0; the
+        result equals that of an uninterrupted run.
+    should_stop
+        Called after every step; a non-empty return (the reason, e.g. ``"SIGINT"``) stops the run
+        after that step with :class:`~viscontact.errors.RunInterrupted`.
 
     Raises
     ------
     ParameterError
-        Invalid input (before any step is computed).
-    ConvergenceError, NumericalGuardError, KeyboardInterrupt
+        Invalid input (before any step is computed), or a checkpoint of another case.
+    ConvergenceError, NumericalGuardError, RunInterrupted, KeyboardInterrupt
         The run stopped. When steps were recorded before, the exception carries the Dataset of
         those steps (attribute ``complete = 0``) as ``exc.partial``.
     """
-    from .transient import simulate
+    from .checkpoint import load_checkpoint, save_checkpoint
+    from .errors import RunInterrupted
+    from .records import records_from_arrays, records_to_arrays
+    from .transient import steps
 
     problem, text = prepare(case)
+    state = None
     records = []
+    if resume:
+        if checkpoint is None:
+            raise ParameterError("--resume", "needs a checkpoint file")
+        state, extra = load_checkpoint(checkpoint, problem)
+        records = records_from_arrays(extra)
+
+    def save(current) -> None:
+        save_checkpoint(checkpoint, problem, current, records_to_arrays(records))
+
     try:
-        for record in simulate(problem, progress=progress):
-            records.append(record)  # noqa: PERF402 - a loop keeps the steps done if one fails
+        for state, record, recorded in steps(problem, progress=progress, state=state):
+            if recorded:
+                records.append(record)
+            if checkpoint is not None and checkpoint_every and (state.step + 1) % checkpoint_every == 0:
+                save(state)
+            reason = should_stop() if should_stop is not None else None
+            if reason:
+                if checkpoint is not None:
+                    save(state)
+                raise RunInterrupted(reason)
     except BaseException as exc:
         if records:
-            exc.partial = to_dataset(records, problem, case_text=text)  # type: ignore[attr-defined]
+            why = getattr(exc, "reason", None) or type(exc).__name__
+            exc.partial = to_dataset(records, problem, case_text=text,  # type: ignore[attr-defined]
+                                     attrs={"complete": 0, "stopped_by": why})
         raise
     return to_dataset(records, problem, case_text=text)
 

@@ -3,10 +3,13 @@
 Bad input (case file, missing file, existing result) prints one line
 ``viscontact: error: <key>: <message>`` and exits with status 2; a failed solve (no convergence,
 numerical guard) exits with status 1, keeping the steps done in the result file (``complete = 0``).
+SIGINT / SIGTERM stop a run after its current step, write the steps done (``complete = 0``) and
+exit with 130 / 143.
 """
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
 import time
 import warnings
@@ -17,10 +20,10 @@ from typing import Any
 
 import tomllib
 
-from .errors import ConvergenceError, NumericalGuardError, ParameterError, ViscontactWarning
+from .errors import ConvergenceError, NumericalGuardError, ParameterError, RunInterrupted, ViscontactWarning
 
 PROG = "viscontact"
-EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 1, 2, 130
+EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED, EXIT_TERMINATED = 1, 2, 130, 143
 #: sub-commands defined elsewhere: (module, function adding its parser; the parser sets ``handler``
 #: or ``func`` to a callable taking the parsed arguments and returning the exit status)
 def _version() -> str:
@@ -47,6 +50,12 @@ def _parser() -> argparse.ArgumentParser:
     run = sub.add_parser("run", help="one transient simulation")
     common(run)
     run.add_argument("--quiet", action="store_true", help="no progress bar, no summary")
+    run.add_argument("--checkpoint-every", type=int, default=0, metavar="N",
+                     help="write the solver state every N steps to RESULT.nc.checkpoint.npz (atomic)")
+    run.add_argument("--resume", action="store_true",
+                     help="continue from RESULT.nc.checkpoint.npz (same case file) and overwrite RESULT.nc")
+    run.add_argument("--dry-run", action="store_true",
+                     help="validate the case and print the estimated result size and memory; run nothing")
     steady = sub.add_parser("steady", help="steady sliding state(s) (direct solver)")
     common(steady)
     steady.add_argument("--speeds", metavar="V1,V2,...", help="speed sweep [m/s], comma-separated")
@@ -142,7 +151,7 @@ def _prepare(args: argparse.Namespace) -> Any:
     """The case with its overrides, after checking (before any computing) that the result file may
     be written and that plotting is available."""
     case = _load(args)
-    if Path(args.out).exists() and not args.force:
+    if Path(args.out).exists() and not (args.force or getattr(args, "resume", False)):
         raise FileExistsError(17, "exists; refusing to overwrite it without --force", args.out)
     if args.plots:
         from . import plotting
@@ -176,21 +185,55 @@ def _finish(ds: Any, args: argparse.Namespace, started: float) -> None:
 
 def _cmd_run(args: argparse.Namespace) -> int:
     from . import api
+    from .resources import check_resources, describe
     from .results import write_netcdf
 
     started = time.perf_counter()
+    if args.checkpoint_every < 0:
+        raise ParameterError("--checkpoint-every", f"must be >= 0 steps, got {args.checkpoint_every}")
     case = _prepare(args)
-    with _progress(not args.quiet and sys.stderr.isatty()) as progress:
+    problem, _ = api.prepare(case)
+    estimate = check_resources(problem, args.out)
+    if args.dry_run:
+        print(describe(problem, estimate))
+        return 0
+    checkpoint = api.checkpoint_path(args.out) if (args.checkpoint_every or args.resume) else None
+    force = args.force or args.resume
+    with _progress(not args.quiet and sys.stderr.isatty()) as progress, _stop_on_signals() as should_stop:
         try:
-            ds = api.run(case, progress=progress)
-        except (ConvergenceError, NumericalGuardError, KeyboardInterrupt) as exc:
+            ds = api.run(case, progress=progress, checkpoint=checkpoint, checkpoint_every=args.checkpoint_every,
+                         resume=args.resume, should_stop=should_stop)
+        except (ConvergenceError, NumericalGuardError, RunInterrupted, KeyboardInterrupt) as exc:
             partial = getattr(exc, "partial", None)
             if partial is not None:
-                write_netcdf(partial, args.out, force=args.force)
+                write_netcdf(partial, args.out, force=force)
                 exc.saved = (args.out, partial.sizes["t"])  # type: ignore[attr-defined]
             raise
+    args.force = force
     _finish(ds, args, started)
+    if checkpoint is not None and checkpoint.exists():
+        checkpoint.unlink()
     return 0
+
+
+@contextmanager
+def _stop_on_signals():
+    """SIGINT and SIGTERM ask the run to stop after its current step (a second SIGINT interrupts at
+    once). Yields the ``should_stop`` callable for :func:`viscontact.api.run`."""
+    received: list[str] = []
+
+    def handler(signum, frame):  # noqa: ARG001
+        name = signal.Signals(signum).name
+        if received and signum == signal.SIGINT:
+            raise KeyboardInterrupt
+        received.append(name)
+
+    previous = {sig: signal.signal(sig, handler) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield lambda: received[0] if received else None
+    finally:
+        for sig, old in previous.items():
+            signal.signal(sig, old)
 
 
 def _cmd_steady(args: argparse.Namespace) -> int:
@@ -226,6 +269,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _error(f"{where}: {exc.strerror or exc}", EXIT_USAGE)
     except (ConvergenceError, NumericalGuardError) as exc:
         return _error(f"{type(exc).__name__}: {exc}{_saved_note(exc)}", EXIT_FAILED)
+    except RunInterrupted as exc:
+        code = EXIT_TERMINATED if exc.reason == "SIGTERM" else EXIT_INTERRUPTED
+        return _error(f"stopped by {exc.reason} after the current step{_saved_note(exc)}", code)
     except KeyboardInterrupt as exc:
         return _error(f"interrupted{_saved_note(exc)}", EXIT_INTERRUPTED)
 

@@ -29,5 +29,14 @@ class NumericalGuardError(ViscontactError, RuntimeError):
     """The solution left its domain of validity (contact at the edge, NaN, load imbalance, ...)."""
 
 
+class RunInterrupted(ViscontactError):
+    """A run was asked to stop (SIGINT, SIGTERM) and did so after finishing its current step.
+    ``reason`` says why; ``partial`` (set by :func:`viscontact.api.run`) holds the steps done."""
+
+    def __init__(self, reason: str) -> None:
+        self.reason = reason
+        super().__init__(f"interrupted by {reason}")
+
+
 class ViscontactWarning(UserWarning):
     """A result is usable but something may bias it (history dropped, coarse time step, ...)."""
