@@ -39,10 +39,10 @@ from .problem import (
 )
 from .records import StepRecord
 
-__all__ = ["MIN_GRID_N", "Case", "load_case"]
+__all__ = ["MAX_GRID_N", "MIN_GRID_N", "Case", "load_case"]
 
-#: smallest grid accepted (cells per side)
-MIN_GRID_N = 8
+#: smallest and largest grids accepted (cells per side); 16384^2 already needs ~100 GiB of kernels
+MIN_GRID_N, MAX_GRID_N = 8, 16384
 _SLIDING_MODES = ("frictionless_sliding", "gross_sliding", "partial_slip")
 
 
@@ -146,7 +146,7 @@ class IndenterSection(_Section):
 class GridSection(_Section):
     """n x n cells on [-half_width, half_width]^2 [m]."""
 
-    n: int = _int(ge=MIN_GRID_N)
+    n: int = _int(ge=MIN_GRID_N, le=MAX_GRID_N)
     half_width: float = _num(unit="m", gt=0)
 
 

@@ -195,6 +195,9 @@ def _cmd_run(args: argparse.Namespace) -> int:
     problem, _ = api.prepare(case)
     estimate = check_resources(problem, args.out)
     if args.dry_run:
+        from .transient import validate
+
+        validate(problem)
         print(describe(problem, estimate))
         return 0
     checkpoint = api.checkpoint_path(args.out) if (args.checkpoint_every or args.resume) else None

@@ -1,0 +1,203 @@
+"""Long runs, faults and bad input: checkpoints, signals, atomic results, numerical guards, resources.
+
+The runs are small (n = 32..48) so that each takes a second or two; the killed and interrupted ones
+run in a subprocess, as a user's would.
+"""
+from __future__ import annotations
+
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from viscontact import cli
+from viscontact.errors import NumericalGuardError, ViscontactWarning
+from viscontact.transient import _guard
+
+from vc_testing import seed_material, sphere_problem
+
+ROOT = Path(__file__).resolve().parents[2]
+EXE = [sys.executable, "-m", "viscontact.cli"]
+SLIDING = ROOT / "cases" / "seed_table1_v0.8.toml"  # frictionless sliding, 161 steps at n = 256
+
+
+def _cmd(*args: str) -> list[str]:
+    return [*EXE, "run", *args]
+
+
+def _run(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run(_cmd(*args), capture_output=True, text=True, timeout=300)
+
+
+def _same(a: Path, b: Path, rtol: float = 1e-12) -> float:
+    """Largest relative difference of any variable of two result files (must have the same steps)."""
+    da, db = xr.open_dataset(a), xr.open_dataset(b)
+    assert da.sizes == db.sizes
+    worst = 0.0
+    for name in da.data_vars:
+        x, y = da[name].values.astype(float), db[name].values.astype(float)
+        scale = max(float(np.nanmax(np.abs(x))), 1e-300)
+        worst = max(worst, float(np.nanmax(np.abs(x - y))) / scale)
+    assert worst <= rtol, worst
+    return worst
+
+
+def _start_and_wait_for(path: Path, *args: str) -> subprocess.Popen:
+    proc = subprocess.Popen(_cmd(*args), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.time() + 120
+    while not path.exists():
+        if proc.poll() is not None or time.time() > deadline:
+            proc.kill()
+            pytest.fail(f"no checkpoint appeared: {proc.communicate()}")
+        time.sleep(0.02)
+    return proc
+
+
+def test_kill_9_then_resume_equals_uninterrupted(tmp_path):
+    common = (str(SLIDING), "--set", "grid.n=64", "--quiet")
+    full, part = tmp_path / "full.nc", tmp_path / "part.nc"
+    assert _run(*common, "--out", str(full)).returncode == 0
+    ckpt = Path(str(part) + ".checkpoint.npz")
+    proc = _start_and_wait_for(ckpt, *common, "--out", str(part), "--checkpoint-every", "4")
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.communicate()
+    assert not part.exists()  # no result file until the run completes
+    assert not list(tmp_path.glob("*.tmp"))
+    resumed = _run(*common, "--out", str(part), "--resume")
+    assert resumed.returncode == 0, resumed.stderr
+    assert xr.open_dataset(part).attrs["complete"] == 1
+    _same(full, part)
+    assert not ckpt.exists()  # removed after the complete write
+
+
+@pytest.mark.parametrize("sig, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_signal_stops_after_the_step_and_keeps_a_valid_partial_file(tmp_path, sig, code):
+    out = tmp_path / "r.nc"
+    proc = _start_and_wait_for(Path(str(out) + ".checkpoint.npz"), str(SLIDING), "--set", "grid.n=64", "--quiet",
+                               "--out", str(out), "--checkpoint-every", "3")
+    proc.send_signal(sig)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == code
+    lines = [line for line in err.splitlines() if line.strip() and "warning" not in line]
+    assert len(lines) == 1 and signal.Signals(sig).name in lines[0] and "Traceback" not in err
+    ds = xr.open_dataset(out)
+    assert ds.attrs["complete"] == 0 and ds.attrs["stopped_by"] == signal.Signals(sig).name
+    assert 0 < ds.sizes["t"] < 161
+    assert np.all(np.isfinite(ds["pressure"].values))
+
+
+def test_existing_result_is_not_overwritten_without_force(tmp_path, capsys):
+    out = tmp_path / "r.nc"
+    out.write_text("precious")
+    code = cli.main(["run", str(ROOT / "cases" / "creep_indentation.toml"), "--out", str(out), "--quiet"])
+    assert code == 2 and out.read_text() == "precious"
+    assert "--force" in capsys.readouterr().err
+
+
+def test_dry_run_prints_the_estimate_and_writes_nothing(tmp_path, capsys):
+    out = tmp_path / "r.nc"
+    code = cli.main(["run", str(ROOT / "cases" / "creep_indentation.toml"), "--out", str(out), "--dry-run"])
+    said = capsys.readouterr().out
+    assert code == 0 and not out.exists()
+    assert "161 records" in said and "MiB" in said
+
+
+def test_refuses_when_the_disk_cannot_hold_the_result(tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr(shutil, "disk_usage", lambda path: shutil._ntuple_diskusage(10**9, 10**9 - 1000, 1000))
+    code = cli.main(["run", str(ROOT / "cases" / "creep_indentation.toml"), "--out", str(tmp_path / "r.nc")])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1
+    assert "output.every" in err[0] and "free" in err[0]
+
+
+# --- numerical guards, each triggered by a crafted case --------------------------------------------------
+def _case(tmp_path: Path, text: str) -> Path:
+    path = tmp_path / "case.toml"
+    path.write_text(text)
+    return path
+
+
+BASE = """
+title = "guard"
+[material]
+type = "zener"
+shear_modulus_instantaneous = 1.93e6
+shear_modulus_long_term = 0.193e6
+retardation_time = 0.01
+poisson_ratio = 0.3
+[indenter]
+shape = "sphere"
+radius = 0.01
+[grid]
+n = 32
+half_width = {half_width}
+[normal]
+control = "load"
+value = 0.15
+[tangential]
+mode = "{mode}"
+sliding_speed = {speed}
+[time]
+t_end = {t_end}
+{dt}
+scheme = "{scheme}"
+{extra}
+"""
+
+
+def _guard_run(tmp_path, capsys, half_width=1.5e-3, mode="none", speed=0.05, t_end=0.002, dt="dt = 2e-4",
+               scheme="constant", extra=""):
+    case = _case(tmp_path, BASE.format(half_width=half_width, mode=mode, speed=speed, t_end=t_end, dt=dt,
+                                       scheme=scheme, extra=extra))
+    code = cli.main(["run", str(case), "--out", str(tmp_path / "r.nc"), "--quiet", "--force"])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    return code, err
+
+
+def test_guard_contact_at_the_domain_edge_suggests_a_half_width(tmp_path, capsys):
+    code, err = _guard_run(tmp_path, capsys, half_width=3e-4)
+    assert code == 1 and len(err) == 1 and "edge" in err[0] and "half_width" in err[0]
+
+
+def test_guard_non_convergence_gives_the_residual(tmp_path, capsys):
+    code, err = _guard_run(tmp_path, capsys, extra="[solver]\nmax_iterations = 2")
+    assert code == 1 and len(err) == 1 and "did not converge" in err[0] and "residual" in err[0]
+
+
+def test_guard_unstable_time_step_is_bad_input(tmp_path, capsys):
+    code, err = _guard_run(tmp_path, capsys, dt="dt = 5e-3", t_end=0.02)
+    assert code == 2 and len(err) == 1 and "time.dt" in err[0] and "linear" in err[0]
+
+
+def test_warning_coarse_time_step_is_one_line(tmp_path, capsys):
+    code, err = _guard_run(tmp_path, capsys, dt="dt = 5e-3", t_end=0.02, scheme="linear")
+    assert code == 0 and len(err) == 1 and err[0].startswith("viscontact: warning:") and "time.dt" in err[0]
+
+
+def test_warning_wake_dropped_at_the_trailing_edge(tmp_path, capsys):
+    # v tau / a0 = 10 on +-2.6 a0: the wake is 10 a0 long (measured bias ~10 %)
+    code, err = _guard_run(tmp_path, capsys, half_width=2.6 * 588.7e-6, mode="frictionless_sliding",
+                           speed=10 * 588.7e-6 / 0.01, t_end=0.02, dt="", scheme="linear")
+    assert code == 0 and any("history dropped" in line for line in err)
+
+
+def test_guards_nan_and_load_balance():
+    pb = sphere_problem(seed_material(), 8, 1e-3)
+    p = np.zeros((8, 8))
+    p[3:5, 3:5] = 1.0
+    with pytest.raises(NumericalGuardError, match="NaN"):
+        _guard(pb, np.where(p > 0, np.nan, 0.0), 1.0, 1.0)
+    with pytest.raises(NumericalGuardError, match="load balance"):
+        _guard(pb, p, 0.9, 1.0)
+    _guard(pb, p, 1.0, 1.0)
+
+
+def test_warnings_are_viscontact_warnings():
+    assert issubclass(ViscontactWarning, UserWarning)
