@@ -24,14 +24,14 @@ def test_run_accepts_a_path(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> 
     (tmp_path / "case.toml").write_text(text)
     seen = []
 
-    def fake(problem, *, progress=None):
+    def fake(problem, *, progress=None, state=None):
         seen.append(problem.grid.n)
         for k, rec in enumerate(fake_records(make_problem(), (0, 0))):
             if progress:
                 progress(k + 1, 2)
-            yield rec
+            yield None, rec, True
 
-    monkeypatch.setattr(transient, "simulate", fake)
+    monkeypatch.setattr(transient, "steps", fake)
     calls = []
     ds = vc.run(tmp_path / "case.toml", progress=lambda d, t: calls.append((d, t)))
     assert seen == [16] and calls == [(1, 2), (2, 2)]
@@ -40,11 +40,12 @@ def test_run_accepts_a_path(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> 
 
 
 def test_failure_keeps_the_steps_done(monkeypatch: pytest.MonkeyPatch) -> None:
-    def failing(problem, *, progress=None):
-        yield from fake_records(problem, (0, 1))
+    def failing(problem, *, progress=None, state=None):
+        for rec in fake_records(problem, (0, 1)):
+            yield None, rec, True
         raise ConvergenceError("normal contact", 10, 1e-3, 1e-8)
 
-    monkeypatch.setattr(transient, "simulate", failing)
+    monkeypatch.setattr(transient, "steps", failing)
     with pytest.raises(ConvergenceError) as info:
         vc.run(make_problem())
     partial = info.value.partial
