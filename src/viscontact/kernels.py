@@ -54,10 +54,14 @@ def _asinh_ratio(num: np.ndarray, den: np.ndarray) -> np.ndarray:
     return np.where(num == 0, 0.0, out)
 
 
-def _corner_primitives(xi: np.ndarray, eta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(F_inv_r, F_xi2_r3, F_xi_r2): primitives of 1/r, xi^2/r^3 and xi/r^2 over (xi, eta)."""
+def _corner_primitives(xi: np.ndarray, eta: np.ndarray, odd: bool = True
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """(F_inv_r, F_xi2_r3, F_xi_r2): primitives of 1/r, xi^2/r^3 and xi/r^2 over (xi, eta); the
+    last (the odd, coupling one) only when ``odd``."""
     a = _asinh_ratio(xi, eta)  # xi asinh(eta/|xi|)
     b = _asinh_ratio(eta, xi)  # eta asinh(xi/|eta|)
+    if not odd:
+        return a + b, b, None
     r2 = xi**2 + eta**2
     with np.errstate(divide="ignore", invalid="ignore"):
         log_term = np.where(r2 > 0, 0.5 * eta * np.log(np.where(r2 > 0, r2, 1.0)), 0.0)
@@ -66,32 +70,35 @@ def _corner_primitives(xi: np.ndarray, eta: np.ndarray) -> tuple[np.ndarray, np.
 
 
 def rectangle_influence(dx: np.ndarray, dy: np.ndarray, half_x: float, half_y: float,
-                        poisson_ratio: float) -> dict[str, np.ndarray]:
+                        poisson_ratio: float, components: tuple[str, ...] = COMPONENTS) -> dict[str, np.ndarray]:
     """Displacements [m per Pa of traction] at offsets (dx, dy) [m] from the centre of a rectangle
     of half-sides ``half_x``, ``half_y`` [m] loaded by a unit uniform traction, at G = 1 Pa.
 
-    Returns the four components ``zz``, ``xx``, ``xz``, ``zx`` (first index: displacement,
-    second: traction), each with the broadcast shape of ``dx`` and ``dy``.
+    Returns the requested ``components`` among ``zz``, ``xx``, ``xz``, ``zx`` (first index:
+    displacement, second: traction), each with the broadcast shape of ``dx`` and ``dy``.
     """
     dx = np.asarray(dx, dtype=float)
     dy = np.asarray(dy, dtype=float)
     nu = poisson_ratio
+    odd = "xz" in components or "zx" in components
     inv_r = np.zeros(np.broadcast(dx, dy).shape)
     xi2_r3 = np.zeros_like(inv_r)
     xi_r2 = np.zeros_like(inv_r)
     for sx in (-1.0, 1.0):
         for sy in (-1.0, 1.0):
-            f1, f2, f3 = _corner_primitives(dx + sx * half_x, dy + sy * half_y)
+            f1, f2, f3 = _corner_primitives(dx + sx * half_x, dy + sy * half_y, odd)
             sign = sx * sy
             inv_r += sign * f1
             xi2_r3 += sign * f2
-            xi_r2 += sign * f3
-    return {
+            if odd:
+                xi_r2 += sign * f3
+    out = {
         "zz": (1 - nu) / (2 * np.pi) * inv_r,
         "xx": ((1 - nu) * inv_r + nu * xi2_r3) / (2 * np.pi),
         "xz": -(1 - 2 * nu) / (4 * np.pi) * xi_r2,
         "zx": (1 - 2 * nu) / (4 * np.pi) * xi_r2,
     }
+    return {c: out[c] for c in components}
 
 
 def influence_coefficients(grid: Grid, poisson_ratio: float) -> Mapping[str, np.ndarray]:

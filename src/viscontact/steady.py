@@ -74,7 +74,7 @@ def history_kernels(grid: Grid, poisson_ratio: float, length: float,
 
     def ic(d: float):
         def f(xi: np.ndarray) -> dict:
-            res = rectangle_influence(d + xi[None, :], dy, h, h, poisson_ratio)
+            res = rectangle_influence(d + xi[None, :], dy, h, h, poisson_ratio, tuple(components))
             ex = np.exp(-xi / length) / length
             return np.stack([res[c] * ex[None, :] for c in components])  # (C, 2n, q)
         return f
