@@ -141,8 +141,8 @@ def _gap(problem: Problem, offset: float) -> np.ndarray:
     return ((x - offset) ** 2 + y**2) / (2.0 * problem.radius)
 
 
-def _history_traction(problem: Problem, ops: Operators, state: State, coef: StepCoefficients,
-                      hist: PronyHistory | DirectHistory, t: float) -> np.ndarray:
+def _history_traction(problem: Problem, coef: StepCoefficients, hist: PronyHistory | DirectHistory,
+                      t: float) -> np.ndarray:
     if isinstance(hist, DirectHistory):
         return hist.traction(problem.material, t, problem.time.dt, coef.instantaneous)
     return hist.traction(problem.material, coef)
@@ -156,31 +156,29 @@ def _advance_history(hist: PronyHistory | DirectHistory, value: np.ndarray, coef
         hist.advance(value, coef)
 
 
+def _elastic_operator(ops: Operators, kernel: str, j_inst: float) -> dict:
+    """The step's elastic operator K = J_inst IC_kernel for :func:`constrained_cg`: its action, its
+    Fourier preconditioner and its sparse action (for bound corrections)."""
+    conv, precond = ops.conv, ops.preconditioners[kernel]
+    return {"apply_k": lambda x: j_inst * conv.apply(kernel, x),
+            "extra": {"preconditioner": lambda r: precond(r) / j_inst,
+                      "apply_k_sparse": lambda x: j_inst * conv.apply_sparse(kernel, x)}}
+
+
 def _solve_normal(problem: Problem, ops: Operators, j_inst: float, gap: np.ndarray,
                   known_uz: np.ndarray, warm: np.ndarray, value: float):
     """Polonsky-Keer solve of the normal problem with known displacement ``known_uz`` [m].
 
     Returns (pressure [Pa], approach delta_z [m], iterations, total u_z [m] at the solution)."""
     grid, s = problem.grid, problem.solver
-
-    def apply_k(x: np.ndarray) -> np.ndarray:
-        return j_inst * ops.conv.apply("zz", x)
-
-    def precondition(r: np.ndarray) -> np.ndarray:
-        return ops.preconditioners["zz"](r) / j_inst
-
-    def apply_k_sparse(x: np.ndarray) -> np.ndarray:
-        return j_inst * ops.conv.apply_sparse("zz", x)
-
+    op = _elastic_operator(ops, "zz", j_inst)
     if problem.normal.control == "load":
-        sol = constrained_cg(apply_k, -(gap + known_uz), warm, 0.0, np.inf, total=value,
-                             cell_area=grid.cell_area, tolerance=s.tolerance,
-                             max_iterations=s.max_iterations, what="normal contact (load control)",
-                             preconditioner=precondition, apply_k_sparse=apply_k_sparse)
+        sol = constrained_cg(op["apply_k"], -(gap + known_uz), warm, 0.0, np.inf, total=value,
+                             cell_area=grid.cell_area, tolerance=s.tolerance, max_iterations=s.max_iterations,
+                             what="normal contact (load control)", **op["extra"])
         return sol.x, sol.multiplier, sol.iterations, sol.gradient + sol.multiplier - gap
-    sol = constrained_cg(apply_k, value - (gap + known_uz), warm, 0.0, np.inf, tolerance=s.tolerance,
-                         max_iterations=s.max_iterations, what="normal contact (displacement control)",
-                         preconditioner=precondition, apply_k_sparse=apply_k_sparse)
+    sol = constrained_cg(op["apply_k"], value - (gap + known_uz), warm, 0.0, np.inf, tolerance=s.tolerance,
+                         max_iterations=s.max_iterations, what="normal contact (displacement control)", **op["extra"])
     return sol.x, value, sol.iterations, sol.gradient + value - gap
 
 
@@ -189,16 +187,10 @@ def _solve_tangential(problem: Problem, ops: Operators, j_inst: float, pressure:
     """Bounded CG for q_x in [-mu p, mu p] with slip s = u_x - delta_x (seed Eqs. 9, 11)."""
     s = problem.solver
     bound = problem.tangential.friction_coefficient * pressure
-
-    def apply_k(x: np.ndarray) -> np.ndarray:
-        return j_inst * ops.conv.apply("xx", x)
-
-    def precondition(r: np.ndarray) -> np.ndarray:
-        return ops.preconditioners["xx"](r) / j_inst
-
-    sol = constrained_cg(apply_k, delta_x - known_ux, np.clip(warm, -bound, bound), -bound, bound,
+    op = _elastic_operator(ops, "xx", j_inst)
+    sol = constrained_cg(op["apply_k"], delta_x - known_ux, np.clip(warm, -bound, bound), -bound, bound,
                          tolerance=s.tolerance, max_iterations=s.max_iterations,
-                         what="tangential contact (partial slip)", preconditioner=precondition)
+                         what="tangential contact (partial slip)", **op["extra"])
     return sol.x, sol.iterations
 
 
@@ -236,8 +228,8 @@ def step(problem: Problem, ops: Operators, state: State) -> tuple[State, StepRec
     gap = _gap(problem, offset)
 
     # -- known history displacements
-    r_p = _history_traction(problem, ops, state, coef, state.history_p, t)
-    r_q = _history_traction(problem, ops, state, coef, state.history_q, t)
+    r_p = _history_traction(problem, coef, state.history_p, t)
+    r_q = _history_traction(problem, coef, state.history_q, t)
     partial = state.phase == PHASE_PARTIAL_SLIP and mu > 0
     coupled = "zx" in ops.conv.spectra
     hist_uz, hist_ux = coupled_displacements(ops.conv, r_p, r_q if coupled or partial else None,
