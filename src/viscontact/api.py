@@ -75,19 +75,19 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
     from .transient import steps
 
     problem, text = prepare(case)
-    state = None
+    start = None
     records = []
     if resume:
         if checkpoint is None:
             raise ParameterError("--resume", "needs a checkpoint file")
-        state, extra = load_checkpoint(checkpoint, problem)
+        start, extra = load_checkpoint(checkpoint, problem)
         records = records_from_arrays(extra)
 
     def save(current) -> None:
         save_checkpoint(checkpoint, problem, current, records_to_arrays(records))
 
     try:
-        for state, record, recorded in steps(problem, progress=progress, state=state):
+        for state, record, recorded in steps(problem, progress=progress, state=start):
             if recorded:
                 records.append(record)
             if checkpoint is not None and checkpoint_every and (state.step + 1) % checkpoint_every == 0:

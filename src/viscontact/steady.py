@@ -25,7 +25,6 @@ For gross sliding (q_x = mu_f p) the operator is K_zz + mu_f K_zx.
 """
 from __future__ import annotations
 
-from dataclasses import replace
 from typing import Sequence
 
 import numpy as np
