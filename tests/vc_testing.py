@@ -1,4 +1,5 @@
-"""Small programmatic problems shared by the validation tests (no case files involved)."""
+"""What the tests share: the seed's constants, its material and the sphere problem built from them
+(no case files involved), and the seed's material as case-file text."""
 from __future__ import annotations
 
 from viscontact.grid import Grid
@@ -6,29 +7,49 @@ from viscontact.materials import Material
 from viscontact.problem import (NormalLoading, OutputSettings, PiecewiseLinear, Problem, SolverSettings,
                                 TangentialLoading, TimeStepping)
 
-#: the seed's material (SPEC section 1): G(0) = 1.93 MPa, G(inf) = G(0)/10, retardation time 0.01 s
-SEED_G0, SEED_TAU, SEED_NU, SEED_RADIUS = 1.93e6, 0.01, 0.3, 0.01
+#: the seed's material and contact (SPEC section 1): G(0) = 1.93 MPa (the seed's mu = 2G),
+#: G(inf) = G(0)/10, retardation time 0.01 s, nu = 0.3, R = 10 mm, W = 0.15 N
+SEED_G0, SEED_TAU, SEED_NU, SEED_RADIUS, SEED_LOAD = 1.93e6, 0.01, 0.3, 0.01, 0.15
+SEED_GINF = SEED_G0 / 10
 SEED_A0 = 588.7e-6  # Hertz radius at 0.15 N with G(0) [m]
+SEED_P0 = 0.2067e6  # Hertz peak pressure at 0.15 N with G(0) [Pa]
+
+#: the seed's material as a case-file section
+SEED_MATERIAL_TOML = f"""\
+[material]
+type = "zener"
+shear_modulus_instantaneous = {SEED_G0!r}
+shear_modulus_long_term = {SEED_GINF!r}
+retardation_time = {SEED_TAU!r}
+poisson_ratio = {SEED_NU!r}
+"""
 
 
 def seed_material(ratio: float = 10.0, poisson_ratio: float = SEED_NU) -> Material:
+    """The seed's Zener material with G(0)/G(inf) = ``ratio``."""
     return Material.zener(SEED_G0, SEED_G0 / ratio, SEED_TAU, poisson_ratio)
 
 
-def sphere_problem(material: Material, n: int, half_width: float, *, control: str = "load", value: float = 0.15,
-                   mode: str = "none", friction: float = 0.0, rate: float = 0.0, speed: float = 0.0,
-                   t_end: float = 0.0, dt: float | None = None, scheme: str = "constant",
-                   every: int = 1, solver: SolverSettings | None = None) -> Problem:
-    """A rigid sphere (R = 10 mm) on ``material``; with sliding, dt defaults to one cell per step."""
+def sphere_problem(material: Material, n: int, half_width: float, *, control: str = "load",
+                   value: float | PiecewiseLinear = SEED_LOAD, mode: str = "none", friction: float = 0.0,
+                   rate: float = 0.0, speed: float = 0.0, t_end: float = 0.0, dt: float | None = None,
+                   scheme: str = "constant", every: int = 1, solver: SolverSettings | None = None,
+                   fields: tuple[str, ...] = OutputSettings.fields, title: str = "") -> Problem:
+    """A rigid sphere (R = 10 mm) on ``material`` on an n x n grid of [-half_width, half_width]^2 [m].
+
+    ``value`` is the held load [N] or approach [m] (``control``), or a piecewise-linear history of
+    it. With sliding, dt defaults to one cell per step, else to tau/20.
+    """
     grid = Grid(n, half_width)
     x, y = grid.mesh()
     if dt is None:
         dt = grid.spacing / speed if speed > 0 else SEED_TAU / 20
+    history = value if isinstance(value, PiecewiseLinear) else PiecewiseLinear.constant(value)
     return Problem(material=material, grid=grid, gap=(x**2 + y**2) / (2 * SEED_RADIUS),
-                   normal=NormalLoading(control, PiecewiseLinear.constant(value)),
+                   normal=NormalLoading(control, history),
                    tangential=TangentialLoading(mode, friction, rate, speed),
                    time=TimeStepping(t_end, dt, scheme), solver=solver or SolverSettings(),
-                   output=OutputSettings(every=every), radius=SEED_RADIUS)
+                   output=OutputSettings(every, fields), radius=SEED_RADIUS, title=title)
 
 
 def observed_order(hs, errors) -> float:

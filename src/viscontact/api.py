@@ -1,9 +1,20 @@
 """The scripting API: what ``viscontact run`` and ``viscontact steady`` call.
 
+A tiny creep indentation (from the repository's root folder; the shipped case runs at n = 128):
+
 >>> import viscontact as vc
->>> ds = vc.run("cases/creep_indentation.toml")                 # doctest: +SKIP
->>> ds.contact_area.plot()                                       # doctest: +SKIP
->>> sweep = vc.run_steady("cases/...toml", speeds=[0.01, 0.1, 1.0])  # doctest: +SKIP
+>>> case = vc.load_case("cases/creep_indentation.toml").with_overrides(
+...     {"grid.n": 16, "grid.half_width": 1.6e-3, "time.t_end": 5e-4})
+>>> ds = vc.run(case)
+>>> ds.sizes["t"], int(ds.attrs["complete"]), bool(ds["delta_z"][-1] > ds["delta_z"][0])  # it creeps
+(3, 1, True)
+
+and steady frictionless sliding at two speeds [m/s]:
+
+>>> sliding = case.with_overrides({"tangential.mode": "frictionless_sliding", "tangential.sliding_speed": 0.05})
+>>> curve = vc.run_steady(sliding, speeds=[0.01, 0.1])
+>>> curve["mu_app"].dims, bool(curve["mu_app"][1] > curve["mu_app"][0])
+(('speed',), True)
 """
 from __future__ import annotations
 

@@ -6,18 +6,24 @@ range, missing file -- is raised as one :class:`~viscontact.errors.ParameterErro
 the dotted case-file key and whose message gives the allowed range or values (and, for an unknown
 key, the closest valid one).
 
-Example
--------
->>> case = load_case("cases/creep_indentation.toml")            # doctest: +SKIP
->>> fast = case.with_overrides({"tangential.sliding_speed": 0.1})  # doctest: +SKIP
->>> problem = fast.to_problem()                                  # doctest: +SKIP
+Example (from the repository's root folder)
+-------------------------------------------
+>>> case = load_case("cases/creep_indentation.toml")
+>>> small = case.with_overrides({"grid.n": 16, "time.t_end": 5e-4})
+>>> problem = small.to_problem()
+>>> problem.grid.n, problem.time.n_steps, problem.material.shear_modulus_instantaneous
+(16, 3, 1930000.0)
+>>> small.with_overrides({"grid.n": 4})
+Traceback (most recent call last):
+    ...
+viscontact.errors.ParameterError: grid.n: must be >= 8, got 4
 """
 from __future__ import annotations
 
 import copy
 import difflib
 import typing
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
@@ -39,7 +45,7 @@ from .problem import (
 )
 from .records import StepRecord
 
-__all__ = ["MAX_GRID_N", "MIN_GRID_N", "Case", "load_case"]
+__all__ = ["MATERIALS", "MAX_GRID_N", "MIN_GRID_N", "Case", "case_keys", "closest", "load_case", "read_input_file"]
 
 #: smallest and largest grids accepted (cells per side); 16384^2 already needs ~100 GiB of kernels
 MIN_GRID_N, MAX_GRID_N = 8, 16384
@@ -114,7 +120,7 @@ class ElasticMaterial(_Section):
         return Material.elastic(self.shear_modulus, self.poisson_ratio)
 
 
-_MATERIALS: dict[str, type[_Section]] = {"zener": ZenerMaterial, "prony": PronyMaterial,
+MATERIALS: dict[str, type[_Section]] = {"zener": ZenerMaterial, "prony": PronyMaterial,
                                           "elastic": ElasticMaterial}
 MaterialSection = Annotated[ZenerMaterial | PronyMaterial | ElasticMaterial, Field(discriminator="type")]
 
@@ -194,16 +200,7 @@ class TangentialSection(_Section):
 
     @model_validator(mode="after")
     def _mode_needs(self) -> TangentialSection:
-        if self.mode in _SLIDING_MODES and not self.sliding_speed > 0:
-            raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s with mode = '{self.mode}', "
-                                 f"got {self.sliding_speed:g}")
-        if self.mode == "partial_slip":
-            if not self.displacement_rate > 0:
-                raise ParameterError("tangential.displacement_rate",
-                                     f"must be > 0 m/s with mode = 'partial_slip', got {self.displacement_rate:g}")
-            if not self.friction_coefficient > 0:
-                raise ParameterError("tangential.friction_coefficient",
-                                     f"must be > 0 with mode = 'partial_slip', got {self.friction_coefficient:g}")
+        self.build()  # what each mode needs is decided by TangentialLoading
         return self
 
     def build(self) -> TangentialLoading:
@@ -230,7 +227,9 @@ class OutputSection(_Section):
 
 
 class SolverSection(_Section):
-    """Tolerances (relative) and iteration caps of the constrained CG and the coupling loop."""
+    """Tolerances (relative) and iteration caps of the constrained CG and the coupling loop, FFT
+    workers, the history algorithm, and ``coupling`` (false: drop the (1 - 2 nu) normal/tangential
+    cross terms)."""
 
     tolerance: float = _num(SolverSettings.tolerance, unit="", gt=0, lt=1)
     max_iterations: int = _int(SolverSettings.max_iterations, ge=1)
@@ -238,6 +237,7 @@ class SolverSection(_Section):
     max_coupling_iterations: int = _int(SolverSettings.max_coupling_iterations, ge=1)
     workers: int = _int(SolverSettings.workers, ge=-1)
     history: Literal["recursive", "direct"] = SolverSettings.history
+    coupling: bool = SolverSettings.coupling
 
     @model_validator(mode="after")
     def _workers(self) -> SolverSection:
@@ -365,7 +365,6 @@ class Case(_Section):
     def to_problem(self) -> Problem:
         """The :class:`~viscontact.problem.Problem` the solvers consume."""
         grid = Grid(self.grid.n, self.grid.half_width)
-        s = self.solver
         fields = tuple(f for f in StepRecord.FIELDS if f in self.output.fields)
         return Problem(
             material=self.material.build(),
@@ -374,8 +373,7 @@ class Case(_Section):
             normal=self.normal.build(),
             tangential=self.tangential.build(),
             time=TimeStepping(self.time.t_end, self.default_dt(), self.time.scheme),
-            solver=SolverSettings(s.tolerance, s.max_iterations, s.coupling_tolerance,
-                                  s.max_coupling_iterations, s.workers, s.history),
+            solver=SolverSettings(**self.solver.model_dump()),
             output=OutputSettings(self.output.every, fields),
             radius=self.indenter.radius,
             title=self.title,
@@ -401,13 +399,40 @@ def load_case(path: str | Path) -> Case:
     return Case.from_toml_text(read_input_file(path, "case file"), path.parent, source=str(path))
 
 
+def closest(name: str, valid: Sequence[str]) -> str | None:
+    """The entry of ``valid`` closest to a mistyped ``name`` (difflib ratio >= 0.6), else None."""
+    close = difflib.get_close_matches(name, list(valid), n=1, cutoff=0.6)
+    return close[0] if close else None
+
+
+def case_keys() -> dict[str, Any]:
+    """Every settable dotted case key (``"grid.n"``) -> its pydantic FieldInfo; the keys of every
+    material type together under ``material.``. The unit is in ``json_schema_extra["unit"]``."""
+    keys: dict[str, Any] = {}
+
+    def walk(model: type[BaseModel], prefix: str) -> None:
+        for name, info in model.model_fields.items():
+            if model is Case and name == "material":
+                for material in MATERIALS.values():
+                    walk(material, "material.")
+                continue
+            sub = model_of(info.annotation)
+            if sub is not None:
+                walk(sub, f"{prefix}{name}.")
+            else:
+                keys.setdefault(f"{prefix}{name}", info)
+
+    walk(Case, "")
+    return keys
+
+
 # --- ValidationError -> ParameterError ------------------------------------------------------------
-def _model_of(annotation: Any) -> type[BaseModel] | None:
+def model_of(annotation: Any) -> type[BaseModel] | None:
     """The pydantic model in a field annotation (through Optional/Annotated), if any."""
     if isinstance(annotation, type) and issubclass(annotation, BaseModel):
         return annotation
     for arg in typing.get_args(annotation):
-        found = _model_of(arg)
+        found = model_of(arg)
         if found is not None:
             return found
     return None
@@ -421,8 +446,8 @@ def _resolve(loc: tuple) -> tuple[list[str], type[BaseModel] | None, Any]:
     """
     loc = list(loc)
     material_model = None
-    if len(loc) >= 2 and loc[0] == "material" and loc[1] in _MATERIALS:
-        material_model = _MATERIALS[loc.pop(1)]
+    if len(loc) >= 2 and loc[0] == "material" and loc[1] in MATERIALS:
+        material_model = MATERIALS[loc.pop(1)]
     parts: list[str] = []
     model: type[BaseModel] | None = Case
     parent, info = None, None
@@ -437,7 +462,7 @@ def _resolve(loc: tuple) -> tuple[list[str], type[BaseModel] | None, Any]:
         if model is Case and item == "material":
             model = material_model
         else:
-            model = _model_of(info.annotation) if info is not None else None
+            model = model_of(info.annotation) if info is not None else None
     return parts, parent, info
 
 
@@ -465,19 +490,19 @@ def _describe(err: dict, info: Any, key: str, parent: type[BaseModel] | None) ->
         limit = next(iter(ctx.values()))
         return f"must be {bounds[kind]} {limit:g}{unit}, got {value!r}"
     if kind == "missing":
-        if info is not None and _model_of(info.annotation) is not None:
+        if info is not None and model_of(info.annotation) is not None:
             return f"required section [{key}] is missing"
         return "required key is missing"
     if kind == "extra_forbidden":
         name = key.rsplit(".", 1)[-1]
         valid = sorted(parent.model_fields) if parent is not None else []
-        close = difflib.get_close_matches(name, valid, n=1, cutoff=0.6)
-        hint = f"did you mean '{close[0]}'? " if close else ""
+        close = closest(name, valid)
+        hint = f"did you mean '{close}'? " if close else ""
         return f"unknown key; {hint}valid keys here: {', '.join(valid)}"
     if kind == "literal_error":
         return f"must be one of {ctx.get('expected')}, got {value!r}"
     if kind in ("union_tag_invalid", "union_tag_not_found"):
-        allowed = ", ".join(repr(t) for t in _MATERIALS)
+        allowed = ", ".join(repr(t) for t in MATERIALS)
         got = f", got {ctx.get('tag')!r}" if kind == "union_tag_invalid" else " (missing)"
         return f"must be one of {allowed}{got}"
     if kind == "finite_number":

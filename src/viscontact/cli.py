@@ -13,7 +13,7 @@ import signal
 import sys
 import time
 import warnings
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
@@ -24,12 +24,82 @@ from .errors import ConvergenceError, NumericalGuardError, ParameterError, RunIn
 
 PROG = "viscontact"
 EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED, EXIT_TERMINATED = 1, 2, 130, 143
-#: sub-commands defined elsewhere: (module, function adding its parser; the parser sets ``handler``
-#: or ``func`` to a callable taking the parsed arguments and returning the exit status)
+
+
 def _version() -> str:
     from . import __version__
 
     return __version__
+
+
+# --- the parser: one ``_add_<command>`` per sub-command, each setting its ``_cmd_<command>`` handler --
+def _case_arguments(p: argparse.ArgumentParser) -> None:
+    """Arguments of the commands that solve one case (``run``, ``steady``)."""
+    p.add_argument("case", metavar="CASE.toml", help="case file")
+    p.add_argument("--out", required=True, metavar="RESULT.nc", help="result file (netCDF-4)")
+    p.add_argument("--plots", metavar="DIR", help="also write figures (PNG) into DIR")
+    p.add_argument("--force", action="store_true", help="overwrite an existing result file")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
+                   help="override a case-file key, e.g. --set tangential.sliding_speed=0.1 (repeatable; "
+                        "an empty VALUE removes the key)")
+
+
+def _add_run(sub: Any) -> None:
+    p = sub.add_parser("run", help="one transient simulation")
+    _case_arguments(p)
+    p.add_argument("--quiet", action="store_true", help="no progress bar, no summary")
+    p.add_argument("--checkpoint-every", type=int, default=0, metavar="N",
+                   help="write the solver state every N steps to RESULT.nc.checkpoint.npz (atomic)")
+    p.add_argument("--resume", action="store_true",
+                   help="continue from RESULT.nc.checkpoint.npz (same case file) and overwrite RESULT.nc")
+    p.add_argument("--dry-run", action="store_true",
+                   help="validate the case and print the estimated result size and memory; run nothing")
+    p.set_defaults(handler=_cmd_run)
+
+
+def _add_steady(sub: Any) -> None:
+    p = sub.add_parser("steady", help="steady sliding state(s) (direct solver)")
+    _case_arguments(p)
+    p.add_argument("--speeds", metavar="V1,V2,...", help="speed sweep [m/s], comma-separated")
+    p.add_argument("--quiet", action="store_true", help="no summary")
+    p.set_defaults(handler=_cmd_steady)
+
+
+def _add_plot(sub: Any) -> None:
+    p = sub.add_parser("plot", help="figures of an existing result file")
+    p.add_argument("result", metavar="RESULT.nc")
+    p.add_argument("--out", required=True, metavar="DIR", help="folder for the PNG files")
+    p.set_defaults(handler=_cmd_plot)
+
+
+def _add_sweep(sub: Any) -> None:
+    from .sweep.execute import default_workers
+
+    p = sub.add_parser("sweep", help="a parameter sweep on a dask cluster (resumable)",
+                       description="Run the Cartesian product of the values in SWEEP.toml. "
+                       "Run files are kept in SWEEP.runs/; re-running the same command resumes.")
+    p.add_argument("sweep", metavar="SWEEP.toml", help="sweep file")
+    p.add_argument("--out", required=True, metavar="SWEEP.nc", help="sweep result file (netCDF-4)")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="an existing dask scheduler, e.g. tcp://host:8786 "
+                   "(default: a local cluster)")
+    p.add_argument("--workers", type=int, metavar="N", help=f"local worker processes (default: one per core, "
+                   f"{default_workers()} here)")
+    p.add_argument("--plots", metavar="DIR", help="also write the sweep figures (PNG) into DIR")
+    p.add_argument("--quiet", action="store_true", help="no progress bar, no summary")
+    p.set_defaults(handler=_cmd_sweep)
+
+
+def _add_reproduce(sub: Any) -> None:
+    from .reproduce.figures import FIGURES
+
+    p = sub.add_parser("reproduce", help="rerun the seed's cases and draw one of its figures")
+    p.add_argument("figure", choices=list(FIGURES), help="seed figure to reproduce")
+    p.add_argument("--out", required=True, metavar="DIR", help="folder for the figures and the results (.nc)")
+    p.add_argument("--n", type=int, default=None, metavar="N",
+                   help="grid cells per side instead of the seed's 256 (quick preview; dt follows)")
+    p.add_argument("--cases", default=None, metavar="DIR", help="folder of the seed_*.toml cases")
+    p.add_argument("--quiet", action="store_true", help="no progress bar, no summary")
+    p.set_defaults(handler=_cmd_reproduce)
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -37,43 +107,12 @@ def _parser() -> argparse.ArgumentParser:
         prog=PROG, description="Transient frictional sliding contact on a linear viscoelastic half-space.")
     parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-
-    def common(p: argparse.ArgumentParser) -> None:
-        p.add_argument("case", metavar="CASE.toml", help="case file")
-        p.add_argument("--out", required=True, metavar="RESULT.nc", help="result file (netCDF-4)")
-        p.add_argument("--plots", metavar="DIR", help="also write figures (PNG) into DIR")
-        p.add_argument("--force", action="store_true", help="overwrite an existing result file")
-        p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
-                       help="override a case-file key, e.g. --set tangential.sliding_speed=0.1 (repeatable; "
-                            "an empty VALUE removes the key)")
-
-    run = sub.add_parser("run", help="one transient simulation")
-    common(run)
-    run.add_argument("--quiet", action="store_true", help="no progress bar, no summary")
-    run.add_argument("--checkpoint-every", type=int, default=0, metavar="N",
-                     help="write the solver state every N steps to RESULT.nc.checkpoint.npz (atomic)")
-    run.add_argument("--resume", action="store_true",
-                     help="continue from RESULT.nc.checkpoint.npz (same case file) and overwrite RESULT.nc")
-    run.add_argument("--dry-run", action="store_true",
-                     help="validate the case and print the estimated result size and memory; run nothing")
-    steady = sub.add_parser("steady", help="steady sliding state(s) (direct solver)")
-    common(steady)
-    steady.add_argument("--speeds", metavar="V1,V2,...", help="speed sweep [m/s], comma-separated")
-    steady.add_argument("--quiet", action="store_true", help="no summary")
-    plot = sub.add_parser("plot", help="figures of an existing result file")
-    plot.add_argument("result", metavar="RESULT.nc")
-    plot.add_argument("--out", required=True, metavar="DIR", help="folder for the PNG files")
-    run.set_defaults(handler=_cmd_run)
-    steady.set_defaults(handler=_cmd_steady)
-    plot.set_defaults(handler=_cmd_plot)
-    from .reproduce import add_reproduce_parser
-    from .sweep import add_sweep_parser
-
-    add_sweep_parser(sub)
-    add_reproduce_parser(sub)
+    for add in (_add_run, _add_steady, _add_plot, _add_sweep, _add_reproduce):
+        add(sub)
     return parser
 
 
+# --- output on stderr -------------------------------------------------------------------------------
 def _say(line: str) -> None:
     """One line on stderr, without breaking a progress bar."""
     try:
@@ -86,12 +125,12 @@ def _say(line: str) -> None:
 
 @contextmanager
 def _warnings_as_lines() -> Iterator[None]:
-    """Show ViscontactWarning as ``viscontact: warning: ...`` (other warnings unchanged)."""
+    """Show every ViscontactWarning as ``viscontact: warning: ...`` (other warnings unchanged)."""
     previous = warnings.showwarning
 
     def show(message: Any, category: type, filename: str, lineno: int, file: Any = None, line: Any = None) -> None:
         if issubclass(category, ViscontactWarning):
-            _say(f"{PROG}: warning: {message}")
+            _say(f"{PROG}: warning: {' '.join(str(message).split())}")
         else:
             previous(message, category, filename, lineno, file, line)
 
@@ -102,25 +141,38 @@ def _warnings_as_lines() -> Iterator[None]:
         warnings.showwarning = previous
 
 
-@contextmanager
-def _progress(enabled: bool) -> Iterator[Callable[[int, int], None] | None]:
-    """A ``progress(done, total)`` callback drawing a tqdm bar on stderr, or None when disabled."""
-    if not enabled:
-        yield None
-        return
-    from tqdm import tqdm
+class _Bar:
+    """A tqdm progress bar on stderr when ``enabled`` (a TTY and not ``--quiet``); silent otherwise.
+    ``update(count, total, desc=..., **postfix)`` serves every command's progress callback."""
 
-    bar = tqdm(total=None, file=sys.stderr, unit="step", dynamic_ncols=True, leave=False)
+    def __init__(self, enabled: bool, unit: str) -> None:
+        self.enabled, self.unit, self.bar, self.desc = enabled, unit, None, None
 
-    def update(done: int, total: int) -> None:
-        if bar.total != total:
-            bar.total = total
-        bar.update(done - bar.n)
+    def update(self, count: int, total: int, desc: str | None = None, **postfix: int) -> None:
+        if not self.enabled:
+            return
+        if self.bar is None:
+            from tqdm import tqdm
 
-    try:
-        yield update
-    finally:
-        bar.close()
+            self.bar = tqdm(total=total, file=sys.stderr, unit=self.unit, dynamic_ncols=True, leave=False)
+        if self.bar.total != total or desc != self.desc:
+            self.bar.reset(total=total)
+            self.desc = desc
+            self.bar.set_description(desc)
+        if postfix:
+            self.bar.set_postfix(**postfix, refresh=False)
+        self.bar.update(count - self.bar.n)
+
+    def __enter__(self) -> _Bar:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _bar(args: argparse.Namespace, unit: str) -> _Bar:
+    return _Bar(not args.quiet and sys.stderr.isatty(), unit)
 
 
 def _parse_value(text: str) -> Any:
@@ -154,9 +206,9 @@ def _prepare(args: argparse.Namespace) -> Any:
     if Path(args.out).exists() and not (args.force or getattr(args, "resume", False)):
         raise FileExistsError(17, "exists; refusing to overwrite it without --force", args.out)
     if args.plots:
-        from . import plotting
+        from .plotting import pyplot
 
-        plotting._pyplot()
+        pyplot()
     return case
 
 
@@ -202,9 +254,9 @@ def _cmd_run(args: argparse.Namespace) -> int:
         return 0
     checkpoint = api.checkpoint_path(args.out) if (args.checkpoint_every or args.resume) else None
     force = args.force or args.resume
-    with _progress(not args.quiet and sys.stderr.isatty()) as progress, _stop_on_signals() as should_stop:
+    with _bar(args, "step") as bar, _stop_on_signals() as should_stop:
         try:
-            ds = api.run(case, progress=progress, checkpoint=checkpoint, checkpoint_every=args.checkpoint_every,
+            ds = api.run(case, progress=bar.update, checkpoint=checkpoint, checkpoint_every=args.checkpoint_every,
                          resume=args.resume, should_stop=should_stop)
         except (ConvergenceError, NumericalGuardError, RunInterrupted, KeyboardInterrupt) as exc:
             partial = getattr(exc, "partial", None)
@@ -258,13 +310,80 @@ def _cmd_plot(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_sweep(args: argparse.Namespace) -> int:
+    """0 when every run succeeded, 1 when some failed (the sweep file is written all the same), 130
+    when interrupted (the finished runs are kept)."""
+    from .sweep import load_sweep, plan, runs_dir, sweep
+
+    started = time.perf_counter()
+    if args.workers is not None and args.scheduler:
+        raise ParameterError("--workers", "sets the size of a local cluster; leave it out with --scheduler")
+    if args.workers is not None and args.workers < 1:
+        raise ParameterError("--workers", f"must be >= 1, got {args.workers}")
+    spec = load_sweep(args.sweep)
+    plan(spec)  # every problem with the sweep file, before connecting to anything
+    if args.plots:
+        from .plotting import pyplot
+
+        pyplot()
+    client = None
+    try:
+        if args.scheduler:
+            from distributed import Client
+
+            try:
+                client = Client(args.scheduler, timeout="20s")
+            except (OSError, TimeoutError) as exc:
+                raise ParameterError("--scheduler", f"cannot connect to {args.scheduler}: {exc}") from None
+        with _bar(args, "run") as bar:
+            ds = sweep(spec, client=client, out=args.out, workers=args.workers,
+                       progress=lambda done, failed, total: bar.update(done + failed, total, done=done, failed=failed))
+    except KeyboardInterrupt as exc:
+        exc.note = (f"; the finished runs are kept in {runs_dir(args.out)}/ - run the same "  # type: ignore[attr-defined]
+                    "command again to resume")
+        raise
+    finally:
+        if client is not None:
+            client.close()
+    written = [Path(args.out)]
+    if args.plots:
+        from .plotting import plot_sweep
+
+        written += plot_sweep(ds, args.plots)
+    if not args.quiet:
+        a = ds.attrs
+        total = a["runs_computed"] + a["runs_reused"]
+        print(f"wrote {', '.join(str(p) for p in written)}: {total} runs ({a['runs_computed']} computed, "
+              f"{a['runs_reused']} reused, {a['runs_failed']} failed), {time.perf_counter() - started:.1f} s")
+    return EXIT_FAILED if ds.attrs["runs_failed"] else 0
+
+
+def _cmd_reproduce(args: argparse.Namespace) -> int:
+    from .reproduce import reproduce
+
+    started = time.perf_counter()
+    with _bar(args, "step") as bar:
+        paths = reproduce(args.figure, args.out, n=args.n, cases_dir=args.cases,
+                          progress=lambda name, done, total: bar.update(done, total, desc=name))
+    if not args.quiet:
+        for path in paths:
+            print(path)
+        print(f"{args.figure}: {len(paths)} files in {args.out} ({time.perf_counter() - started:.1f} s)")
+    return 0
+
+
+# --- the one error path ------------------------------------------------------------------------------
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``viscontact`` command; returns the exit status."""
+    """Entry point of the ``viscontact`` command; returns the exit status.
+
+    Every sub-command's handler raises; the errors become one line ``viscontact: error: ...`` here:
+    bad input (:class:`ParameterError`, a missing or existing file) exits 2, a failed solve 1, a
+    stop by SIGINT 130 and by SIGTERM 143.
+    """
     args = _parser().parse_args(argv)
-    command = getattr(args, "handler", None) or args.func
     try:
         with _warnings_as_lines():
-            return command(args)
+            return args.handler(args)
     except ParameterError as exc:
         return _error(f"{exc.key}: {exc.message}", EXIT_USAGE)
     except OSError as exc:  # missing file, existing result, permissions
@@ -280,6 +399,9 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _saved_note(exc: BaseException) -> str:
+    """What was kept of the run: the ``note`` or the ``saved`` (path, records) the handler attached."""
+    if getattr(exc, "note", None):
+        return exc.note  # type: ignore[attr-defined]
     saved = getattr(exc, "saved", None)
     return f" (the {saved[1]} records done are in {saved[0]}, complete = 0)" if saved else " (no result file written)"
 

@@ -10,6 +10,7 @@ from typing import Literal
 
 import numpy as np
 
+from .errors import ParameterError
 from .grid import Grid
 from .materials import Material
 
@@ -19,6 +20,9 @@ TimeScheme = Literal["constant", "linear"]
 
 #: phase codes written to ``phase(t)``
 PHASE_INDENTATION, PHASE_PARTIAL_SLIP, PHASE_GROSS_SLIDING = 0, 1, 2
+#: what each phase code means (labels of figures and of the ``phase`` variable)
+PHASE_NAMES = {PHASE_INDENTATION: "indentation", PHASE_PARTIAL_SLIP: "partial slip",
+               PHASE_GROSS_SLIDING: "gross sliding"}
 
 
 @dataclass(frozen=True)
@@ -77,6 +81,26 @@ class TangentialLoading:
     displacement_rate: float = 0.0
     sliding_speed: float = 0.0
     steps_per_cell: int = 1
+
+    def __post_init__(self) -> None:
+        """What each mode needs; the one place that decides it (the case layer delegates here).
+
+        Raises
+        ------
+        ParameterError
+            A sliding mode without a speed > 0 m/s, or partial slip without a displacement rate
+            > 0 m/s or a friction coefficient > 0 (with mu_f = 0 nothing would ever stick).
+        """
+        if self.mode != "none" and not self.sliding_speed > 0:
+            raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s with mode = '{self.mode}', "
+                                 f"got {self.sliding_speed:g}")
+        if self.mode == "partial_slip":
+            if not self.displacement_rate > 0:
+                raise ParameterError("tangential.displacement_rate",
+                                     f"must be > 0 m/s with mode = 'partial_slip', got {self.displacement_rate:g}")
+            if not self.friction_coefficient > 0:
+                raise ParameterError("tangential.friction_coefficient",
+                                     f"must be > 0 with mode = 'partial_slip', got {self.friction_coefficient:g}")
 
     @property
     def slides(self) -> bool:

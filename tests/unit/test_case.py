@@ -8,7 +8,7 @@ import pytest
 
 from viscontact.case import Case, load_case
 from viscontact.errors import ParameterError
-from viscontact.problem import Problem
+from viscontact.problem import Problem, TangentialLoading
 
 ROOT = Path(__file__).resolve().parents[2]
 CASES = sorted((ROOT / "cases").glob("*.toml"))
@@ -121,3 +121,29 @@ def test_surface_file(tmp_path: Path) -> None:
     with pytest.raises(ParameterError) as info:
         parse(text, tmp_path / "elsewhere").to_problem()
     assert info.value.key == "indenter.file" and "no such file" in info.value.message
+
+
+def test_solver_coupling_is_a_case_key() -> None:
+    case = load_case(ROOT / "cases" / "creep_indentation.toml")
+    assert case.to_problem().solver.coupling is True
+    assert case.with_overrides({"solver.coupling": False}).to_problem().solver.coupling is False
+    with pytest.raises(ParameterError) as err:
+        case.with_overrides({"solver.coupling": 0})
+    assert err.value.key == "solver.coupling"
+
+
+@pytest.mark.parametrize(("field", "value", "key"), [("friction_coefficient", 0.0, "tangential.friction_coefficient"),
+                                                      ("displacement_rate", 0.0, "tangential.displacement_rate"),
+                                                      ("sliding_speed", 0.0, "tangential.sliding_speed")])
+def test_what_partial_slip_needs_is_decided_in_one_place(field: str, value: float, key: str) -> None:
+    """The problem layer refuses partial slip with mu_f = 0 (and without a rate or speed); the case
+    layer says the same, word for word."""
+    good = {"friction_coefficient": 0.3, "displacement_rate": 0.01, "sliding_speed": 0.05}
+    with pytest.raises(ParameterError) as direct:
+        TangentialLoading("partial_slip", **{**good, field: value})
+    case = load_case(ROOT / "cases" / "creep_indentation.toml")
+    with pytest.raises(ParameterError) as from_case:
+        case.with_overrides({"tangential.mode": "partial_slip",
+                             **{f"tangential.{k}": v for k, v in {**good, field: value}.items()}})
+    assert direct.value.key == from_case.value.key == key
+    assert direct.value.message == from_case.value.message

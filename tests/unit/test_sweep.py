@@ -11,22 +11,20 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from viscontact import api
+from viscontact import api, cli
 from viscontact.case import load_case
 from viscontact.errors import ParameterError, ViscontactWarning
-from viscontact.sweep import SweepSpec, cli_sweep, load_sweep, plan, plot_sweep, run_file_name, runs_dir, sweep
+from viscontact.plotting import plot_sweep
+from viscontact.sweep import SweepSpec, load_sweep, plan, run_file_name, runs_dir, sweep
+
+from vc_testing import SEED_MATERIAL_TOML
 
 pytestmark = [pytest.mark.timeout(90),
               pytest.mark.filterwarnings("ignore:time.dt = .* the transient is resolved coarsely")]
 
 BASE = """\
 title = "tiny sweep base"
-[material]
-type = "zener"
-shear_modulus_instantaneous = 1.93e6
-shear_modulus_long_term = 0.193e6
-retardation_time = 0.01
-poisson_ratio = 0.3
+""" + SEED_MATERIAL_TOML + """\
 [indenter]
 shape = "sphere"
 radius = 0.01
@@ -206,7 +204,7 @@ def test_failed_run_is_nan_with_its_error_and_the_rest_finish(tmp_path, client):
 
 def test_cli_sweep_resumes_and_plots(tmp_path, transient_sweep, client, monkeypatch, capsys):
     """The CLI on a finished sweep: nothing computed, no cluster started, figures written."""
-    import viscontact.sweep as sw
+    import viscontact.sweep.execute as execute
 
     _, spec, out, _ = transient_sweep
 
@@ -214,9 +212,8 @@ def test_cli_sweep_resumes_and_plots(tmp_path, transient_sweep, client, monkeypa
         def __init__(self, *a):
             raise AssertionError("a cluster was started although every run is complete")
 
-    monkeypatch.setattr(sw, "_client", NoCluster)
-    args = _args(spec, out, plots=str(tmp_path / "fig"))
-    assert cli_sweep(args) == 0
+    monkeypatch.setattr(execute, "cluster_client", NoCluster)
+    assert cli.main(["sweep", str(spec), "--out", str(out), "--plots", str(tmp_path / "fig")]) == 0
     assert "0 computed, 4 reused, 0 failed" in capsys.readouterr().out
     assert (tmp_path / "fig" / "sweep_mu_app.png").stat().st_size > 0
 
@@ -234,15 +231,15 @@ def test_cli_sweep_resumes_and_plots(tmp_path, transient_sweep, client, monkeypa
     ('"material.shear_modulus_long_term" = [2e6]\n', "steady", "material.shear_modulus_long_term", "<="),
 ])
 def test_bad_sweep_file_fails_before_any_run(tmp_path, monkeypatch, capsys, parameters, solver, key, words):
-    import viscontact.sweep as sw
+    import viscontact.sweep.execute as execute
 
     spec = write_sweep(tmp_path, solver=solver, parameters=parameters)
-    monkeypatch.setattr(sw, "_client", _forbidden)
+    monkeypatch.setattr(execute, "cluster_client", _forbidden)
     with pytest.raises(ParameterError) as info:
         sweep(spec, out=tmp_path / "sweep.nc")
     assert info.value.key == key and words in info.value.message
     started = time.perf_counter()
-    assert cli_sweep(_args(spec, tmp_path / "sweep.nc")) == 2
+    assert cli.main(["sweep", str(spec), "--out", str(tmp_path / "sweep.nc")]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith(f"viscontact: error: {key}: ") and "Traceback" not in err
     assert time.perf_counter() - started < 5
@@ -307,10 +304,3 @@ def test_plot_sweep_of_a_saved_file(tmp_path, transient_sweep):
 # --- helpers ---------------------------------------------------------------------------------------
 def _forbidden(*a, **k):
     raise AssertionError("a cluster was started before the sweep file was checked")
-
-
-def _args(spec, out, **kw):
-    import argparse
-
-    fields = {"sweep": str(spec), "out": str(out), "scheduler": None, "workers": None, "plots": None, "quiet": False}
-    return argparse.Namespace(**{**fields, **kw})

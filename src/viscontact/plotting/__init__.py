@@ -1,0 +1,29 @@
+"""Figures of result Datasets (never of solver objects): ``viscontact plot`` works on any saved file.
+
+All plotting lives in this package: :mod:`.base` (the pyplot helper, scales, the profile along
+y = 0), :mod:`.result` (one run or a speed curve), :mod:`.sweep` (parameter sweeps) and :mod:`.seed`
+(the seed's figures, for :mod:`viscontact.reproduce`). Matplotlib is imported when a figure is
+drawn (Agg backend), so importing viscontact never pulls it in.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from .base import DPI, Scales, phase_name, profile, pyplot, save_figure
+from .result import plot_result, plot_speed_curve
+from .sweep import plot_sweep
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+__all__ = ["DPI", "Scales", "phase_name", "plot_any", "plot_result", "plot_speed_curve", "plot_sweep", "profile",
+           "pyplot", "save_figure"]
+
+
+def plot_any(ds: xr.Dataset, out_dir: str | Path) -> list[Path]:
+    """:func:`plot_sweep` for a parameter sweep, :func:`plot_speed_curve` for a steady speed curve,
+    :func:`plot_result` otherwise."""
+    if ds.attrs.get("kind") == "sweep":
+        return plot_sweep(ds, out_dir)
+    return plot_speed_curve(ds, out_dir) if "speed" in ds.dims else plot_result(ds, out_dir)

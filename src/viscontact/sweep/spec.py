@@ -1,0 +1,263 @@
+"""Sweep files and plans: which runs a sweep makes, each checked against the case-file keys.
+
+A sweep file names a base case and lists values for any dotted case key; the sweep runs the
+Cartesian product of those values::
+
+    base = "../seed_table1_v0.8.toml"    # relative to this file's folder, else to the CWD
+    solver = "steady"                    # or "transient"
+    [overrides]                          # optional: fixed for every run
+    "grid.n" = 64
+    [parameters]                         # one dimension per key, in this order
+    "tangential.sliding_speed" = [0.002, 0.005, 0.01]
+    "material.shear_modulus_long_term" = [0.193e6, 0.386e6]
+
+:func:`load_sweep` reads the file, :func:`plan` validates every run's case before anything runs.
+"""
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import math
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+
+from ..case import case_keys, closest, load_case, read_input_file
+from ..errors import ParameterError
+
+__all__ = ["SOLVERS", "Plan", "Run", "SweepSpec", "format_value", "load_sweep", "plan", "run_file_name"]
+
+#: solvers a sweep may use: ``viscontact.api.run_steady`` or ``viscontact.api.run``
+SOLVERS = ("steady", "transient")
+_SWEEP_KEYS = ("title", "base", "solver", "parameters", "overrides")
+_MAX_NAME = 200  # characters of a run file name before it is shortened with a hash
+
+
+# --- the sweep file ------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class SweepSpec:
+    """A sweep: the base case file, the swept keys with their values (in dimension order), the
+    solver, and keys fixed for every run.
+
+    ``base`` is taken relative to ``base_dir`` (the sweep file's folder) when it exists there, else
+    relative to the current directory. Build one from a file with :func:`load_sweep`.
+    """
+
+    base: str | Path
+    parameters: Mapping[str, Sequence[Any]]
+    solver: str = "steady"
+    overrides: Mapping[str, Any] = field(default_factory=dict)
+    title: str = ""
+    base_dir: Path | None = None
+    text: str = ""
+    source: str = "sweep"
+
+    def base_path(self) -> Path:
+        """The base case file; :class:`ParameterError` (key ``base``) when it is not found."""
+        base = Path(self.base)
+        candidates = [base] if base.is_absolute() else \
+            ([self.base_dir / base] if self.base_dir is not None else []) + [Path.cwd() / base]
+        for path in candidates:
+            if path.is_file():
+                return path
+        where = " and ".join(dict.fromkeys(str(p.parent.resolve()) for p in candidates))
+        raise ParameterError("base", f"no such case file: {str(self.base)!r} (looked in {where})")
+
+    @property
+    def keys(self) -> tuple[str, ...]:
+        return tuple(self.parameters)
+
+    @property
+    def dims(self) -> tuple[str, ...]:
+        """Dimension names of the swept keys: the dotted key with ``.`` -> ``__``."""
+        return tuple(k.replace(".", "__") for k in self.parameters)
+
+    @property
+    def size(self) -> int:
+        return math.prod(len(v) for v in self.parameters.values())
+
+
+def load_sweep(path: str | Path) -> SweepSpec:
+    """Read a sweep file (TOML). Its structure is checked here; the keys and values against the base
+    case by :func:`sweep` (or :func:`plan`) before any run starts.
+
+    Raises
+    ------
+    ParameterError
+        Missing or unreadable file, not TOML, unknown top-level key, wrong types, empty list.
+    """
+    path = Path(path)
+    text = read_input_file(path, "sweep file")
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ParameterError("sweep file", f"{path} is not valid TOML: {exc}") from None
+    for key in data:
+        if key not in _SWEEP_KEYS:
+            raise ParameterError(key, f"unknown sweep-file key{_hint(key, _SWEEP_KEYS)}; "
+                                 f"valid keys: {', '.join(_SWEEP_KEYS)}")
+    if "base" not in data:
+        raise ParameterError("base", f"required: the base case file (in {path})")
+    if not isinstance(data["base"], str):
+        raise ParameterError("base", f"must be a string (a case file path), got {data['base']!r}")
+    if "parameters" not in data:
+        raise ParameterError("parameters", "required: a [parameters] table of dotted case keys and value lists")
+    for name in ("parameters", "overrides"):
+        if name in data and not isinstance(data[name], dict):
+            raise ParameterError(name, f"must be a table ([{name}]), got {data[name]!r}")
+    for name in ("solver", "title"):
+        if name in data and not isinstance(data[name], str):
+            raise ParameterError(name, f"must be a string, got {data[name]!r}")
+    return SweepSpec(base=data["base"], parameters=_flatten(data["parameters"]),
+                     solver=data.get("solver", "steady"), overrides=_flatten(data.get("overrides", {})),
+                     title=data.get("title", ""), base_dir=path.parent, text=text, source=str(path))
+
+
+def _flatten(table: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
+    """``{"a.b": v}`` and ``{"a": {"b": v}}`` (unquoted dotted TOML keys) both as ``{"a.b": v}``."""
+    out: dict[str, Any] = {}
+    for key, value in table.items():
+        full = f"{prefix}{key}"
+        if isinstance(value, dict):
+            out.update(_flatten(value, full + "."))
+        else:
+            out[full] = value
+    return out
+
+def _hint(name: str, valid: Sequence[str]) -> str:
+    close = closest(name, valid)
+    return f"; did you mean '{close}'?" if close else ""
+
+
+def _check_key(key: str, valid: Mapping[str, Any], where: str) -> None:
+    if key in valid:
+        return
+    hint = _hint(key, list(valid))
+    if not hint:  # a typo in the section or in the name alone
+        section, _, name = key.rpartition(".")
+        hint = _hint(name, [k for k in valid if k.startswith(section + ".")] or list(valid))
+    raise ParameterError(key, f"unknown case key in [{where}]{hint}")
+
+
+# --- the plan: every run, validated ----------------------------------------------------------------
+@dataclass(frozen=True)
+class Run:
+    """One point of the sweep: its index along each dimension, its overrides and its case."""
+
+    index: tuple[int, ...]
+    overrides: dict[str, Any]
+    case: Any  # viscontact.case.Case
+    name: str
+    fingerprint: str
+
+    @property
+    def label(self) -> str:
+        return ", ".join(f"{k}={format_value(v)}" for k, v in self.overrides.items())
+
+
+@dataclass(frozen=True)
+class Plan:
+    spec: SweepSpec
+    base: Any  # viscontact.case.Case
+    base_path: Path
+    runs: tuple[Run, ...]
+    fixed: dict[str, Any]
+
+
+def plan(spec: SweepSpec | str | Path, *, fixed: Mapping[str, Any] | None = None) -> Plan:
+    """Check ``spec`` completely and build every run's validated case, computing nothing.
+
+    ``fixed`` are overrides applied to every run after the sweep file's ``[overrides]`` (the sweep
+    sets ``solver.workers = 1`` this way unless the sweep file sets it).
+
+    Raises
+    ------
+    ParameterError
+        Unknown solver, missing base case, unknown case key (with the closest valid one), a value
+        list that is not a non-empty array of distinct values, or a run whose case is invalid
+        (the message names the run's parameters).
+    """
+    spec = load_sweep(spec) if isinstance(spec, (str, Path)) else spec
+    if spec.solver not in SOLVERS:
+        raise ParameterError("solver", f"must be one of {', '.join(repr(s) for s in SOLVERS)}, got {spec.solver!r}")
+    if not spec.parameters:
+        raise ParameterError("parameters", "empty: give at least one dotted case key with a list of values")
+    valid = case_keys()
+    for key in spec.overrides:
+        _check_key(key, valid, "overrides")
+    for key, values in spec.parameters.items():
+        _check_key(key, valid, "parameters")
+        if key in spec.overrides:
+            raise ParameterError(key, "both swept in [parameters] and fixed in [overrides]; keep one")
+        if not isinstance(values, (list, tuple)):
+            raise ParameterError(key, f"must be an array of values to sweep, got {values!r}")
+        if len(values) == 0:
+            raise ParameterError(key, "empty list: give at least one value to sweep")
+        seen = set()
+        for v in values:
+            token = json.dumps(v, sort_keys=True)
+            if token in seen:
+                raise ParameterError(key, f"value {v!r} is listed twice")
+            seen.add(token)
+    base_path = spec.base_path()
+    try:
+        base = load_case(base_path)
+    except ParameterError as exc:
+        raise ParameterError(exc.key, f"{exc.message} (in base case {base_path})") from None
+    extra = {**spec.overrides, **{k: v for k, v in (fixed or {}).items()
+                                  if k not in spec.overrides and k not in spec.parameters}}
+    keys = list(spec.parameters)
+    runs = []
+    for index in itertools.product(*(range(len(v)) for v in spec.parameters.values())):
+        combo = {k: spec.parameters[k][i] for k, i in zip(keys, index)}
+        label = ", ".join(f"{k}={format_value(v)}" for k, v in combo.items())
+        try:
+            case = base.with_overrides({**extra, **combo})
+        except ParameterError as exc:
+            raise ParameterError(exc.key, f"{exc.message} (in the run {label})") from None
+        fp = hashlib.sha256(f"{spec.solver}\n{case.model_dump_json()}".encode()).hexdigest()[:16]
+        runs.append(Run(index, combo, case, run_file_name(combo), fp))
+    runs = _unique_names(runs)
+    return Plan(spec, base, base_path, tuple(runs), extra)
+
+
+def format_value(value: Any) -> str:
+    """A parameter value as written in run file names and messages (193000.0 -> 193000)."""
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float) and value.is_integer() and abs(value) < 1e15:
+        return str(int(value))
+    if isinstance(value, (int, float, str)):
+        return str(value) if isinstance(value, str) else repr(value)
+    return json.dumps(value, separators=(",", ":"))
+
+
+def run_file_name(overrides: Mapping[str, Any]) -> str:
+    """``key=value__key=value.nc`` (characters outside ``[A-Za-z0-9._+=-]`` become ``_``; names
+    over 200 characters are cut and end in a hash of the parameters)."""
+    name = "__".join(f"{k}={format_value(v)}" for k, v in overrides.items())
+    name = re.sub(r"[^A-Za-z0-9._+=\-]", "_", name)
+    if len(name) > _MAX_NAME:
+        digest = hashlib.sha1(json.dumps(overrides, sort_keys=True, default=str).encode()).hexdigest()[:12]
+        name = f"{name[:_MAX_NAME - 14]}__{digest}"
+    return name + ".nc"
+
+
+def _unique_names(runs: list[Run]) -> list[Run]:
+    counts: dict[str, int] = {}
+    for r in runs:
+        counts[r.name] = counts.get(r.name, 0) + 1
+    out = []
+    for r in runs:
+        if counts[r.name] > 1:  # two values that read the same once sanitised
+            digest = hashlib.sha1(json.dumps(r.overrides, sort_keys=True, default=str).encode()).hexdigest()[:8]
+            r = Run(r.index, r.overrides, r.case, f"{r.name[:-3]}__{digest}.nc", r.fingerprint)
+        out.append(r)
+    return out

@@ -1,0 +1,93 @@
+"""``viscontact reproduce``: the time scale comes from the material, and a figure is run, saved,
+reused and drawn end to end (on tiny copies of the shipped cases)."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from viscontact import cli
+from viscontact.case import load_case
+from viscontact.errors import ParameterError
+from viscontact.problem import PHASE_GROSS_SLIDING
+from viscontact.reproduce import FIGURES, find_cases_dir, record_every, run_seed_cases, time_scale
+from viscontact.results import open_result
+
+from vc_testing import SEED_G0, SEED_GINF, SEED_NU
+
+CASES = Path(__file__).resolve().parents[2] / "cases"
+LAMBDA = 4e-3  # s, a retardation time other than the seed's 0.01 s
+
+
+def _zener_and_prony():
+    """The seed's Table 1 case with the same Zener material (retardation time LAMBDA) written as a
+    Zener and as its one-term Prony series (relaxation time LAMBDA G(inf)/G(0))."""
+    base = load_case(CASES / "seed_table1_v0.8.toml").with_overrides({"grid.n": 64})
+    zener = base.with_overrides({"material.retardation_time": LAMBDA})
+    prony = base.with_overrides({"material": {
+        "type": "prony", "g_inf": SEED_GINF, "g": [SEED_G0 - SEED_GINF], "tau": [LAMBDA * SEED_GINF / SEED_G0],
+        "poisson_ratio": SEED_NU}})
+    return zener, prony
+
+
+def test_time_scale_is_the_materials_retardation_time_whatever_its_type():
+    zener, prony = _zener_and_prony()
+    assert time_scale(zener) == pytest.approx(LAMBDA, rel=1e-12)
+    assert time_scale(prony) == pytest.approx(LAMBDA, rel=1e-9)
+    times = FIGURES["fig4"].times
+    assert record_every(prony, times) == record_every(zener, times)
+    # the stride records every requested time exactly
+    every, dt = record_every(prony, times), prony.default_dt()
+    for t in times:
+        assert (t * LAMBDA / dt) % every == pytest.approx(0, abs=1e-6)
+
+
+def test_elastic_material_has_no_time_scale():
+    elastic = load_case(CASES / "seed_table1_v0.8.toml").with_overrides({"material": {
+        "type": "elastic", "shear_modulus": SEED_G0, "poisson_ratio": SEED_NU}})
+    with pytest.raises(ParameterError) as err:
+        time_scale(elastic)
+    assert err.value.key == "material.type"
+
+
+@pytest.fixture(scope="module")
+def tiny_cases(tmp_path_factory) -> Path:
+    """The cases of fig10 (and the marker case) at n = 16 with the linear scheme (the seed's constant
+    scheme is unstable at the coarse dt = dx/v of so small a grid)."""
+    folder = tmp_path_factory.mktemp("cases")
+    for name in ("seed_table1_v0.8", *FIGURES["fig10"].cases):
+        text = (CASES / f"{name}.toml").read_text().replace("\nn = 256", "\nn = 16")
+        (folder / f"{name}.toml").write_text(text.replace("[time]\n", '[time]\nscheme = "linear"\n'))
+    return folder
+
+
+def test_reproduce_runs_saves_reuses_and_draws(tiny_cases, tmp_path, capsys):
+    out = tmp_path / "fig10"
+    assert cli.main(["reproduce", "fig10", "--out", str(out), "--cases", str(tiny_cases)]) == 0
+    paths = [Path(line) for line in capsys.readouterr().out.splitlines()[:-1]]
+    assert [p.name for p in paths] == ["fig10.png", "fig10_seed_fig10_case3_stick_map.png",
+                                       "seed_fig10_case1.nc", "seed_fig10_case2.nc", "seed_fig10_case3.nc"]
+    assert all(p.stat().st_size > 1000 for p in paths)
+    ds = open_result(out / "seed_fig10_case3.nc")
+    assert ds.attrs["complete"] == 1 and ds.sizes["y"] == 16
+    assert ds["phase"].values[-1] == PHASE_GROSS_SLIDING                      # the partial-slip case slides
+    # running the figure's cases again reuses every saved result (computed from the same case text)
+    stamps = {p: p.stat().st_mtime_ns for p in paths if p.suffix == ".nc"}
+    runs = run_seed_cases(FIGURES["fig10"].cases, out, times_tau=FIGURES["fig10"].times, cases_dir=tiny_cases)
+    assert {p: p.stat().st_mtime_ns for p in stamps} == stamps
+    assert float(runs["seed_fig10_case3"]["mu_app"][-1]) == float(ds["mu_app"][-1])
+
+
+def test_reproduce_refuses_a_bad_grid_in_one_line(tiny_cases, tmp_path, capsys):
+    assert cli.main(["reproduce", "fig10", "--out", str(tmp_path), "--n", "4", "--cases", str(tiny_cases)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("viscontact: error: --n: ")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_cases_dir_is_found_or_named():
+    assert find_cases_dir(CASES) == CASES
+    with pytest.raises(ParameterError) as err:
+        find_cases_dir(CASES / "sweeps")
+    assert err.value.key == "--cases"
+
