@@ -31,7 +31,6 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from viscontact.grid import Grid
 from viscontact.history import (
     DirectHistory,
     PronyHistory,
@@ -39,18 +38,13 @@ from viscontact.history import (
     step_coefficients,
 )
 from viscontact.materials import Material
-from viscontact.problem import (
-    NormalLoading,
-    OutputSettings,
-    PiecewiseLinear,
-    Problem,
-    SolverSettings,
-    TimeStepping,
-)
+from viscontact.problem import PiecewiseLinear, SolverSettings
 from viscontact.transient import simulate
 
+from vc_testing import SEED_LOAD, seed_material, sphere_problem
+
 MATERIALS = {
-    "zener": Material.zener(1.93e6, 0.193e6, 0.01, 0.3),
+    "zener": seed_material(),
     "prony3": Material.prony(1.0e5, [1.0e6, 5.0e5, 2.0e5], [1e-3, 1e-2, 1e-1], 0.25),
 }
 N = 6
@@ -140,15 +134,9 @@ def test_step_coefficients():
 
 
 def _transient(history: str, material: Material) -> list:
-    n, radius, load = 24, 0.01, 0.15
-    grid = Grid(n, 1.6e-3)
-    x, y = grid.mesh()
-    problem = Problem(
-        material=material, grid=grid, gap=(x**2 + y**2) / (2 * radius),
-        normal=NormalLoading("load", PiecewiseLinear((0.0, 2e-3, 1.0), (0.05, load, load))),
-        time=TimeStepping(t_end=4e-3, dt=5e-4, scheme="linear"),
-        solver=SolverSettings(tolerance=1e-13, history=history, workers=1),
-        output=OutputSettings(every=1), radius=radius)
+    load = PiecewiseLinear((0.0, 2e-3, 1.0), (0.05, SEED_LOAD, SEED_LOAD))
+    problem = sphere_problem(material, 24, 1.6e-3, value=load, t_end=4e-3, dt=5e-4, scheme="linear",
+                             solver=SolverSettings(tolerance=1e-13, history=history, workers=1))
     return list(simulate(problem))
 
 

@@ -21,7 +21,9 @@ from scipy.integrate import quad
 from viscontact.errors import ParameterError
 from viscontact.materials import Material
 
-G0, GINF, LAM, NU = 1.93e6, 0.193e6, 0.01, 0.3  # seed material (G = mu/2, retardation time 0.01 s)
+from vc_testing import SEED_G0, SEED_GINF, SEED_NU, SEED_TAU
+
+G0, GINF, LAM, NU = SEED_G0, SEED_GINF, SEED_TAU, SEED_NU  # seed material (G = mu/2, retardation time 0.01 s)
 
 MATERIALS = {
     "zener": Material.zener(G0, GINF, LAM, NU),

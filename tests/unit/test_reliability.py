@@ -18,10 +18,10 @@ import pytest
 import xarray as xr
 
 from viscontact import cli
-from viscontact.errors import NumericalGuardError, ViscontactWarning
+from viscontact.errors import NumericalGuardError
 from viscontact.transient import _guard
 
-from vc_testing import seed_material, sphere_problem
+from vc_testing import SEED_MATERIAL_TOML, seed_material, sphere_problem
 
 ROOT = Path(__file__).resolve().parents[2]
 EXE = [sys.executable, "-m", "viscontact.cli"]
@@ -126,12 +126,7 @@ def _case(tmp_path: Path, text: str) -> Path:
 
 BASE = """
 title = "guard"
-[material]
-type = "zener"
-shear_modulus_instantaneous = 1.93e6
-shear_modulus_long_term = 0.193e6
-retardation_time = 0.01
-poisson_ratio = 0.3
+""" + SEED_MATERIAL_TOML + """\
 [indenter]
 shape = "sphere"
 radius = 0.01
@@ -199,5 +194,19 @@ def test_guards_nan_and_load_balance():
     _guard(pb, p, 1.0, 1.0)
 
 
-def test_warnings_are_viscontact_warnings():
-    assert issubclass(ViscontactWarning, UserWarning)
+def test_every_warning_is_a_viscontact_warning():
+    """Every ``warnings.warn`` in the package names ViscontactWarning, which the command line prints
+    as one ``viscontact: warning:`` line (a bare ``warnings.warn(text)`` would be a UserWarning with a
+    source line under it)."""
+    import ast
+
+    calls = 0
+    for path in (ROOT / "src" / "viscontact").rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "warn":
+                calls += 1
+                category = node.args[1] if len(node.args) > 1 else \
+                    next((k.value for k in node.keywords if k.arg == "category"), None)
+                assert isinstance(category, ast.Name) and category.id == "ViscontactWarning", \
+                    f"{path.name}:{node.lineno} warns without ViscontactWarning"
+    assert calls >= 3  # the wake, the coarse time step, the resources, the failed sweep run

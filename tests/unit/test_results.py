@@ -8,9 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from viscontact.grid import Grid
-from viscontact.materials import Material
-from viscontact.problem import NormalLoading, OutputSettings, PiecewiseLinear, Problem, TangentialLoading, TimeStepping
+from vc_testing import SEED_A0, SEED_G0, SEED_LOAD, SEED_NU, SEED_P0, SEED_RADIUS, seed_material, sphere_problem
+
+from viscontact.problem import NormalLoading, PiecewiseLinear, Problem
 from viscontact.records import StepRecord
 from viscontact.reference import hertz_from_load
 from viscontact.results import open_result, sweep_dataset, to_dataset, write_netcdf
@@ -21,13 +21,8 @@ N = 16
 
 
 def make_problem(mode: str = "partial_slip", fields: tuple[str, ...] = ("pressure", "shear_x", "stick")) -> Problem:
-    grid = Grid(N, 1e-3)
-    x, y = grid.mesh()
-    return Problem(material=Material.zener(1.93e6, 0.193e6, 0.01, 0.3), grid=grid,
-                   gap=(x**2 + y**2) / 0.02, normal=NormalLoading("load", PiecewiseLinear.constant(0.15)),
-                   tangential=TangentialLoading(mode, 0.3, 0.01, 0.05),
-                   time=TimeStepping(t_end=0.004, dt=1e-3), output=OutputSettings(1, fields),
-                   radius=0.01, title="fake")
+    return sphere_problem(seed_material(), N, 1e-3, mode=mode, friction=0.3, rate=0.01, speed=0.05, t_end=0.004,
+                          dt=1e-3, fields=fields, title="fake")
 
 
 def fake_records(problem: Problem, phases: tuple[int, ...] = (0, 1, 1, 2, 2)) -> list[StepRecord]:
@@ -35,7 +30,7 @@ def fake_records(problem: Problem, phases: tuple[int, ...] = (0, 1, 1, 2, 2)) ->
     out = []
     for k, phase in enumerate(phases):
         p = rng.random((N, N)) * 1e5
-        out.append(StepRecord(step=k, t=k * problem.time.dt, phase=phase, load=0.15, delta_z=3e-5 + k * 1e-6,
+        out.append(StepRecord(step=k, t=k * problem.time.dt, phase=phase, load=SEED_LOAD, delta_z=3e-5 + k * 1e-6,
                               delta_x=k * 1e-6, sliding_distance=0.0, contact_area=1e-6 * (1 + k),
                               stick_ratio=0.5, friction_force=0.01, hysteresis_force=0.003, mu_app=0.02,
                               contact_shift=-1e-6 * k, pressure=p, shear_x=0.3 * p, stick=p > 5e4,
@@ -55,9 +50,9 @@ def test_dataset_has_the_contract() -> None:
     assert "displacement_z" not in ds                       # not requested
     np.testing.assert_array_equal(ds["x"].values, problem.grid.x)
     np.testing.assert_array_equal(ds["pressure"].values[2], records[2].pressure)
-    hertz = hertz_from_load(0.15, 0.01, 1.93e6, 0.3)
+    hertz = hertz_from_load(SEED_LOAD, SEED_RADIUS, SEED_G0, SEED_NU)
     assert ds.attrs["a0"] == pytest.approx(hertz.radius) and ds.attrs["p0"] == pytest.approx(hertz.peak_pressure)
-    assert ds.attrs["a0"] == pytest.approx(588.7e-6, rel=1e-3)
+    assert ds.attrs["a0"] == pytest.approx(SEED_A0, rel=1e-3)
     assert ds.attrs["retardation_time"] == pytest.approx(0.01)
     assert ds.attrs["t_gross_sliding"] == pytest.approx(3e-3)   # first record in phase 2
     assert ds.attrs["complete"] == 1
@@ -80,13 +75,13 @@ def test_displacement_control_scale() -> None:
                                                                        PiecewiseLinear.constant(34.45e-6)))
     ds = to_dataset(fake_records(problem), problem)
     assert ds.attrs["a0"] == pytest.approx(math.sqrt(0.01 * 34.45e-6))
-    assert ds.attrs["p0"] == pytest.approx(0.2067e6, rel=5e-3)  # delta 34.45 um is rounded
+    assert ds.attrs["p0"] == pytest.approx(SEED_P0, rel=5e-3)  # delta 34.45 um is rounded
 
 
 def test_equivalent_radius_without_sphere() -> None:
     problem = dataclasses.replace(make_problem(), radius=None)
     ds = to_dataset(fake_records(problem), problem)
-    assert ds.attrs["a0"] == pytest.approx(588.7e-6, rel=1e-2)   # the gap is the R = 10 mm sphere
+    assert ds.attrs["a0"] == pytest.approx(SEED_A0, rel=1e-2)   # the gap is the R = 10 mm sphere
 
 
 def test_round_trip(tmp_path: Path) -> None:

@@ -27,39 +27,30 @@ import warnings
 import numpy as np
 import pytest
 
+from vc_testing import (SEED_A0, SEED_G0, SEED_GINF, SEED_LOAD, SEED_NU, SEED_P0, SEED_RADIUS, SEED_TAU, seed_material,
+                        sphere_problem)
+
 from viscontact.errors import ViscontactWarning
-from viscontact.grid import Grid
 from viscontact.materials import Material
-from viscontact.problem import (
-    NormalLoading,
-    OutputSettings,
-    PiecewiseLinear,
-    Problem,
-    SolverSettings,
-    TimeStepping,
-)
+from viscontact.problem import SolverSettings
 from viscontact.reference import hertz_from_approach, hertz_from_load
 from viscontact.transient import simulate
 
-G0, GINF, LAM, NU, R, W = 1.93e6, 0.193e6, 0.01, 0.3, 0.01, 0.15
+G0, GINF, LAM, NU, R, W = SEED_G0, SEED_GINF, SEED_TAU, SEED_NU, SEED_RADIUS, SEED_LOAD
 HERTZ0 = hertz_from_load(W, R, G0, NU)
 HERTZ_INF = hertz_from_load(W, R, GINF, NU)
 
 
 def run(material: Material, n: int, half_width: float, *, control: str = "load", value: float = W,
         t_end: float = 0.0, dt: float = 1.0, scheme: str = "constant", every: int = 10**9):
-    grid = Grid(n, half_width)
-    x, y = grid.mesh()
-    problem = Problem(material=material, grid=grid, gap=(x**2 + y**2) / (2 * R),
-                      normal=NormalLoading(control, PiecewiseLinear.constant(value)),
-                      time=TimeStepping(t_end, dt, scheme), solver=SolverSettings(tolerance=1e-12),
-                      output=OutputSettings(every=every), radius=R)
-    return grid, list(simulate(problem))
+    problem = sphere_problem(material, n, half_width, control=control, value=value, t_end=t_end, dt=dt,
+                             scheme=scheme, every=every, solver=SolverSettings(tolerance=1e-12))
+    return problem.grid, list(simulate(problem))
 
 
 def test_seed_numbers():
-    assert HERTZ0.radius == pytest.approx(588.7e-6, rel=2e-4)
-    assert HERTZ0.peak_pressure == pytest.approx(0.2067e6, rel=2e-4)
+    assert HERTZ0.radius == pytest.approx(SEED_A0, rel=2e-4)
+    assert HERTZ0.peak_pressure == pytest.approx(SEED_P0, rel=2e-4)
     assert hertz_from_approach(HERTZ0.approach, R, G0, NU).load == pytest.approx(W, rel=1e-12)
 
 
@@ -83,7 +74,7 @@ def test_elastic_hertz_n128(control):
 @pytest.fixture(scope="module")
 def limits():
     n, hw = 64, 2.0 * HERTZ_INF.radius
-    zener = Material.zener(G0, GINF, LAM, NU)
+    zener = seed_material()
     # dt = 2 ms is below the stability limit of the constant scheme (2.2 ms, see test_lee_radok)
     # but above the shortest material time (1 ms), where the solver warns that it is coarse
     with warnings.catch_warnings():

@@ -43,17 +43,11 @@ import warnings
 import numpy as np
 import pytest
 
+from vc_testing import SEED_G0, SEED_GINF, SEED_LOAD, SEED_NU, SEED_RADIUS, SEED_TAU, seed_material, sphere_problem
+
 from viscontact.errors import ViscontactWarning
-from viscontact.grid import Grid
 from viscontact.materials import Material
-from viscontact.problem import (
-    NormalLoading,
-    OutputSettings,
-    PiecewiseLinear,
-    Problem,
-    SolverSettings,
-    TimeStepping,
-)
+from viscontact.problem import SolverSettings
 from viscontact.reference import (
     hertz_from_approach,
     hertz_from_load,
@@ -63,19 +57,15 @@ from viscontact.reference import (
 )
 from viscontact.transient import simulate
 
-G0, GINF, LAM, NU, R, W = 1.93e6, 0.193e6, 0.01, 0.3, 0.01, 0.15
-ZENER = Material.zener(G0, GINF, LAM, NU)
+G0, GINF, LAM, NU, R, W = SEED_G0, SEED_GINF, SEED_TAU, SEED_NU, SEED_RADIUS, SEED_LOAD
+ZENER = seed_material()
 TAU = ZENER.tau[0]  # relaxation time, 1 ms
 DELTA0 = hertz_from_load(W, R, G0, NU).approach
 
 
 def run(n: int, half_width: float, control: str, value: float, t_end: float, dt: float, scheme: str):
-    grid = Grid(n, half_width)
-    x, y = grid.mesh()
-    problem = Problem(material=ZENER, grid=grid, gap=(x**2 + y**2) / (2 * R),
-                      normal=NormalLoading(control, PiecewiseLinear.constant(value)),
-                      time=TimeStepping(t_end, dt, scheme), solver=SolverSettings(tolerance=1e-11),
-                      output=OutputSettings(every=1), radius=R)
+    problem = sphere_problem(ZENER, n, half_width, control=control, value=value, t_end=t_end, dt=dt, scheme=scheme,
+                             solver=SolverSettings(tolerance=1e-11))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ViscontactWarning)  # dt above the shortest material time
         return list(simulate(problem))

@@ -9,28 +9,24 @@ loading did at the same load (the material has crept while loaded).
 import numpy as np
 import pytest
 
-from viscontact.grid import Grid
 from viscontact.materials import Material
-from viscontact.problem import NormalLoading, PiecewiseLinear, Problem, TimeStepping
+from viscontact.problem import PiecewiseLinear
 from viscontact.reference import hertz_from_load
 from viscontact.transient import simulate
 
-from vc_testing import SEED_RADIUS, seed_material
+from vc_testing import SEED_G0, SEED_NU, SEED_RADIUS, seed_material, sphere_problem
 
 HISTORY = PiecewiseLinear((0.0, 0.01, 0.02), (0.0, 0.15, 0.0))  # N: up in 10 ms, down in 10 ms
 
 
 def _run(material, n=64, dt=5e-4, scheme="linear"):
-    grid = Grid(n, 1.6e-3)
-    x, y = grid.mesh()
-    pb = Problem(material=material, grid=grid, gap=(x**2 + y**2) / (2 * SEED_RADIUS),
-                 normal=NormalLoading("load", HISTORY), time=TimeStepping(0.02, dt, scheme), radius=SEED_RADIUS)
-    return grid, list(simulate(pb))
+    pb = sphere_problem(material, n, 1.6e-3, value=HISTORY, t_end=0.02, dt=dt, scheme=scheme)
+    return pb.grid, list(simulate(pb))
 
 
 def test_elastic_load_unload_follows_hertz():
-    g = 1.93e6
-    grid, recs = _run(Material.elastic(g, 0.3))
+    g = SEED_G0
+    grid, recs = _run(Material.elastic(g, SEED_NU))
     for r in recs:
         w = HISTORY(r.t)
         assert r.load == pytest.approx(w, rel=1e-8, abs=1e-12)
@@ -38,7 +34,7 @@ def test_elastic_load_unload_follows_hertz():
             assert not np.any(r.pressure)
             continue
         a = np.sqrt(r.contact_area / np.pi)
-        assert a == pytest.approx(hertz_from_load(w, SEED_RADIUS, g, 0.3).radius, abs=2 * grid.spacing)
+        assert a == pytest.approx(hertz_from_load(w, SEED_RADIUS, g, SEED_NU).radius, abs=2 * grid.spacing)
     up = [r for r in recs if 0 < r.t < 0.01]
     down = [r for r in recs if 0.01 < r.t < 0.02]
     assert np.all(np.diff([r.contact_area for r in up]) >= 0)
