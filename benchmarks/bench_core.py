@@ -23,7 +23,8 @@ import warnings
 import numpy as np
 
 from viscontact.grid import Grid
-from viscontact.history import DirectHistory, PronyHistory, step_coefficients
+from viscontact.history import DirectHistory, PronyHistory
+from viscontact.schemes import step_coefficients
 from viscontact.materials import Material
 from viscontact.problem import (NormalLoading, OutputSettings, PiecewiseLinear, Problem, TangentialLoading,
                                 TimeStepping)
@@ -55,19 +56,19 @@ def history_replay(pressures: list[np.ndarray], dt: float) -> tuple[float, float
     """Time the recursive and the direct hereditary sums over the same pressure history; also return
     their largest relative difference in the history traction."""
     n = pressures[0].shape[0]
-    first = step_coefficients(MATERIAL, dt, "constant", True)
-    regular = step_coefficients(MATERIAL, dt, "constant", False)
+    first = step_coefficients(MATERIAL.creep, dt, "constant", True)
+    regular = step_coefficients(MATERIAL.creep, dt, "constant", False)
     rec, direct = PronyHistory.zeros(1, n), DirectHistory(n)
     t_rec = t_dir = 0.0
     diff = 0.0
     for k, p in enumerate(pressures):
         coef = first if k == 0 else regular
         t0 = time.perf_counter()
-        r1 = rec.traction(MATERIAL, coef)
-        rec.advance(p, coef)
+        r1 = rec.known(coef, k * dt)
+        rec = rec.advanced(p, coef, k * dt)
         t1 = time.perf_counter()
-        r2 = direct.traction(MATERIAL, k * dt, dt, coef.instantaneous)
-        direct.advance(p, k * dt, ramp=False)
+        r2 = direct.known(coef, k * dt)
+        direct = direct.advanced(p, coef, k * dt)
         t2 = time.perf_counter()
         t_rec += t1 - t0
         t_dir += t2 - t1

@@ -80,41 +80,40 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
         The run stopped. When steps were recorded before, the exception carries the Dataset of
         those steps (attribute ``complete = 0``) as ``exc.partial``.
     """
-    from .checkpoint import load_checkpoint, save_checkpoint
+    from . import transient
+    from .checkpoint import load_checkpoint
     from .errors import RunInterrupted
-    from .records import records_from_arrays, records_to_arrays
-    from .transient import steps
+    from .observers import Checkpointer, Recorder, StopRequest, WakeWarning
+    from .records import records_from_arrays
 
     problem, text = prepare(case)
-    start = None
-    records = []
+    start, kept = None, []
     if resume:
         if checkpoint is None:
             raise ParameterError("--resume", "needs a checkpoint file")
         start, extra = load_checkpoint(checkpoint, problem)
-        records = records_from_arrays(extra)
-
-    def save(current) -> None:
-        save_checkpoint(checkpoint, problem, current, records_to_arrays(records))
+        kept = records_from_arrays(extra)
+    recorder = Recorder(problem, kept)
+    observers = [recorder, WakeWarning()]
+    if checkpoint is not None:
+        observers.append(Checkpointer(checkpoint, problem, recorder, checkpoint_every))
+    if should_stop is not None:
+        observers.append(StopRequest(should_stop))
 
     try:
-        for state, record, recorded in steps(problem, progress=progress, state=start):
-            if recorded:
-                records.append(record)
-            if checkpoint is not None and checkpoint_every and (state.step + 1) % checkpoint_every == 0:
-                save(state)
-            reason = should_stop() if should_stop is not None else None
-            if reason:
-                if checkpoint is not None:
-                    save(state)
-                raise RunInterrupted(reason)
+        for state, record in transient.steps(problem, progress=progress, state=start):
+            reasons = [r for r in (o.on_step(state, record) for o in observers) if r]
+            if reasons:
+                for o in observers:
+                    o.on_stop(state, reasons[0])
+                raise RunInterrupted(reasons[0])
     except BaseException as exc:
-        if records:
+        if recorder.records:
             why = getattr(exc, "reason", None) or type(exc).__name__
-            exc.partial = to_dataset(records, problem, case_text=text,  # type: ignore[attr-defined]
+            exc.partial = to_dataset(recorder.records, problem, case_text=text,  # type: ignore[attr-defined]
                                      attrs={"complete": 0, "stopped_by": why})
         raise
-    return to_dataset(records, problem, case_text=text)
+    return to_dataset(recorder.records, problem, case_text=text)
 
 
 def run_steady(case: CaseLike, speeds: Sequence[float] | None = None) -> xr.Dataset:

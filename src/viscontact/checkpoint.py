@@ -1,6 +1,7 @@
 """Checkpoints of the transient solver state: exact (bit-for-bit) save and restore.
 
 A checkpoint is one ``.npz`` file holding every array and scalar of :class:`~viscontact.transient.State`
+(walked generically through its dataclass fields, dicts and lists: a new field needs no edit here)
 plus a fingerprint of the problem, written atomically (temporary file in the same folder, flush,
 fsync, ``os.replace``) so that a run killed at any moment leaves either the previous checkpoint or
 the new one, never a torn file. Resuming from it continues the same floating-point computation, so
@@ -8,20 +9,22 @@ the resumed result equals the uninterrupted one.
 """
 from __future__ import annotations
 
+import dataclasses
 import hashlib
+import importlib
 import os
 import tempfile
 from pathlib import Path
+from typing import Any, Mapping
 
 import numpy as np
 
 from .errors import ParameterError
-from .history import DirectHistory, PronyHistory
 from .problem import Problem
-from .sliding import Wake
 from .transient import State
 
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
+_ROOT = "state"
 
 
 def problem_fingerprint(problem: Problem) -> str:
@@ -33,61 +36,70 @@ def problem_fingerprint(problem: Problem) -> str:
     return h.hexdigest()
 
 
-def _history_arrays(prefix: str, hist: PronyHistory | DirectHistory) -> dict[str, np.ndarray]:
-    if isinstance(hist, PronyHistory):
-        return {f"{prefix}_kind": np.array("prony"), f"{prefix}_internal": hist.internal,
-                f"{prefix}_previous": hist.previous}
-    prev = hist.previous if hist.previous is not None else np.zeros((hist.n, hist.n))
-    incs = np.array(hist.increments) if hist.increments else np.zeros((0, hist.n, hist.n))
-    return {f"{prefix}_kind": np.array("direct"), f"{prefix}_increments": incs,
-            f"{prefix}_times": np.array(hist.times, dtype=float), f"{prefix}_ramps": np.array(hist.ramps, dtype=bool),
-            f"{prefix}_previous": prev, f"{prefix}_has_previous": np.array(hist.previous is not None)}
+def _flatten(key: str, value: Any, out: dict[str, np.ndarray]) -> None:
+    """Store ``value`` under ``key`` as named arrays: dataclasses field by field (with their class),
+    dicts (string keys) and lists/tuples item by item, arrays as they are, scalars as 0-d arrays."""
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        cls = type(value)
+        out[f"{key}.__class__"] = np.array(f"{cls.__module__}:{cls.__qualname__}")
+        for f in dataclasses.fields(value):
+            _flatten(f"{key}.{f.name}", getattr(value, f.name), out)
+    elif isinstance(value, Mapping):
+        out[f"{key}.__dict__"] = np.array(list(value), dtype=str)
+        for k, v in value.items():
+            _flatten(f"{key}.{k}", v, out)
+    elif isinstance(value, (list, tuple)):
+        out[f"{key}.__{type(value).__name__}__"] = np.array(len(value))
+        for i, v in enumerate(value):
+            _flatten(f"{key}.{i}", v, out)
+    elif value is None:
+        out[f"{key}.__none__"] = np.array(True)
+    else:
+        out[key] = np.asarray(value)
 
 
-def _history_from(prefix: str, data) -> PronyHistory | DirectHistory:
-    if str(data[f"{prefix}_kind"]) == "prony":
-        return PronyHistory(data[f"{prefix}_internal"].copy(), data[f"{prefix}_previous"].copy())
-    n = data[f"{prefix}_previous"].shape[0]
-    return DirectHistory(n, [a.copy() for a in data[f"{prefix}_increments"]],
-                         [float(t) for t in data[f"{prefix}_times"]], [bool(r) for r in data[f"{prefix}_ramps"]],
-                         data[f"{prefix}_previous"].copy() if bool(data[f"{prefix}_has_previous"]) else None)
+def _unflatten(key: str, data) -> Any:
+    """Inverse of :func:`_flatten` (classes only from this package)."""
+    if f"{key}.__class__" in data:
+        module, name = str(data[f"{key}.__class__"]).split(":")
+        if module.split(".")[0] != __name__.split(".")[0]:
+            raise ParameterError("--resume", f"checkpoint names a foreign class {module}:{name}")
+        cls = getattr(importlib.import_module(module), name)
+        return cls(**{f.name: _unflatten(f"{key}.{f.name}", data) for f in dataclasses.fields(cls)})
+    if f"{key}.__dict__" in data:
+        return {str(k): _unflatten(f"{key}.{k}", data) for k in data[f"{key}.__dict__"]}
+    for kind in (list, tuple):
+        if f"{key}.__{kind.__name__}__" in data:
+            return kind(_unflatten(f"{key}.{i}", data) for i in range(int(data[f"{key}.__{kind.__name__}__"])))
+    if f"{key}.__none__" in data:
+        return None
+    value = data[key]
+    return value.item() if value.ndim == 0 else value.copy()
 
 
 def state_arrays(state: State) -> dict[str, np.ndarray]:
-    """Every field of ``state`` as named numpy arrays."""
-    n = state.pressure.shape[0]
-    m = state.wake.strips[0].shape[0] if state.wake.strips else 0
-    out = {
-        "step": np.array(state.step), "t": np.array(state.t), "phase": np.array(state.phase),
-        "pressure": state.pressure, "shear_x": state.shear_x,
-        "pressure_previous": state.pressure_previous if state.pressure_previous is not None else np.zeros((n, n)),
-        "shear_previous": state.shear_previous if state.shear_previous is not None else np.zeros((n, n)),
-        "delta_z": np.array(state.delta_z), "delta_x": np.array(state.delta_x),
-        "sliding_distance": np.array(state.sliding_distance), "substep": np.array(state.substep),
-        "t_gross_sliding": np.array(np.nan if state.t_gross_sliding is None else state.t_gross_sliding),
-        "wake_strips": np.array(state.wake.strips) if state.wake.strips else np.zeros((0, m, n)),
-        "wake_distance": np.array(state.wake.distance, dtype=np.int64),
-        "wake_age": np.array(state.wake.age, dtype=np.int64),
-    }
-    out.update(_history_arrays("history_p", state.history_p))
-    out.update(_history_arrays("history_q", state.history_q))
+    """Every field of ``state`` (recursively) as named numpy arrays."""
+    out: dict[str, np.ndarray] = {}
+    _flatten(_ROOT, state, out)
     return out
 
 
 def state_from_arrays(data) -> State:
-    """Inverse of :func:`state_arrays`."""
-    tg = float(data["t_gross_sliding"])
-    return State(
-        step=int(data["step"]), t=float(data["t"]), phase=int(data["phase"]),
-        pressure=data["pressure"].copy(), shear_x=data["shear_x"].copy(),
-        history_p=_history_from("history_p", data), history_q=_history_from("history_q", data),
-        delta_z=float(data["delta_z"]), delta_x=float(data["delta_x"]),
-        sliding_distance=float(data["sliding_distance"]), substep=int(data["substep"]),
-        t_gross_sliding=None if np.isnan(tg) else tg,
-        wake=Wake([s.copy() for s in data["wake_strips"]], [int(d) for d in data["wake_distance"]],
-                  [int(a) for a in data["wake_age"]]),
-        pressure_previous=data["pressure_previous"].copy(), shear_previous=data["shear_previous"].copy(),
-    )
+    """Inverse of :func:`state_arrays` (bit-exact)."""
+    return _unflatten(_ROOT, _Keys(data))
+
+
+class _Keys:
+    """Membership tests on an ``NpzFile`` by its member names (``in`` on it reads ``files``)."""
+
+    def __init__(self, data) -> None:
+        self.data, self.names = data, set(data.files) if hasattr(data, "files") else set(data)
+
+    def __contains__(self, key: str) -> bool:
+        return key in self.names
+
+    def __getitem__(self, key: str) -> np.ndarray:
+        return self.data[key]
 
 
 def save_checkpoint(path: str | Path, problem: Problem, state: State,

@@ -8,6 +8,7 @@ aperiodic discrete convolution. Kernel spectra are computed once per grid and re
 from __future__ import annotations
 
 from dataclasses import dataclass
+from types import ModuleType
 from typing import Iterable, Mapping
 
 import numpy as np
@@ -29,29 +30,37 @@ class Convolver:
         Real-FFT spectra (2n, n+1) of the kernels, by name (``zz``, ``xx``, ``xz``, ``zx``, or any
         other kernel such as the steady-state effective ones).
     workers
-        ``scipy.fft`` worker threads (-1: all cores).
+        FFT worker threads (-1: all cores).
+    kernels
+        Real-space kernels, centred (see :meth:`apply_sparse`).
+    xp, fft
+        Array namespace and FFT backend (``numpy`` and ``scipy.fft``; any module with the same
+        ``rfft2``/``irfft2`` signatures, e.g. ``cupyx.scipy.fft`` with ``cupy``).
     """
 
     n: int
     spectra: Mapping[str, np.ndarray]
     workers: int = -1
-    kernels: Mapping[str, np.ndarray] | None = None  # real-space, centred (see apply_sparse)
+    kernels: Mapping[str, np.ndarray] | None = None
+    xp: ModuleType = np
+    fft: ModuleType = scipy.fft
 
     @classmethod
-    def from_kernels(cls, n: int, kernels: Mapping[str, np.ndarray], workers: int = -1) -> "Convolver":
+    def from_kernels(cls, n: int, kernels: Mapping[str, np.ndarray], workers: int = -1, *,
+                     xp: ModuleType = np, fft: ModuleType = scipy.fft) -> "Convolver":
         """Spectra of kernels given on the (2n, 2n) offset grid (the kernels are kept for
         :meth:`apply_sparse`)."""
-        centred = {k: np.roll(v, (n - 1, n - 1), axis=(0, 1)) for k, v in kernels.items()}
-        return cls(n, {k: scipy.fft.rfft2(v, workers=workers) for k, v in kernels.items()}, workers, centred)
+        centred = {k: xp.roll(v, (n - 1, n - 1), axis=(0, 1)) for k, v in kernels.items()}
+        return cls(n, {k: fft.rfft2(v, workers=workers) for k, v in kernels.items()}, workers, centred, xp, fft)
 
     def apply_sparse(self, name: str, field: np.ndarray) -> np.ndarray:
         """Same as :meth:`apply` for a field with few non-zeros, by direct sum of kernel blocks
         (cheaper than a transform for up to ~50 points). ``kernels`` are stored centred: offset
         (i - r) sits at index i - r + n - 1, so the block of a source (r, c) is a plain slice."""
         n = self.n
-        rows, cols = np.nonzero(field)
+        rows, cols = self.xp.nonzero(field)
         kernel = self.kernels[name]
-        out = np.zeros((n, n))
+        out = self.xp.zeros((n, n))
         for r, c in zip(rows, cols):
             out += field[r, c] * kernel[n - 1 - r: 2 * n - 1 - r, n - 1 - c: 2 * n - 1 - c]
         return out
@@ -65,12 +74,12 @@ class Convolver:
 
     def spectrum(self, field: np.ndarray) -> np.ndarray:
         """Real FFT of ``field`` (n, n) zero-padded to (2n, 2n)."""
-        return scipy.fft.rfft2(field, s=(2 * self.n, 2 * self.n), workers=self.workers)
+        return self.fft.rfft2(field, s=(2 * self.n, 2 * self.n), workers=self.workers)
 
     def inverse(self, spectrum: np.ndarray) -> np.ndarray:
         """The (n, n) physical block of the inverse transform of a (2n, n+1) spectrum (which it
         may overwrite: pass a temporary)."""
-        out = scipy.fft.irfft2(spectrum, s=(2 * self.n, 2 * self.n), workers=self.workers, overwrite_x=True)
+        out = self.fft.irfft2(spectrum, s=(2 * self.n, 2 * self.n), workers=self.workers, overwrite_x=True)
         return out[: self.n, : self.n]
 
     def apply(self, name: str, field: np.ndarray) -> np.ndarray:
@@ -85,13 +94,35 @@ class Convolver:
         """
         acc = None
         for name, factor, field in terms:
-            if factor == 0 or name not in self.spectra or not np.any(field):
+            if factor == 0 or name not in self.spectra or not self.xp.any(field):
                 continue
             contrib = (factor * self.spectra[name]) * self.spectrum(field)
             acc = contrib if acc is None else acc + contrib
         if acc is None:
-            return np.zeros((self.n, self.n))
+            return self.xp.zeros((self.n, self.n))
         return self.inverse(acc)
+
+    def displacements(self, terms: Iterable[tuple[str, str, np.ndarray]],
+                      outputs: Iterable[str]) -> dict[str, np.ndarray]:
+        """sum over terms of K_name * field, per output component, each distinct field transformed once.
+
+        ``terms`` holds (output component, kernel name, field), accumulated in the given order;
+        fields that are entirely zero and kernels missing from ``spectra`` are skipped. Returns
+        one (n, n) array per name in ``outputs`` (zeros where no term contributes).
+        """
+        transforms: dict[int, np.ndarray | None] = {}
+        acc: dict[str, np.ndarray] = {}
+        for out, name, field in terms:
+            if name not in self.spectra:
+                continue
+            key = id(field)
+            if key not in transforms:
+                transforms[key] = self.spectrum(field) if self.xp.any(field) else None
+            if transforms[key] is None:
+                continue
+            contrib = self.spectra[name] * transforms[key]
+            acc[out] = contrib if out not in acc else acc[out] + contrib
+        return {o: self.inverse(acc[o]) if o in acc else self.xp.zeros((self.n, self.n)) for o in outputs}
 
 
 def direct_convolution(kernel: np.ndarray, field: np.ndarray) -> np.ndarray:
@@ -111,19 +142,14 @@ def direct_convolution(kernel: np.ndarray, field: np.ndarray) -> np.ndarray:
 def coupled_displacements(conv: Convolver, normal: np.ndarray, shear: np.ndarray | None,
                           need_x: bool = True) -> tuple[np.ndarray, np.ndarray | None]:
     """(u_z, u_x) of normal and shear (x) tractions through the semi-coupled kernels (seed Eq. 6),
-    at unit modulus. Each traction is transformed once; ``u_x`` is None when not needed."""
-    p_hat = conv.spectrum(normal)
-    q_hat = conv.spectrum(shear) if shear is not None and np.any(shear) else None
-    uz_hat = conv.spectra["zz"] * p_hat
-    if q_hat is not None and "zx" in conv.spectra:
-        uz_hat = uz_hat + conv.spectra["zx"] * q_hat
-    u_z = conv.inverse(uz_hat)
-    if not need_x:
-        return u_z, None
-    ux_hat = conv.spectra["xz"] * p_hat if "xz" in conv.spectra else np.zeros_like(p_hat)
-    if q_hat is not None:
-        ux_hat = ux_hat + conv.spectra["xx"] * q_hat
-    return u_z, conv.inverse(ux_hat)
+    at unit modulus (:meth:`Convolver.displacements`); ``u_x`` is None when not needed."""
+    terms = [("z", "zz", normal)]
+    if shear is not None:
+        terms += [("z", "zx", shear), ("x", "xz", normal), ("x", "xx", shear)]
+    else:
+        terms += [("x", "xz", normal)]
+    u = conv.displacements(terms, ("z", "x") if need_x else ("z",))
+    return u["z"], u.get("x")
 
 
 @dataclass(frozen=True)
@@ -138,19 +164,21 @@ class FourierPreconditioner:
 
     inverse_symbol: np.ndarray
     workers: int = -1
+    fft: ModuleType = scipy.fft
 
     @classmethod
-    def for_kernel(cls, kernel: np.ndarray, factor: float = 1.0, workers: int = -1) -> "FourierPreconditioner":
+    def for_kernel(cls, kernel: np.ndarray, factor: float = 1.0, workers: int = -1, *,
+                   fft: ModuleType = scipy.fft) -> "FourierPreconditioner":
         """From a kernel on the (2n, 2n) DC-FFT offset grid, times the scalar ``factor``."""
         n = kernel.shape[0] // 2
         idx = np.arange(n)
         idx = np.where(idx <= n // 2, idx, idx + n)  # offsets 0..n/2, then -(n/2-1)..-1
         wrapped = kernel[np.ix_(idx, idx)]
-        symbol = factor * np.abs(scipy.fft.rfft2(wrapped, workers=workers).real)
+        symbol = factor * np.abs(fft.rfft2(wrapped, workers=workers).real)
         symbol = np.maximum(symbol, symbol.max() * 1e-12)
-        return cls(1.0 / symbol, workers)
+        return cls(1.0 / symbol, workers, fft)
 
     def __call__(self, residual: np.ndarray) -> np.ndarray:
         n = residual.shape
-        return scipy.fft.irfft2(self.inverse_symbol * scipy.fft.rfft2(residual, workers=self.workers), s=n,
-                                workers=self.workers)
+        return self.fft.irfft2(self.inverse_symbol * self.fft.rfft2(residual, workers=self.workers), s=n,
+                               workers=self.workers)

@@ -20,10 +20,16 @@ F(xi, eta) summed over the four corners with xi = x - x', eta = y - y':
 
 With a Prony compliance every coefficient is IC(x, y) J(t) (constant nu, correspondence principle),
 so the kernels here are computed once per grid at unit shear modulus.
+
+For steady sliding at speed v each retardation mode lambda also needs the kernel integrated over the
+material's past, F(d) = int_0^inf exp(-xi/L)/L IC(d + xi) dxi with L = v lambda
+(:func:`history_kernels`, used by :meth:`viscontact.substrate.HalfSpace.steady_convolver`): a tail
+quadrature at the largest offset (composite Gauss-Legendre on geometrically growing intervals) and
+the exact backward recursion F(d) = int_0^dx E(xi) IC(d + xi) dxi + exp(-dx/L) F(d + dx).
 """
 from __future__ import annotations
 
-from typing import Mapping
+from typing import Mapping, Sequence
 
 import numpy as np
 
@@ -116,3 +122,77 @@ def influence_coefficients(grid: Grid, poisson_ratio: float) -> Mapping[str, np.
         ics[name][n, :] = 0.0
         ics[name][:, n] = 0.0
     return ics
+
+
+_GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(8)
+
+
+def _integrate(fun, breaks: np.ndarray) -> np.ndarray:
+    """Composite 8-point Gauss-Legendre of fun(xi) (returns arrays) over consecutive breaks."""
+    a, b = breaks[:-1], breaks[1:]
+    xi = (0.5 * (b - a))[:, None] * (_GL_NODES[None, :] + 1.0) + a[:, None]
+    w = (0.5 * (b - a))[:, None] * _GL_WEIGHTS[None, :]
+    xi, w = xi.ravel(), w.ravel()
+    total = 0.0
+    for chunk in range(0, xi.size, 64):
+        vals = fun(xi[chunk:chunk + 64])  # (..., q)
+        total = total + np.tensordot(vals, w[chunk:chunk + 64], axes=([-1], [0]))
+    return total
+
+
+def history_kernels(grid: Grid, poisson_ratio: float, length: float,
+                    components: Sequence[str] = ("zz", "zx")) -> dict[str, np.ndarray]:
+    """F(d) = int_0^inf exp(-xi/L)/L IC(d + xi) dxi on the (2n, 2n) DC-FFT offset grid [unit G].
+
+    Parameters
+    ----------
+    grid
+        The grid (cell-centred, spacing dx).
+    poisson_ratio
+        nu.
+    length
+        Decay length L = v lambda [m] of one retardation mode.
+    """
+    n, dx, h = grid.n, grid.spacing, grid.spacing / 2.0
+    dy = grid.offsets()[:, None]  # (2n, 1): all y offsets, wrap order
+    decay = np.exp(-dx / length)
+
+    def ic(d: float):
+        def f(xi: np.ndarray) -> dict:
+            res = rectangle_influence(d + xi[None, :], dy, h, h, poisson_ratio, tuple(components))
+            ex = np.exp(-xi / length) / length
+            return np.stack([res[c] * ex[None, :] for c in components])  # (C, 2n, q)
+        return f
+
+    # local interval [0, dx], split at dx/2 (cell edge crossing) and graded when L < dx
+    local = {0.0, 0.5 * dx, dx}
+    s = min(length, dx) / 16.0
+    while s < dx:
+        local.add(s)
+        s *= 2.0
+    local_breaks = np.array(sorted(local))
+    # tail from the largest offset to infinity
+    tail = [0.0]
+    s = min(length, dx) / 16.0
+    while s < 60.0 * length + 4.0 * dx:
+        tail.append(s)
+        s *= 1.3
+    tail.append(s)
+    tail_breaks = np.array(tail)
+
+    offsets = dx * np.arange(-(n - 1), n)
+    values = np.empty((len(components), 2 * n, offsets.size))
+    running = _integrate(ic(offsets[-1]), tail_breaks)
+    values[:, :, -1] = running
+    for idx in range(offsets.size - 2, -1, -1):
+        running = _integrate(ic(offsets[idx]), local_breaks) + decay * running
+        values[:, :, idx] = running
+    out = {}
+    cols = np.where(np.arange(-(n - 1), n) >= 0, np.arange(-(n - 1), n), np.arange(-(n - 1), n) + 2 * n)
+    for ci, c in enumerate(components):
+        k = np.zeros((2 * n, 2 * n))
+        k[:, cols] = values[ci]
+        k[n, :] = 0.0
+        k[:, n] = 0.0
+        out[c] = k
+    return out

@@ -38,6 +38,14 @@ class CreepSpectrum:
         """J_inf = J_0 + sum_m J_m [1/Pa]."""
         return float(self.instantaneous + self.amplitudes.sum())
 
+    def compliance(self, t: np.ndarray | float) -> np.ndarray:
+        """J(t) [1/Pa] at times ``t`` [s]."""
+        t = np.asarray(t, dtype=float)
+        out = np.full(t.shape, self.instantaneous)
+        for jm, lm in zip(self.amplitudes, self.retardation_times):
+            out = out + jm * (-np.expm1(-t / lm))
+        return out
+
 
 @dataclass(frozen=True)
 class Material:
@@ -182,13 +190,8 @@ class Material:
         return CreepSpectrum(1.0 / self.shear_modulus_instantaneous, amplitudes[order], lam[order])
 
     def creep_compliance(self, t: np.ndarray | float) -> np.ndarray:
-        """J(t) [1/Pa]."""
-        t = np.asarray(t, dtype=float)
-        c = self.creep
-        out = np.full(t.shape, c.instantaneous)
-        for jm, lm in zip(c.amplitudes, c.retardation_times):
-            out = out + jm * (-np.expm1(-t / lm))
-        return out
+        """J(t) [1/Pa] (:meth:`CreepSpectrum.compliance` of :attr:`creep`)."""
+        return self.creep.compliance(t)
 
     @property
     def shortest_time(self) -> float:

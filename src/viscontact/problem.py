@@ -6,6 +6,7 @@ case file into them; a script may build them directly. All quantities are SI (m,
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Literal
 
 import numpy as np
@@ -133,7 +134,11 @@ class TimeStepping:
 
 @dataclass(frozen=True)
 class SolverSettings:
-    """Tolerances and iteration caps. Failing to converge raises ``ConvergenceError``."""
+    """Tolerances and iteration caps. Failing to converge raises ``ConvergenceError``.
+
+    Every field is checked on construction (:class:`~viscontact.errors.ParameterError` naming its
+    ``solver.`` key and the allowed range).
+    """
 
     tolerance: float = 1e-8           # relative change of the traction field per CG iteration
     max_iterations: int = 2000        # per constrained CG solve
@@ -142,6 +147,23 @@ class SolverSettings:
     workers: int = -1                 # scipy.fft workers (-1: all cores)
     history: Literal["recursive", "direct"] = "recursive"  # direct: literal sum of seed Eq. 5 (reference)
     coupling: bool = True             # False: drop the (1 - 2 nu) normal/tangential cross terms
+
+    def __post_init__(self) -> None:
+        for name in ("tolerance", "coupling_tolerance"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0 < value < 1:
+                raise ParameterError(f"solver.{name}", f"must be a number in (0, 1), got {value!r}")
+        for name in ("max_iterations", "max_coupling_iterations"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+                raise ParameterError(f"solver.{name}", f"must be an integer >= 1, got {value!r}")
+        w = self.workers
+        if isinstance(w, bool) or not isinstance(w, (int, np.integer)) or w == 0 or w < -1:
+            raise ParameterError("solver.workers", f"must be -1 (all cores) or an integer >= 1, got {w!r}")
+        if self.history not in ("recursive", "direct"):
+            raise ParameterError("solver.history", f"must be 'recursive' or 'direct', got {self.history!r}")
+        if not isinstance(self.coupling, (bool, np.bool_)):
+            raise ParameterError("solver.coupling", f"must be true or false, got {self.coupling!r}")
 
 
 @dataclass(frozen=True)
@@ -163,7 +185,7 @@ class Problem:
 
     material: Material
     grid: Grid
-    gap: np.ndarray = field(repr=False)
+    gap: np.ndarray = field(repr=False)  # see frame_gap
     normal: NormalLoading
     tangential: TangentialLoading = TangentialLoading()
     time: TimeStepping = TimeStepping(t_end=0.0, dt=1.0)
@@ -171,3 +193,29 @@ class Problem:
     output: OutputSettings = OutputSettings()
     radius: float | None = None
     title: str = ""
+
+    @cached_property
+    def _gap_is_sphere(self) -> bool:
+        if self.radius is None:
+            return False
+        x, y = self.grid.mesh()
+        return bool(np.array_equal(self.gap, (x**2 + y**2) / (2.0 * self.radius)))
+
+    def frame_gap(self, offset: float) -> np.ndarray:
+        """Undeformed gap [m] on the grid with the indenter centre at x = ``offset`` [m], 0 <= offset < dx.
+
+        The one place that moves the indenter within a cell (``tangential.steps_per_cell`` > 1):
+        a sphere's paraboloid ((x - offset)^2 + y^2) / 2R is rebuilt exactly; any other gap is
+        interpolated linearly along x between neighbouring cells (error f (1 - f) dx^2 max|h''| / 2 at
+        offset f dx), its first column extrapolated linearly (error f (1 + f) dx^2 max|h''| / 2).
+        """
+        if offset == 0.0:
+            return self.gap
+        if self._gap_is_sphere:
+            x, y = self.grid.mesh()
+            return ((x - offset) ** 2 + y**2) / (2.0 * self.radius)
+        frac = offset / self.grid.spacing
+        behind = np.empty_like(self.gap)  # the gap one cell towards -x, h(x - dx)
+        behind[:, 1:] = self.gap[:, :-1]
+        behind[:, 0] = 2.0 * self.gap[:, 0] - self.gap[:, 1]
+        return (1.0 - frac) * self.gap + frac * behind

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .grid import Grid
-from .materials import Material
+from .materials import CreepSpectrum
 
 
 def hysteresis_force(pressure: np.ndarray, displacement_z: np.ndarray, grid: Grid) -> float:
@@ -31,7 +31,7 @@ def pressure_centroid(pressure: np.ndarray, grid: Grid) -> float:
     return float(np.sum(pressure.sum(axis=0) * grid.x) / total)
 
 
-@dataclass
+@dataclass(frozen=True)
 class Wake:
     """History that left the grid at the trailing edge, kept to estimate its effect.
 
@@ -45,23 +45,18 @@ class Wake:
     distance: list[int] = field(default_factory=list)
     age: list[int] = field(default_factory=list)
 
-    def drop(self, dropped_internal: np.ndarray) -> None:
-        """A shift happened: every strip moves one cell further; the new one enters at distance 1."""
-        self.distance = [d + 1 for d in self.distance]
-        self.strips.append(dropped_internal[..., 0].copy())
-        self.distance.append(1)
-        self.age.append(0)
+    def dropped(self, dropped_internal: np.ndarray) -> "Wake":
+        """After a shift: every strip moves one cell further; the new one enters at distance 1."""
+        return Wake(self.strips + [dropped_internal[..., 0].copy()], [d + 1 for d in self.distance] + [1],
+                    self.age + [0])
 
-    def tick(self, material: Material, dt: float) -> None:
-        """One time step [s] passed; forget strips whose history has decayed below 1e-9."""
-        self.age = [a + 1 for a in self.age]
-        lam_max = float(material.creep.retardation_times.max(initial=0.0))
-        keep = [i for i, a in enumerate(self.age) if lam_max > 0 and a * dt / lam_max < 20.7]
-        self.strips = [self.strips[i] for i in keep]
-        self.distance = [self.distance[i] for i in keep]
-        self.age = [self.age[i] for i in keep]
+    def ticked(self, response: CreepSpectrum, dt: float) -> "Wake":
+        """After one time step [s]; strips whose history has decayed below 1e-9 are forgotten."""
+        lam_max = float(response.retardation_times.max(initial=0.0))
+        keep = [i for i, a in enumerate(self.age) if lam_max > 0 and (a + 1) * dt / lam_max < 20.7]
+        return Wake([self.strips[i] for i in keep], [self.distance[i] for i in keep], [self.age[i] + 1 for i in keep])
 
-    def lost_displacement(self, material: Material, grid: Grid, dt: float,
+    def lost_displacement(self, response: CreepSpectrum, poisson_ratio: float, grid: Grid, dt: float,
                           pressure: np.ndarray) -> tuple[float, float]:
         """(u_lost [m], du_lost/dx [-]) at the pressure centroid: the surface displacement that the
         history dropped at the trailing edge would still produce there.
@@ -69,12 +64,13 @@ class Wake:
         Each strip is a line of point sources (Boussinesq, u_z = (1 - nu) / (2 pi G r) F) carrying its
         remaining history traction -sum_m J_m A_m^age H_m; u_lost is smooth over the contact since its
         sources lie outside the grid. Under load control a uniform u_lost only shifts delta_z; its
-        slope changes F_T (seed Eq. 15) by about -W du_lost/dx.
+        slope changes F_T (seed Eq. 15) by about -W du_lost/dx. ``response`` is the time response of
+        the normal history, ``poisson_ratio`` that of the Boussinesq kernel.
         """
         if not self.strips or pressure.sum() <= 0:
             return 0.0, 0.0
-        c = material.creep
-        nu = material.poisson_ratio
+        c = response
+        nu = poisson_ratio
         xc = pressure_centroid(pressure, grid)
         yc = float(np.sum(pressure.sum(axis=1) * grid.y) / pressure.sum())
         dists = np.asarray(self.distance, dtype=float)

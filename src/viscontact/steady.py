@@ -11,9 +11,8 @@ i.e. a convolution with the *effective steady kernel*
     K(d) = J_0 IC(d) + sum_m J_m F_m(d),   F_m(d) = int_0^inf exp(-xi/L_m)/L_m IC(d + xi) dxi.
 
 F_m integrates the whole past of the material, far beyond the grid, so only the contact needs to
-be on the grid (no wake truncation). It is built once per speed on the DC-FFT offset grid: a tail
-quadrature at the largest offset (composite Gauss-Legendre on geometrically growing intervals)
-and the exact backward recursion F(d) = int_0^dx E(xi) IC(d + xi) dxi + exp(-dx/L) F(d + dx).
+be on the grid (no wake truncation). It is built once per speed by the substrate
+(:meth:`viscontact.substrate.HalfSpace.steady_convolver`, :func:`viscontact.kernels.history_kernels`).
 
 The kernel is not symmetric, so the contact problem (p >= 0, gap >= 0, complementarity, load or
 approach given) is solved by a primal-dual active-set method (Hintermueller, Ito & Kunisch 2002):
@@ -32,102 +31,22 @@ from scipy.sparse.linalg import LinearOperator, gmres
 
 from .convolution import Convolver, FourierPreconditioner
 from .errors import ConvergenceError, ParameterError
-from .grid import Grid
-from .kernels import rectangle_influence
 from .problem import PHASE_GROSS_SLIDING, Problem
 from .records import StepRecord
 from .sliding import hysteresis_force, pressure_centroid
-
-_GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(8)
-
-
-def _integrate(fun, breaks: np.ndarray) -> np.ndarray:
-    """Composite 8-point Gauss-Legendre of fun(xi) (returns arrays) over consecutive breaks."""
-    a, b = breaks[:-1], breaks[1:]
-    xi = (0.5 * (b - a))[:, None] * (_GL_NODES[None, :] + 1.0) + a[:, None]
-    w = (0.5 * (b - a))[:, None] * _GL_WEIGHTS[None, :]
-    xi, w = xi.ravel(), w.ravel()
-    total = 0.0
-    for chunk in range(0, xi.size, 64):
-        vals = fun(xi[chunk:chunk + 64])  # (..., q)
-        total = total + np.tensordot(vals, w[chunk:chunk + 64], axes=([-1], [0]))
-    return total
+from .substrate import HalfSpace, TermSubstrate
 
 
-def history_kernels(grid: Grid, poisson_ratio: float, length: float,
-                    components: Sequence[str] = ("zz", "zx")) -> dict[str, np.ndarray]:
-    """F(d) = int_0^inf exp(-xi/L)/L IC(d + xi) dxi on the (2n, 2n) DC-FFT offset grid [unit G].
-
-    Parameters
-    ----------
-    grid
-        The grid (cell-centred, spacing dx).
-    poisson_ratio
-        nu.
-    length
-        Decay length L = v lambda [m] of one retardation mode.
-    """
-    n, dx, h = grid.n, grid.spacing, grid.spacing / 2.0
-    dy = grid.offsets()[:, None]  # (2n, 1): all y offsets, wrap order
-    decay = np.exp(-dx / length)
-
-    def ic(d: float):
-        def f(xi: np.ndarray) -> dict:
-            res = rectangle_influence(d + xi[None, :], dy, h, h, poisson_ratio, tuple(components))
-            ex = np.exp(-xi / length) / length
-            return np.stack([res[c] * ex[None, :] for c in components])  # (C, 2n, q)
-        return f
-
-    # local interval [0, dx], split at dx/2 (cell edge crossing) and graded when L < dx
-    local = {0.0, 0.5 * dx, dx}
-    s = min(length, dx) / 16.0
-    while s < dx:
-        local.add(s)
-        s *= 2.0
-    local_breaks = np.array(sorted(local))
-    # tail from the largest offset to infinity
-    tail = [0.0]
-    s = min(length, dx) / 16.0
-    while s < 60.0 * length + 4.0 * dx:
-        tail.append(s)
-        s *= 1.3
-    tail.append(s)
-    tail_breaks = np.array(tail)
-
-    offsets = dx * np.arange(-(n - 1), n)
-    values = np.empty((len(components), 2 * n, offsets.size))
-    running = _integrate(ic(offsets[-1]), tail_breaks)
-    values[:, :, -1] = running
-    for idx in range(offsets.size - 2, -1, -1):
-        running = _integrate(ic(offsets[idx]), local_breaks) + decay * running
-        values[:, :, idx] = running
-    out = {}
-    cols = np.where(np.arange(-(n - 1), n) >= 0, np.arange(-(n - 1), n), np.arange(-(n - 1), n) + 2 * n)
-    for ci, c in enumerate(components):
-        k = np.zeros((2 * n, 2 * n))
-        k[:, cols] = values[ci]
-        k[n, :] = 0.0
-        k[:, n] = 0.0
-        out[c] = k
-    return out
-
-
-def steady_convolver(problem: Problem, speed: float) -> tuple[Convolver, dict[str, np.ndarray]]:
-    """DC-FFT convolver of the effective steady kernel (displacement u_z from p and q_x), 1/Pa units
-    included: ``apply("zz", p)`` is u_z [m] of the pressure p [Pa]. Also returns the kernels."""
-    from .kernels import influence_coefficients
-
-    mat, grid = problem.material, problem.grid
+def steady_convolver(problem: Problem, speed: float, substrate: TermSubstrate | None = None
+                     ) -> tuple[Convolver, dict[str, np.ndarray]]:
+    """The substrate's effective steady kernels at ``speed`` [m/s] (``zz``, and ``zx`` when sliding with
+    friction and coupling): ``apply("zz", p)`` is u_z [m] of the pressure p [Pa]."""
+    mat = problem.material
     coupled = problem.tangential.effective_friction > 0 and mat.poisson_ratio < 0.5 and problem.solver.coupling
-    comps = ["zz"] + (["zx"] if coupled else [])
-    base = influence_coefficients(grid, mat.poisson_ratio)
-    c = mat.creep
-    kernels = {k: c.instantaneous * base[k] for k in comps}
-    for amp, lam in zip(c.amplitudes, c.retardation_times):
-        hist = history_kernels(grid, mat.poisson_ratio, speed * lam, comps)
-        for k in comps:
-            kernels[k] += amp * hist[k]
-    return Convolver.from_kernels(grid.n, kernels, problem.solver.workers), kernels
+    if substrate is None:
+        substrate = HalfSpace(problem.grid, mat, ("zz",), problem.time.scheme, problem.time.dt,
+                              workers=problem.solver.workers)
+    return substrate.steady_convolver(speed, ["zz"] + (["zx"] if coupled else []))
 
 
 def _restricted(fun, idx: np.ndarray, shape: tuple[int, int]) -> LinearOperator:
@@ -141,54 +60,68 @@ def _restricted(fun, idx: np.ndarray, shape: tuple[int, int]) -> LinearOperator:
 
 
 def _solve_on_set(apply_k, rhs: np.ndarray, active: np.ndarray, x0: np.ndarray, tol: float, maxiter: int,
-                  preconditioner=None) -> np.ndarray:
+                  preconditioner=None) -> tuple[np.ndarray, int]:
+    """GMRES on the active set; returns (solution on the grid, Krylov iterations)."""
     idx = np.flatnonzero(active)
     shape = active.shape
     op = _restricted(apply_k, idx, shape)
     m = _restricted(preconditioner, idx, shape) if preconditioner is not None else None
+    count = [0]
+
+    def counted(_residual_norm: float) -> None:
+        count[0] += 1
+
     sol, info = gmres(op, rhs.ravel()[idx], x0=x0.ravel()[idx], rtol=tol, atol=0.0, M=m,
-                      restart=min(60, idx.size), maxiter=max(1, maxiter // 60 + 1))
+                      restart=min(60, idx.size), maxiter=max(1, maxiter // 60 + 1),
+                      callback=counted, callback_type="pr_norm")
     if info != 0:
         res = np.linalg.norm(op.matvec(sol) - rhs.ravel()[idx]) / max(np.linalg.norm(rhs.ravel()[idx]), 1e-300)
         raise ConvergenceError("steady-state GMRES", maxiter, float(res), tol)
     out = np.zeros(shape)
     out.ravel()[idx] = sol
-    return out
+    return out, count[0]
 
 
 def solve_contact_active_set(apply_k, gap: np.ndarray, *, control: str, value: float, cell_area: float,
                              initial: np.ndarray | None = None, tolerance: float = 1e-10,
                              max_iterations: int = 2000, max_sets: int = 100,
-                             preconditioner=None) -> tuple[np.ndarray, float, int]:
+                             preconditioner=None) -> tuple[np.ndarray, float, int, int]:
     """Primal-dual active set for p >= 0, h = K p + gap - delta >= 0, p h = 0, with a general
-    (non-symmetric) K. Returns (p [Pa], delta [m], number of active-set iterations)."""
+    (non-symmetric) K. Returns (p [Pa], delta [m], Krylov (GMRES) iterations of all solves,
+    number of active-set rounds). Raises ConvergenceError with the number of points that still
+    changed set after ``max_sets`` rounds."""
     active = initial > 0 if initial is not None and np.any(initial > 0) else gap <= np.quantile(gap, 0.05)
     p = initial.copy() if initial is not None else np.zeros_like(gap)
     delta = 0.0
     seen: list[np.ndarray] = []
     a_prev = np.zeros_like(gap)
     b_prev = np.zeros_like(gap)
+    krylov = 0
+    changed = 0
     for it in range(1, max_sets + 1):
         if control == "load":
-            a = _solve_on_set(apply_k, np.ones_like(gap), active, a_prev, tolerance, max_iterations, preconditioner)
-            b = _solve_on_set(apply_k, -gap, active, b_prev, tolerance, max_iterations, preconditioner)
+            a, ka = _solve_on_set(apply_k, np.ones_like(gap), active, a_prev, tolerance, max_iterations, preconditioner)
+            b, kb = _solve_on_set(apply_k, -gap, active, b_prev, tolerance, max_iterations, preconditioner)
+            krylov += ka + kb
             a_prev, b_prev = a, b
             delta = (value / cell_area - b.sum()) / a.sum()
             p = b + delta * a
         else:
             delta = value
-            p = _solve_on_set(apply_k, delta - gap, active, p, tolerance, max_iterations, preconditioner)
+            p, kp = _solve_on_set(apply_k, delta - gap, active, p, tolerance, max_iterations, preconditioner)
+            krylov += kp
         h = apply_k(p) + gap - delta
         scale = np.abs(gap[active]).max() if active.any() else 1.0
         new_active = np.where(active, p > 0, h < -1e-12 * max(scale, abs(delta)))
         if np.array_equal(new_active, active):
-            return np.maximum(p, 0.0), float(delta), it
+            return np.maximum(p, 0.0), float(delta), krylov, it
+        changed = int(np.sum(new_active != active))  # counted before the sets are swapped
         if any(np.array_equal(new_active, s) for s in seen):  # cycling: keep the union, then stop on repeat
             new_active = new_active | active
         seen.append(active)
         active = new_active
-    raise ConvergenceError("steady-state active set", max_sets, float(np.sum(new_active != active)), 0.0,
-                           hint="the contact set did not settle")
+    raise ConvergenceError("steady-state active set", max_sets, float(changed), 0.0,
+                           hint="the contact set did not settle (residual: points still changing set)")
 
 
 def _symmetric_guess(conv: Convolver, problem: Problem, value: float, coupled: bool, mu: float) -> np.ndarray:
@@ -208,18 +141,20 @@ def _symmetric_guess(conv: Convolver, problem: Problem, value: float, coupled: b
     return sol.x
 
 
-def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.ndarray | None = None) -> StepRecord:
+def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.ndarray | None = None,
+                 substrate: TermSubstrate | None = None) -> StepRecord:
     """Steady state of sliding at ``speed`` [m/s] (default: the problem's sliding speed).
 
     Frictionless (``frictionless_sliding``) or with q_x = mu_f p (``gross_sliding``,
-    ``partial_slip`` once sliding). The normal condition is the history's final value.
+    ``partial_slip`` once sliding). The normal condition is the history's final value. The record's
+    ``iterations`` counts the GMRES (Krylov) iterations of all active-set rounds.
     """
     v = problem.tangential.sliding_speed if speed is None else speed
     if not v > 0:
         raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s for a steady state, got {v}")
     grid = problem.grid
     mu = problem.tangential.effective_friction if problem.tangential.mode != "none" else 0.0
-    conv, kernels = steady_convolver(problem, v)
+    conv, kernels = steady_convolver(problem, v, substrate)
     coupled = "zx" in conv.spectra
     precondition = FourierPreconditioner.for_kernel(kernels["zz"], 1.0, problem.solver.workers)
 
@@ -229,7 +164,7 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
     value = problem.normal.history(problem.time.t_end)
     if initial is None:
         initial = _symmetric_guess(conv, problem, value, coupled, mu)
-    p, delta, sets = solve_contact_active_set(apply_k, problem.gap, control=problem.normal.control,
+    p, delta, krylov, _ = solve_contact_active_set(apply_k, problem.gap, control=problem.normal.control,
                                               value=value, cell_area=grid.cell_area, initial=initial,
                                               tolerance=min(problem.solver.tolerance, 1e-10),
                                               max_iterations=problem.solver.max_iterations,
@@ -242,7 +177,7 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
                       delta_x=0.0, sliding_distance=float("inf"), contact_area=float((p > 0).sum() * grid.cell_area),
                       stick_ratio=0.0, friction_force=float(q.sum() * grid.cell_area), hysteresis_force=f_t,
                       mu_app=f_t / load if load > 0 else 0.0, contact_shift=pressure_centroid(p, grid),
-                      iterations=sets, coupling_iterations=1, pressure=p, shear_x=q,
+                      iterations=krylov, coupling_iterations=1, pressure=p, shear_x=q,
                       stick=np.zeros(p.shape, dtype=bool), displacement_z=u_z)
 
 

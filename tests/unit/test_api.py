@@ -29,7 +29,7 @@ def test_run_accepts_a_path(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> 
         for k, rec in enumerate(fake_records(make_problem(), (0, 0))):
             if progress:
                 progress(k + 1, 2)
-            yield None, rec, True
+            yield None, rec
 
     monkeypatch.setattr(transient, "steps", fake)
     calls = []
@@ -42,7 +42,7 @@ def test_run_accepts_a_path(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> 
 def test_failure_keeps_the_steps_done(monkeypatch: pytest.MonkeyPatch) -> None:
     def failing(problem, *, progress=None, state=None):
         for rec in fake_records(problem, (0, 1)):
-            yield None, rec, True
+            yield None, rec
         raise ConvergenceError("normal contact", 10, 1e-3, 1e-8)
 
     monkeypatch.setattr(transient, "steps", failing)

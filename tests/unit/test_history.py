@@ -31,14 +31,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from viscontact.history import (
-    DirectHistory,
-    PronyHistory,
-    shift_material,
-    step_coefficients,
-)
+from viscontact.history import DirectHistory, PronyHistory, shift_material
 from viscontact.materials import Material
 from viscontact.problem import PiecewiseLinear, SolverSettings
+from viscontact.schemes import step_coefficients
 from viscontact.transient import simulate
 
 from vc_testing import SEED_LOAD, seed_material, sphere_problem
@@ -71,14 +67,15 @@ def run_histories(material: Material, scheme: str, dt: float, steps: int, shift_
         t = k * dt
         first = k == 0
         if k in shift_at:
-            prony.shift(1)
-            direct.shift(1)
+            regular = step_coefficients(material.creep, dt, scheme, False)
+            prony, _ = prony.shifted(1, regular)
+            direct, _ = direct.shifted(1, regular)
             increments = [shift_material(f)[0] for f in increments]
             previous = shift_material(previous)[0]
-        coef = step_coefficients(material, dt, scheme, first)
+        coef = step_coefficients(material.creep, dt, scheme, first)
         p = rng.uniform(0.0, 2.0e5, (N, N)) * (rng.uniform(size=(N, N)) > 0.2)
-        rec = coef.instantaneous * p + prony.traction(material, coef)
-        drc = coef.instantaneous * p + direct.traction(material, t, dt, coef.instantaneous)
+        rec = coef.instantaneous * p + prony.known(coef, t)
+        drc = coef.instantaneous * p + direct.known(coef, t)
         ramp = (not first) and scheme == "linear"
         increments.append(p - previous)
         ages_from.append((t, ramp))
@@ -87,8 +84,9 @@ def run_histories(material: Material, scheme: str, dt: float, steps: int, shift_
             phi = ramp_weight(material, t - tn, dt) if is_ramp else float(material.creep_compliance(t - tn))
             lit += phi * inc
         out.append((rec, drc, lit, coef.instantaneous * p))
-        prony.advance(p, coef)
-        direct.advance(p, t, ramp)
+        prony = prony.advanced(p, coef, t)
+        direct = direct.advanced(p, coef, t)
+        assert direct.ramps[-1] == ramp
         previous = p
     return out
 
@@ -122,15 +120,15 @@ def test_step_coefficients():
     material = MATERIALS["prony3"]
     c = material.creep
     dt = 1e-3
-    first = step_coefficients(material, dt, "linear", True)
+    first = step_coefficients(c, dt, "linear", True)
     np.testing.assert_array_equal(first.weight, 1.0)
     assert first.instantaneous == pytest.approx(c.instantaneous, rel=1e-13)
-    lin = step_coefficients(material, dt, "linear", False)
+    lin = step_coefficients(c, dt, "linear", False)
     np.testing.assert_allclose(lin.decay, np.exp(-dt / c.retardation_times), rtol=1e-15)
     # J_inst of a ramp step = mean of J over the step
     assert lin.instantaneous == pytest.approx(ramp_weight(material, 0.0, dt), rel=1e-13)
     with pytest.raises(ValueError, match="time.scheme"):
-        step_coefficients(material, dt, "cubic", False)
+        step_coefficients(c, dt, "cubic", False)
 
 
 def _transient(history: str, material: Material) -> list:

@@ -1,0 +1,105 @@
+"""Observers of a transient run: what is kept, warned, saved and when the run stops.
+
+:func:`viscontact.api.run` is a plain loop over :func:`viscontact.transient.steps` that hands each
+(state, record) to its observers in order. An observer has do-nothing defaults: ``on_step`` returns
+``None`` to let the run go on, or a reason (e.g. ``"SIGINT"``) to stop it cleanly after this step;
+``on_stop`` is then called on every observer with that reason before
+:class:`~viscontact.errors.RunInterrupted` is raised.
+
+* :class:`Recorder`: keeps every ``output.every``-th step and the last, with ``output.fields``;
+* :class:`WakeWarning`: warns once when the dropped wake biases the result by over 1 %;
+* :class:`Checkpointer`: saves the state and the records so far every N steps and on a stop;
+* :class:`StopRequest`: asks a callable after each step whether to stop.
+"""
+from __future__ import annotations
+
+import warnings
+from dataclasses import replace
+from pathlib import Path
+from typing import Callable, Sequence
+
+from .errors import ViscontactWarning
+from .problem import Problem
+from .records import StepRecord
+
+#: estimated relative error from the dropped wake above which a warning is issued
+WAKE_WARNING = 0.01
+
+
+class Observer:
+    """Do-nothing observer (subclass and override)."""
+
+    def on_step(self, state, record: StepRecord) -> str | None:
+        """Called after each step; a non-empty return stops the run with that reason."""
+        return None
+
+    def on_stop(self, state, reason: str) -> None:
+        """The run stops cleanly after ``state`` (asked by an observer) for ``reason``."""
+
+
+class Recorder(Observer):
+    """Keeps the records the output settings ask for: step k when k % every == 0 and the last step,
+    with the fields not in ``output.fields`` dropped. ``records`` holds them (``initial`` first)."""
+
+    def __init__(self, problem: Problem, initial: Sequence[StepRecord] = ()) -> None:
+        self.every = problem.output.every
+        self.total = problem.time.n_steps
+        self.dropped = {name: None for name in StepRecord.FIELDS if name not in problem.output.fields}
+        self.records: list[StepRecord] = list(initial)
+
+    def kept(self, record: StepRecord) -> StepRecord | None:
+        """The record as kept, or None when this step is not recorded."""
+        if not (record.step % self.every == 0 or record.step + 1 == self.total):
+            return None
+        return replace(record, **self.dropped) if self.dropped else record
+
+    def on_step(self, state, record: StepRecord) -> None:
+        kept = self.kept(record)
+        if kept is not None:
+            self.records.append(kept)
+
+
+class WakeWarning(Observer):
+    """Warns once when :attr:`StepRecord.wake_loss` exceeds :data:`WAKE_WARNING`."""
+
+    def __init__(self) -> None:
+        self.warned = False
+
+    def on_step(self, state, record: StepRecord) -> None:
+        if not self.warned and record.wake_loss > WAKE_WARNING:
+            self.warned = True
+            warnings.warn(
+                f"history dropped at the trailing edge biases the result by about {100 * record.wake_loss:.2g}% "
+                f"(t = {record.t:.4g} s); enlarge grid.half_width (with grid.n) or use `viscontact steady`",
+                ViscontactWarning, stacklevel=4)
+
+
+class Checkpointer(Observer):
+    """Writes the state and ``recorder.records`` to ``path`` every ``every`` steps (0: never) and when
+    the run stops cleanly (:func:`viscontact.checkpoint.save_checkpoint`, atomic)."""
+
+    def __init__(self, path: str | Path, problem: Problem, recorder: Recorder, every: int = 0) -> None:
+        self.path, self.problem, self.recorder, self.every = path, problem, recorder, every
+
+    def save(self, state) -> None:
+        from .checkpoint import save_checkpoint
+        from .records import records_to_arrays
+
+        save_checkpoint(self.path, self.problem, state, records_to_arrays(self.recorder.records))
+
+    def on_step(self, state, record: StepRecord) -> None:
+        if self.every and (state.step + 1) % self.every == 0:
+            self.save(state)
+
+    def on_stop(self, state, reason: str) -> None:
+        self.save(state)
+
+
+class StopRequest(Observer):
+    """Stops the run when ``should_stop()`` returns a reason (e.g. a signal handler's ``"SIGTERM"``)."""
+
+    def __init__(self, should_stop: Callable[[], str | None]) -> None:
+        self.should_stop = should_stop
+
+    def on_step(self, state, record: StepRecord) -> str | None:
+        return self.should_stop() or None

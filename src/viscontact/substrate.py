@@ -1,0 +1,311 @@
+"""The substrate (compliance): what the surface does under a traction history.
+
+Data model (linear viscoelasticity, seed Eqs. 5-6): the surface displacement u_i (i in z, x) is a
+sum over TERMS,
+
+    u_i = sum_terms K_term * (phi_term (*) dq_j),
+
+a term being (displacement component i, traction component j, a real-space kernel K at unit
+modulus, a time response phi(t) = J_0 + sum_m J_m (1 - exp(-t/lambda_m)) given as a
+:class:`~viscontact.materials.CreepSpectrum`). Terms that read the same traction component through
+the same time response share one hereditary history (:mod:`viscontact.history`): a history is
+keyed by :attr:`Term.history` and carries one traction component.
+
+:class:`TermSubstrate` turns (terms, responses, a convolver, preconditioners) into what the contact
+solvers use, and is all a new substrate has to provide:
+
+* :meth:`~TermSubstrate.elastic_operator`: the step's elastic operator for the normal (``zz``) or
+  tangential (``xx``) solve: action, Fourier preconditioner, sparse action;
+* :meth:`~TermSubstrate.cross_displacement`: the step's instantaneous coupling (``zx``, ``xz``);
+* :meth:`~TermSubstrate.known_displacement`: (u_z, u_x) of the history state;
+* :meth:`~TermSubstrate.advanced`, :meth:`~TermSubstrate.shifted`: the history after a step / a
+  frame shift (new objects; nothing is mutated);
+* :meth:`~TermSubstrate.steady_convolver`: the effective kernel of steady sliding at a speed;
+* ``xp`` (array namespace) and ``fft`` (FFT backend) used by the convolver.
+
+:class:`HalfSpace` is the homogeneous half-space with constant Poisson ratio (Boussinesq-Cerruti
+kernels of :mod:`viscontact.kernels`, all four terms sharing the material's creep compliance, so
+one history per traction component). Other substrates plug in by building other terms:
+
+* a time-dependent Poisson ratio: the same kernels split into parts, each term its own computed
+  spectrum (histories keyed e.g. ``"z:normal"``, ``"z:coupling"``);
+* a layer on an elastic substrate: one kernel (and one single-mode term) per relaxation mode;
+* a periodic domain: periodic kernels and a convolver with the same methods (``apply``,
+  ``apply_sparse``, ``combine``, ``displacements``, ``spectrum``, ``inverse``) on unpadded
+  transforms, and its own :meth:`~TermSubstrate.steady_convolver`.
+
+The contact solvers (:mod:`viscontact.transient`, :mod:`viscontact.steady`) see only this interface.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from types import ModuleType
+from typing import Callable, Mapping, Sequence
+
+import numpy as np
+import scipy.fft
+
+from .convolution import Convolver, FourierPreconditioner
+from .grid import Grid
+from .history import DirectHistory, History, PronyHistory
+from .kernels import history_kernels, influence_coefficients
+from .materials import CreepSpectrum, Material
+from .schemes import StepCoefficients, TimeScheme, get_scheme
+
+Array = np.ndarray
+Operator = Callable[[Array], Array]
+
+
+@dataclass(frozen=True)
+class Term:
+    """One term of the displacement: u_displacement += K_kernel * (phi_history (*) d traction).
+
+    Attributes
+    ----------
+    displacement, traction
+        Components ``"z"`` (normal; the traction is the pressure p) or ``"x"`` (the shear q_x).
+    kernel
+        Name of its unit-modulus kernel in the substrate's convolver.
+    history
+        Key of the hereditary history it reads (one traction component under one time response).
+    """
+
+    displacement: str
+    traction: str
+    kernel: str
+    history: str
+
+
+@dataclass(frozen=True)
+class ElasticOperator:
+    """The step's operator K = sum J_inst K_term for :func:`~viscontact.constrained.constrained_cg`."""
+
+    apply: Operator
+    preconditioner: Operator
+    apply_sparse: Operator
+
+    def cg_options(self) -> dict[str, Operator]:
+        """Keyword arguments of :func:`~viscontact.constrained.constrained_cg` besides the action."""
+        return {"preconditioner": self.preconditioner, "apply_k_sparse": self.apply_sparse}
+
+
+class TermSubstrate:
+    """A substrate given as terms (module docstring).
+
+    Parameters
+    ----------
+    grid
+        The surface grid.
+    terms
+        The displacement terms, in accumulation order.
+    responses
+        Time response (creep spectrum [1/Pa]) of each history key used by ``terms``.
+    convolver
+        Applies the terms' kernels (unit modulus).
+    preconditioners
+        Fourier preconditioners of the ``zz`` and ``xx`` kernels (unit factor), by kernel name.
+    scheme, dt
+        Time scheme and step [s] of the hereditary integral.
+    direct
+        Keep the literal hereditary sum (reference) instead of the recursion.
+    """
+
+    def __init__(self, grid: Grid, terms: Sequence[Term], responses: Mapping[str, CreepSpectrum],
+                 convolver: Convolver, preconditioners: Mapping[str, FourierPreconditioner],
+                 scheme: str | TimeScheme, dt: float, direct: bool = False) -> None:
+        self.grid = grid
+        self.terms = tuple(terms)
+        self.responses = dict(responses)
+        self.convolver = convolver
+        self.preconditioners = dict(preconditioners)
+        self.scheme = get_scheme(scheme)
+        self.dt = float(dt)
+        self.direct = direct
+        #: traction component each history carries
+        self.history_traction = {t.history: t.traction for t in self.terms}
+        #: the history of the normal self-term (what leaves the frame as the wake)
+        self.normal_history = self._terms("z", "z")[0].history
+        self._coefficients = {first: self._step_coefficients(first) for first in (True, False)}
+
+    @property
+    def xp(self) -> ModuleType:
+        """Array namespace of the fields (numpy)."""
+        return self.convolver.xp
+
+    @property
+    def fft(self) -> ModuleType:
+        """FFT backend (scipy.fft)."""
+        return self.convolver.fft
+
+    def _step_coefficients(self, first: bool) -> dict[str, StepCoefficients]:
+        by_spectrum: dict[int, StepCoefficients] = {}
+        out = {}
+        for key, spectrum in self.responses.items():
+            if id(spectrum) not in by_spectrum:
+                by_spectrum[id(spectrum)] = self.scheme.coefficients(spectrum, self.dt, first)
+            out[key] = by_spectrum[id(spectrum)]
+        return out
+
+    def coefficients(self, first: bool) -> Mapping[str, StepCoefficients]:
+        """Step coefficients of each history (``first``: the step at t = 0)."""
+        return self._coefficients[first]
+
+    def instantaneous_compliance(self, displacement: str, traction: str, first: bool) -> float:
+        """J_inst [1/Pa] of the first term (displacement, traction): what scales its kernel in a step."""
+        coef = self.coefficients(first)
+        return next(coef[t.history].instantaneous for t in self._terms(displacement, traction))
+
+    def _terms(self, displacement: str, traction: str) -> list[Term]:
+        return [t for t in self.terms if t.displacement == displacement and t.traction == traction]
+
+    def has_coupling(self) -> bool:
+        """Whether any term couples normal and tangential components."""
+        return any(t.displacement != t.traction for t in self.terms)
+
+    # --- histories --------------------------------------------------------------------------------
+    def initial_histories(self) -> dict[str, History]:
+        """Histories before the first step (all zero), by key."""
+        n = self.grid.n
+        if self.direct:
+            return {key: DirectHistory(n) for key in self.history_traction}
+        return {key: PronyHistory.zeros(self.responses[key].retardation_times.size, n)
+                for key in self.history_traction}
+
+    def advanced(self, histories: Mapping[str, History], tractions: Mapping[str, Array], t: float,
+                 first: bool) -> dict[str, History]:
+        """Histories after the step at ``t`` [s] with ``tractions`` {"z": p, "x": q} [Pa]."""
+        coef = self.coefficients(first)
+        return {key: h.advanced(tractions[self.history_traction[key]], coef[key], t) for key, h in histories.items()}
+
+    def shifted(self, histories: Mapping[str, History], cells: int = 1
+                ) -> tuple[dict[str, History], dict[str, Array]]:
+        """Histories after the frame moved by ``cells`` towards -x, and the internal fields
+        (M, n, cells) of each that left at the trailing edge."""
+        coef = self.coefficients(False)
+        out, dropped = {}, {}
+        for key, h in histories.items():
+            out[key], dropped[key] = h.shifted(cells, coef[key])
+        return out, dropped
+
+    def known_displacement(self, histories: Mapping[str, History], t: float, first: bool,
+                           need_x: bool) -> tuple[Array, Array | None]:
+        """(u_z, u_x) [m] at step time ``t`` [s] from the past increments only; u_x None unless ``need_x``."""
+        coef = self.coefficients(first)
+        outputs = ("z", "x") if need_x else ("z",)
+        used = {t_.history for t_ in self.terms if t_.displacement in outputs}
+        known = {key: histories[key].known(coef[key], t) for key in histories if key in used}
+        u = self.convolver.displacements(
+            [(t_.displacement, t_.kernel, known[t_.history]) for t_ in self.terms if t_.displacement in outputs],
+            outputs)
+        return u["z"], u.get("x")
+
+    # --- the step's elastic operators -------------------------------------------------------------
+    def elastic_operator(self, component: str, first: bool) -> ElasticOperator:
+        """K x = sum over the (component, component) terms of J_inst K_term x, for ``"z"`` or ``"x"``."""
+        terms = self._terms(component, component)
+        coef = self.coefficients(first)
+        conv = self.convolver
+        if len(terms) == 1:
+            kernel, j_inst = terms[0].kernel, coef[terms[0].history].instantaneous
+            precond = self.preconditioners[kernel]
+            return ElasticOperator(lambda x: j_inst * conv.apply(kernel, x),
+                                   lambda r: precond(r) / j_inst,
+                                   lambda x: j_inst * conv.apply_sparse(kernel, x))
+        factors = [(t.kernel, coef[t.history].instantaneous) for t in terms]
+        symbol = sum(j / self.preconditioners[k].inverse_symbol for k, j in factors)
+        precond = FourierPreconditioner(1.0 / symbol, conv.workers, conv.fft)
+
+        def sparse(x: Array) -> Array:
+            return sum(j * conv.apply_sparse(k, x) for k, j in factors)
+
+        return ElasticOperator(lambda x: conv.combine([(k, j, x) for k, j in factors]), precond, sparse)
+
+    def cross_displacement(self, displacement: str, traction: str, field: Array, first: bool,
+                           factor: float = 1.0) -> Array | None:
+        """(J_inst factor) K_term field summed over the (displacement, traction) terms of this step:
+        the instantaneous coupling [m] of a traction [Pa]; None when the substrate has no such term."""
+        terms = self._terms(displacement, traction)
+        if not terms:
+            return None
+        coef = self.coefficients(first)
+        out = None
+        for t in terms:
+            u = (coef[t.history].instantaneous * factor) * self.convolver.apply(t.kernel, field)
+            out = u if out is None else out + u
+        return out
+
+    def instantaneous_displacement(self, tractions: Mapping[str, Array], first: bool) -> Array:
+        """u_z [m] of the step's own tractions {"z": p, "x": q} [Pa] through every z term (J_inst K)."""
+        coef = self.coefficients(first)
+        scaled = {key: coef[key].instantaneous * tractions[self.history_traction[key]]
+                  for key in {t.history for t in self.terms if t.displacement == "z"}}
+        terms = [("z", t.kernel, scaled[t.history]) for t in self.terms if t.displacement == "z"]
+        return self.convolver.displacements(terms, ("z",))["z"]
+
+    # --- steady sliding ---------------------------------------------------------------------------
+    def steady_convolver(self, speed: float, components: Sequence[str] = ("zz",)
+                         ) -> tuple[Convolver, dict[str, Array]]:
+        """Convolver of the effective steady kernels at ``speed`` [m/s] (1/Pa included) and the kernels."""
+        raise NotImplementedError
+
+
+class HalfSpace(TermSubstrate):
+    """Homogeneous viscoelastic half-space with constant Poisson ratio (kernels x J(t)).
+
+    Terms ``zz``, ``zx`` (u_z of p, q_x) and ``xz``, ``xx`` (u_x), the kernels of
+    :func:`~viscontact.kernels.influence_coefficients` at G = 1; every term's time response is the
+    material's shear creep compliance, so the histories are ``"z"`` (of p) and ``"x"`` (of q_x).
+
+    Parameters
+    ----------
+    material
+        The material (creep spectrum and Poisson ratio).
+    components
+        Kernels to build among ``zz``, ``xx``, ``xz``, ``zx`` (``zz`` always).
+    workers
+        FFT worker threads (-1: all cores).
+    grid, scheme, dt, direct
+        As for :class:`TermSubstrate`.
+    """
+
+    ORDER = ("zz", "zx", "xz", "xx")
+
+    def __init__(self, grid: Grid, material: Material, components: Sequence[str], scheme: str | TimeScheme,
+                 dt: float, *, workers: int = -1, direct: bool = False) -> None:
+        comps = [c for c in self.ORDER if c in set(components) | {"zz"}]
+        ics = influence_coefficients(grid, material.poisson_ratio)
+        conv = Convolver.from_kernels(grid.n, {c: ics[c] for c in comps}, workers, xp=np, fft=scipy.fft)
+        precond = {c: FourierPreconditioner.for_kernel(ics[c], 1.0, workers, fft=scipy.fft)
+                   for c in ("zz", "xx") if c in comps}
+        terms = [Term(c[0], c[1], c, c[1]) for c in comps]
+        creep = material.creep
+        super().__init__(grid, terms, {t.history: creep for t in terms}, conv, precond, scheme, dt, direct)
+        self.material = material
+        self.workers = workers
+
+    @classmethod
+    def for_problem(cls, problem) -> "HalfSpace":
+        """The half-space a :class:`~viscontact.problem.Problem` needs: ``xx`` for partial slip, the
+        coupling terms when sliding with friction, nu < 0.5 and ``solver.coupling``."""
+        nu = problem.material.poisson_ratio
+        mode = problem.tangential.mode
+        comps = ["zz"] + (["xx"] if mode == "partial_slip" else [])
+        if nu < 0.5 and problem.solver.coupling and mode in ("partial_slip", "gross_sliding"):
+            comps += ["xz", "zx"]
+        return cls(problem.grid, problem.material, comps, problem.time.scheme, problem.time.dt,
+                   workers=problem.solver.workers, direct=problem.solver.history == "direct")
+
+    def steady_convolver(self, speed: float, components: Sequence[str] = ("zz",)
+                         ) -> tuple[Convolver, dict[str, Array]]:
+        """K(d) = J_0 IC(d) + sum_m J_m F_m(d), F_m of :func:`~viscontact.kernels.history_kernels`
+        with L_m = v lambda_m (see :mod:`viscontact.steady`); ``apply("zz", p)`` is u_z [m] of p [Pa]."""
+        grid, nu = self.grid, self.material.poisson_ratio
+        comps = list(components)
+        base = influence_coefficients(grid, nu)
+        c = self.material.creep
+        kernels = {k: c.instantaneous * base[k] for k in comps}
+        for amp, lam in zip(c.amplitudes, c.retardation_times):
+            hist = history_kernels(grid, nu, speed * lam, comps)
+            for k in comps:
+                kernels[k] += amp * hist[k]
+        return Convolver.from_kernels(grid.n, kernels, self.workers, xp=self.xp, fft=self.fft), kernels
