@@ -23,8 +23,9 @@ Both follow one protocol, driven by the step's :class:`~viscontact.schemes.StepC
 
 * ``known(coef, t)``: r_k [m/Pa x Pa, to convolve with the unit-modulus kernel];
 * ``advanced(p_k, coef, t)``: the history after step k (a new object: histories are immutable);
-* ``shifted(cells, coef)``: the history after the frame moved, and the internal fields H_m of the
-  columns that left at the trailing edge (for :class:`~viscontact.sliding.Wake`).
+* ``shifted(cells, coef, wrap)``: the history after the frame moved, and the internal fields H_m of
+  the columns that left at the trailing edge (for :class:`~viscontact.sliding.Wake`); with ``wrap``
+  (a periodic domain) they re-enter at the leading edge.
 
 Both live on the grid of the moving frame: a shift moves the stored material fields by whole cells
 towards -x (the half-space moves in -x relative to the indenter), unloaded material entering at
@@ -40,12 +41,14 @@ import numpy as np
 from .schemes import StepCoefficients
 
 
-def shift_material(field_: np.ndarray, cells: int = 1) -> tuple[np.ndarray, np.ndarray]:
-    """Move a material field (..., n, n) by ``cells`` towards -x. Returns (shifted, dropped columns)."""
+def shift_material(field_: np.ndarray, cells: int = 1, wrap: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Move a material field (..., n, n) by ``cells`` towards -x. Returns (shifted, dropped columns).
+
+    Unloaded material (zeros) enters at +x, or with ``wrap`` (a periodic domain) what left at -x."""
     dropped = field_[..., :cells].copy()
     out = np.empty_like(field_)
     out[..., :-cells] = field_[..., cells:]
-    out[..., -cells:] = 0.0
+    out[..., -cells:] = dropped if wrap else 0.0
     return out, dropped
 
 
@@ -56,7 +59,7 @@ class History(Protocol):
 
     def advanced(self, current: np.ndarray, coef: StepCoefficients, t: float) -> "History": ...
 
-    def shifted(self, cells: int, coef: StepCoefficients) -> tuple["History", np.ndarray]: ...
+    def shifted(self, cells: int, coef: StepCoefficients, wrap: bool = False) -> tuple["History", np.ndarray]: ...
 
 
 @dataclass(frozen=True)
@@ -89,10 +92,10 @@ class PronyHistory:
                 internal[m] += coef.weight[m] * inc
         return PronyHistory(internal, np.array(current, dtype=float, copy=True))
 
-    def shifted(self, cells: int, coef: StepCoefficients) -> tuple["PronyHistory", np.ndarray]:
+    def shifted(self, cells: int, coef: StepCoefficients, wrap: bool = False) -> tuple["PronyHistory", np.ndarray]:
         """Moved with the frame; also returns the dropped internal columns (M, n, cells)."""
-        internal, dropped = shift_material(self.internal, cells)
-        return PronyHistory(internal, shift_material(self.previous, cells)[0]), dropped
+        internal, dropped = shift_material(self.internal, cells, wrap)
+        return PronyHistory(internal, shift_material(self.previous, cells, wrap)[0]), dropped
 
 
 @dataclass(frozen=True)
@@ -136,9 +139,9 @@ class DirectHistory:
             out += weight[:, None, None] * inc
         return out
 
-    def shifted(self, cells: int, coef: StepCoefficients) -> tuple["DirectHistory", np.ndarray]:
+    def shifted(self, cells: int, coef: StepCoefficients, wrap: bool = False) -> tuple["DirectHistory", np.ndarray]:
         """Moved with the frame; also returns the dropped columns of :meth:`internal_fields`."""
         dropped = self.internal_fields(coef)[..., :cells]
-        previous = shift_material(self.previous, cells)[0] if self.previous is not None else None
-        return DirectHistory(self.n, tuple(shift_material(f, cells)[0] for f in self.increments), self.times,
+        previous = shift_material(self.previous, cells, wrap)[0] if self.previous is not None else None
+        return DirectHistory(self.n, tuple(shift_material(f, cells, wrap)[0] for f in self.increments), self.times,
                              self.ramps, previous), dropped

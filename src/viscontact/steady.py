@@ -34,7 +34,7 @@ from .errors import ConvergenceError, ParameterError
 from .problem import PHASE_GROSS_SLIDING, Problem
 from .records import StepRecord
 from .sliding import hysteresis_force, pressure_centroid
-from .substrate import HalfSpace, TermSubstrate
+from .substrate import TermSubstrate, substrate_for
 
 
 def steady_convolver(problem: Problem, speed: float, substrate: TermSubstrate | None = None
@@ -43,9 +43,7 @@ def steady_convolver(problem: Problem, speed: float, substrate: TermSubstrate | 
     friction and coupling): ``apply("zz", p)`` is u_z [m] of the pressure p [Pa]."""
     mat = problem.material
     coupled = problem.tangential.effective_friction > 0 and mat.poisson_ratio < 0.5 and problem.solver.coupling
-    if substrate is None:
-        substrate = HalfSpace(problem.grid, mat, ("zz",), problem.time.scheme, problem.time.dt,
-                              workers=problem.solver.workers)
+    substrate = substrate or substrate_for(problem, ("zz",))
     return substrate.steady_convolver(speed, ["zz"] + (["zx"] if coupled else []))
 
 

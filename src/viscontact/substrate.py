@@ -108,11 +108,14 @@ class TermSubstrate:
         Time scheme and step [s] of the hereditary integral.
     direct
         Keep the literal hereditary sum (reference) instead of the recursion.
+    periodic
+        The domain is one period: a frame shift wraps the material history around (nothing is
+        dropped, no wake) instead of losing it at the trailing edge.
     """
 
     def __init__(self, grid: Grid, terms: Sequence[Term], responses: Mapping[str, CreepSpectrum],
                  convolver: Convolver, preconditioners: Mapping[str, FourierPreconditioner],
-                 scheme: str | TimeScheme, dt: float, direct: bool = False) -> None:
+                 scheme: str | TimeScheme, dt: float, direct: bool = False, periodic: bool = False) -> None:
         self.grid = grid
         self.terms = tuple(terms)
         self.responses = dict(responses)
@@ -121,6 +124,7 @@ class TermSubstrate:
         self.scheme = get_scheme(scheme)
         self.dt = float(dt)
         self.direct = direct
+        self.periodic = periodic
         #: traction component each history carries
         self.history_traction = {t.history: t.traction for t in self.terms}
         #: the history of the normal self-term (what leaves the frame as the wake)
@@ -150,11 +154,6 @@ class TermSubstrate:
         """Step coefficients of each history (``first``: the step at t = 0)."""
         return self._coefficients[first]
 
-    def instantaneous_compliance(self, displacement: str, traction: str, first: bool) -> float:
-        """J_inst [1/Pa] of the first term (displacement, traction): what scales its kernel in a step."""
-        coef = self.coefficients(first)
-        return next(coef[t.history].instantaneous for t in self._terms(displacement, traction))
-
     def _terms(self, displacement: str, traction: str) -> list[Term]:
         return [t for t in self.terms if t.displacement == displacement and t.traction == traction]
 
@@ -180,12 +179,12 @@ class TermSubstrate:
     def shifted(self, histories: Mapping[str, History], cells: int = 1
                 ) -> tuple[dict[str, History], dict[str, Array]]:
         """Histories after the frame moved by ``cells`` towards -x, and the internal fields
-        (M, n, cells) of each that left at the trailing edge."""
+        (M, n, cells) of each that left at the trailing edge (none when periodic: they wrap around)."""
         coef = self.coefficients(False)
         out, dropped = {}, {}
         for key, h in histories.items():
-            out[key], dropped[key] = h.shifted(cells, coef[key])
-        return out, dropped
+            out[key], dropped[key] = h.shifted(cells, coef[key], wrap=self.periodic)
+        return out, ({} if self.periodic else dropped)
 
     def known_displacement(self, histories: Mapping[str, History], t: float, first: bool,
                            need_x: bool) -> tuple[Array, Array | None]:
@@ -283,18 +282,6 @@ class HalfSpace(TermSubstrate):
         self.material = material
         self.workers = workers
 
-    @classmethod
-    def for_problem(cls, problem) -> "HalfSpace":
-        """The half-space a :class:`~viscontact.problem.Problem` needs: ``xx`` for partial slip, the
-        coupling terms when sliding with friction, nu < 0.5 and ``solver.coupling``."""
-        nu = problem.material.poisson_ratio
-        mode = problem.tangential.mode
-        comps = ["zz"] + (["xx"] if mode == "partial_slip" else [])
-        if nu < 0.5 and problem.solver.coupling and mode in ("partial_slip", "gross_sliding"):
-            comps += ["xz", "zx"]
-        return cls(problem.grid, problem.material, comps, problem.time.scheme, problem.time.dt,
-                   workers=problem.solver.workers, direct=problem.solver.history == "direct")
-
     def steady_convolver(self, speed: float, components: Sequence[str] = ("zz",)
                          ) -> tuple[Convolver, dict[str, Array]]:
         """K(d) = J_0 IC(d) + sum_m J_m F_m(d), F_m of :func:`~viscontact.kernels.history_kernels`
@@ -309,3 +296,20 @@ class HalfSpace(TermSubstrate):
             for k in comps:
                 kernels[k] += amp * hist[k]
         return Convolver.from_kernels(grid.n, kernels, self.workers, xp=self.xp, fft=self.fft), kernels
+
+
+def substrate_for(problem, components: Sequence[str] | None = None) -> TermSubstrate:
+    """The substrate of a :class:`~viscontact.problem.Problem` (the one place that chooses it).
+
+    ``components``: the kernels to build; by default what the transient needs: ``zz``, ``xx`` for
+    partial slip, and the coupling ``xz``, ``zx`` when sliding with friction, nu < 0.5 and
+    ``solver.coupling``. The steady solver asks for ``("zz",)`` (it builds its own kernels).
+    """
+    if components is None:
+        nu = problem.material.poisson_ratio
+        mode = problem.tangential.mode
+        components = ["zz"] + (["xx"] if mode == "partial_slip" else [])
+        if nu < 0.5 and problem.solver.coupling and mode in ("partial_slip", "gross_sliding"):
+            components += ["xz", "zx"]
+    return HalfSpace(problem.grid, problem.material, components, problem.time.scheme, problem.time.dt,
+                     workers=problem.solver.workers, direct=problem.solver.history == "direct")

@@ -31,7 +31,7 @@ from .problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP,
 from .records import StepRecord
 from .schemes import stable_step_limit
 from .sliding import Wake, hysteresis_force, pressure_centroid
-from .substrate import HalfSpace, TermSubstrate
+from .substrate import TermSubstrate, substrate_for
 
 #: relative margin under mu_f p below which a node counts as stuck
 STICK_MARGIN = 1e-9
@@ -76,11 +76,6 @@ class State:
     wake: Wake = field(default_factory=Wake)
     pressure_previous: np.ndarray | None = None
     shear_previous: np.ndarray | None = None
-
-
-def substrate_for(problem: Problem) -> TermSubstrate:
-    """The substrate of ``problem`` (kernels and time responses; see :mod:`viscontact.substrate`)."""
-    return HalfSpace.for_problem(problem)
 
 
 def init(problem: Problem, substrate: TermSubstrate | None = None) -> State:
@@ -289,7 +284,8 @@ def _advance_frame(problem: Problem, substrate: TermSubstrate, state: State, k: 
         if substep == tan.steps_per_cell:
             substep = 0
             histories, dropped = substrate.shifted(histories, 1)
-            wake = wake.dropped(dropped[substrate.normal_history])
+            if substrate.normal_history in dropped:
+                wake = wake.dropped(dropped[substrate.normal_history])
         wake = wake.ticked(substrate.responses[substrate.normal_history], dt)
         return replace(state, sliding_distance=state.sliding_distance + tan.sliding_speed * dt,
                        delta_x=state.delta_x + tan.sliding_speed * dt, substep=substep, histories=histories,
