@@ -1,0 +1,88 @@
+"""Terms of a surface compliance operator: a shape kernel and the time response it is multiplied by.
+
+The surface displacement component i under the traction history of component j is a sum of terms
+
+    u_i(x, t) = sum_terms  K_term * ( phi_term (*) dq_j )                                    [m]
+
+where ``K_term`` is a real-space influence kernel on the DC-FFT offset grid (displacement per unit
+cell traction, [m/Pa] x [Pa]; see :mod:`viscontact.kernels`), ``(*)`` the Stieltjes (hereditary)
+convolution in time and ``phi_term(t) = J0 + sum_m J_m (1 - exp(-t/lambda_m))`` [1/Pa] a
+:class:`~viscontact.materials.CreepSpectrum`. A homogeneous half-space with constant Poisson ratio
+has one term per component pair, all sharing the shear creep compliance J(t); a time-dependent
+Poisson ratio (:mod:`viscontact.poisson`) splits kernels into shape parts with their own computed
+spectra; a layer (:mod:`viscontact.layers`) brings its own kernels.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Iterable
+
+import numpy as np
+
+from .materials import CreepSpectrum
+
+
+@dataclass(frozen=True)
+class ComplianceTerm:
+    """One term of the compliance operator.
+
+    Attributes
+    ----------
+    displacement
+        Displacement component it produces, ``"z"`` (normal, into the solid) or ``"x"``.
+    traction
+        Traction component it acts on, ``"z"`` (pressure) or ``"x"`` (shear in +x).
+    kernel
+        Influence kernel at unit modulus on the (2n, 2n) DC-FFT offset grid [m] (displacement per
+        unit cell traction times the modulus; multiply by the response [1/Pa]).
+    response
+        Time response phi(t) [1/Pa] of this term.
+    name
+        Label (e.g. ``"zz"``, ``"xx:poisson"``).
+    """
+
+    displacement: str
+    traction: str
+    kernel: np.ndarray
+    response: CreepSpectrum
+    name: str = ""
+
+
+def creep_function(spectrum: CreepSpectrum, t: np.ndarray | float) -> np.ndarray:
+    """phi(t) = J0 + sum_m J_m (1 - exp(-t/lambda_m)) [1/Pa] at times t [s]."""
+    t = np.asarray(t, dtype=float)
+    out = np.full(t.shape, float(spectrum.instantaneous))
+    for jm, lm in zip(spectrum.amplitudes, spectrum.retardation_times):
+        out = out + jm * (-np.expm1(-t / lm))
+    return out
+
+
+def carson_transform(spectrum: CreepSpectrum, s: np.ndarray | float) -> np.ndarray:
+    """s phi^(s) = phi(inf) - sum_m J_m s / (s + 1/lambda_m) [1/Pa] at Laplace variables s [1/s]."""
+    s = np.asarray(s, dtype=complex if np.iscomplexobj(s) else float)
+    out = np.full(s.shape, spectrum.long_term, dtype=s.dtype)
+    for jm, lm in zip(spectrum.amplitudes, spectrum.retardation_times):
+        out = out - jm * s / (s + 1.0 / lm)
+    return out
+
+
+def linear_combination(parts: Iterable[tuple[float, CreepSpectrum]]) -> CreepSpectrum:
+    """sum_k c_k phi_k as one spectrum (amplitudes of equal retardation times added, zeros dropped,
+    times sorted ascending)."""
+    inst = 0.0
+    amps: list[np.ndarray] = []
+    times: list[np.ndarray] = []
+    for coef, spec in parts:
+        if coef == 0.0:
+            continue
+        inst += coef * spec.instantaneous
+        amps.append(coef * np.asarray(spec.amplitudes, dtype=float))
+        times.append(np.asarray(spec.retardation_times, dtype=float))
+    if not amps:
+        return CreepSpectrum(0.0, np.zeros(0), np.zeros(0))
+    a, lam = np.concatenate(amps), np.concatenate(times)
+    uniq, inverse = np.unique(lam, return_inverse=True)
+    summed = np.zeros(uniq.size)
+    np.add.at(summed, inverse, a)
+    keep = summed != 0.0
+    return CreepSpectrum(float(inst), summed[keep], uniq[keep])

@@ -1,0 +1,212 @@
+"""Time-dependent Poisson ratio: shear relaxing as a Prony series, bulk modulus elastic.
+
+A polymer's bulk modulus K hardly relaxes while its shear modulus does, so the Poisson ratio rises
+with time. By the correspondence principle the elastic surface influence factors become operators
+whose Carson transforms (s times the Laplace transform) are the elastic factors evaluated at
+G~(s) = s G^(s) and
+
+    nu~(s) = (3K - 2 G~) / (2 (3K + G~))                                          (Carson domain)
+
+(e.g. Tschoegl, *The Phenomenological Theory of Linear Viscoelastic Behavior*, 1989, ch. 2;
+Lakes, *Viscoelastic Materials*, 2009, sec. 2.7). Every factor of the half-space kernels
+(Johnson, *Contact Mechanics*, Eqs. 3.19-3.20, 3.86-3.87; see :mod:`viscontact.kernels`) splits
+into two partial fractions in G~:
+
+    (1 - nu)/G    = 1/(2 G~) + 3 / (2 (G~ + 3K))       normal  (u_z of p)
+    1/G           = 1/G~                               tangential, shape 1/r
+    nu/G          = 1/(2 G~) - 3 / (2 (G~ + 3K))       tangential, shape (x^2/r^3 - 1/r)
+    (1 - 2 nu)/G  = 3 / (G~ + 3K)                      coupling (u_x of p, u_z of q_x)
+
+so only two creep functions are needed: the shear creep compliance J(t) (Carson 1/G~) and the
+creep function L(t) of the modulus G(t) + 3K (Carson 1/(G~ + 3K)). Both are exact sums of
+exponentials, J0 + sum_m J_m (1 - exp(-t/lambda_m)), with retardation rates 1/lambda_m the roots
+of G~(s) = -c (c = 0 for J, 3K for L). With G~(s) = G(0) - sum_i g_i r_i / (s + r_i) (r_i = 1/tau_i)
+this is a secular equation: G~ is increasing between its poles -r_i, so exactly one root lies in
+each interval (-r_{i+1}, -r_i) and one in (-r_1, 0). Each root is found by bracketed Brent
+iteration on the equation written relative to the nearer pole (as LAPACK's dlaed4 does), so the
+rates keep full relative accuracy for spectra over many decades, where the roots of the expanded
+polynomial (coefficients spanning hundreds of orders of magnitude) do not. The amplitude of a root
+s_m = -rho_m is the residue: J_m = 1 / (rho_m G~'(s_m)), G~'(s) = sum_i g_i r_i / (s + r_i)^2.
+
+With the shape kernels at unit modulus taken at nu = 0 (``S``) and their nu-derivative (``D``),
+the half-space displacements are (cf. :func:`half_space_terms`)
+
+    u_z = S_zz [(1-nu)/G] p + S_zx [(1-2nu)/G] q_x
+    u_x = S_xx [1/G] q_x + D_xx [nu/G] q_x + S_xz [(1-2nu)/G] p
+
+where the bracketed operators act as hereditary convolutions with the spectra above. The zz term
+carries 2M retardation times for an M-term Prony series (those of J and those of L); the history
+of each term costs one internal field per retardation time (:mod:`viscontact.history`).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .compliance_terms import ComplianceTerm, linear_combination
+from .errors import ParameterError
+from .grid import Grid
+from .kernels import influence_coefficients
+from .materials import CreepSpectrum, Material
+
+#: the factor names of :meth:`BulkElasticMaterial.factor`
+FACTORS = ("normal", "tangential", "tangential_poisson", "coupling")
+
+
+def _secular_root(rates: np.ndarray, weights: np.ndarray, level: float, m: int) -> tuple[float, float]:
+    """Root of level - sum_i w_i / (s + r_i) = 0 in (-r_m, -r_{m-1}) (r_{-1} = 0); ``rates``
+    ascending. Returns (rho = -s [1/s], sum_i w_i / (s + r_i)^2 [Pa s])."""
+    lo_rate = rates[m - 1] if m > 0 else 0.0
+    mid_rate = 0.5 * (rates[m] + lo_rate)
+    f_mid = level - np.sum(weights / (rates - mid_rate))
+    if f_mid > 0.0 or m > 0:
+        # relative to a pole k: s = -r_k + delta; h(delta) = delta f(s) is finite at delta = 0
+        k = m if f_mid > 0.0 else m - 1
+        gaps = rates - rates[k]
+        others = np.arange(rates.size) != k
+
+        def h(delta: float) -> float:
+            return delta * (level - np.sum(weights[others] / (gaps[others] + delta))) - weights[k]
+
+        delta_mid = rates[k] - mid_rate
+        if f_mid == 0.0:
+            delta = delta_mid
+        else:
+            delta = brentq(h, *sorted((0.0, delta_mid)), xtol=1e-300, rtol=4 * np.finfo(float).eps)
+        diffs = gaps + delta
+        rho = rates[k] - delta
+    else:
+        # root in (-r_0 / 2, 0): no pole nearby, solve for rho = -s directly
+        def f(rho_: float) -> float:
+            return level - np.sum(weights / (rates - rho_))
+
+        rho = brentq(f, 0.0, mid_rate, xtol=1e-300, rtol=4 * np.finfo(float).eps)
+        diffs = rates - rho
+    return float(rho), float(np.sum(weights / diffs**2))
+
+
+def prony_creep_spectrum(g_inf: float, g: np.ndarray | tuple[float, ...], tau: np.ndarray | tuple[float, ...],
+                         shift: float = 0.0) -> CreepSpectrum:
+    """Creep function whose Carson transform is 1 / (G~(s) + shift), for the Prony modulus
+    G(t) = g_inf + sum_i g_i exp(-t/tau_i) [Pa] and a constant ``shift`` [Pa] >= 0.
+
+    ``shift = 0`` gives the shear creep compliance J(t) (seed Eq. 3); ``shift = 3K`` the function
+    L(t) of the module docstring. ``shift = inf`` gives L = 0. Equal relaxation times are merged.
+    Returns a :class:`~viscontact.materials.CreepSpectrum` with retardation times ascending.
+    """
+    if np.isinf(shift):
+        return CreepSpectrum(0.0, np.zeros(0), np.zeros(0))
+    g = np.asarray(g, dtype=float)
+    tau = np.asarray(tau, dtype=float)
+    rates_all = 1.0 / tau
+    rates, inverse = np.unique(rates_all, return_inverse=True)
+    moduli = np.zeros(rates.size)
+    np.add.at(moduli, inverse, g)
+    level = g_inf + float(moduli.sum()) + shift
+    weights = moduli * rates
+    rho = np.empty(rates.size)
+    amps = np.empty(rates.size)
+    for m in range(rates.size):
+        rho[m], slope = _secular_root(rates, weights, level, m)
+        amps[m] = 1.0 / (rho[m] * slope)
+    order = np.argsort(1.0 / rho)
+    return CreepSpectrum(1.0 / level, amps[order], (1.0 / rho)[order])
+
+
+@dataclass(frozen=True)
+class BulkElasticMaterial:
+    """Isotropic viscoelastic material with a relaxing shear modulus and an elastic bulk modulus.
+
+    Parameters
+    ----------
+    shear
+        The shear relaxation modulus G(t) (its ``poisson_ratio`` is not used).
+    bulk_modulus
+        K [Pa], elastic; ``inf`` for an incompressible material. K >= 2 G(0)/3 so that
+        nu(0) >= 0.
+    """
+
+    shear: Material
+    bulk_modulus: float
+
+    def __post_init__(self) -> None:
+        k, g0 = self.bulk_modulus, self.shear.shear_modulus_instantaneous
+        if np.isnan(k) or not k >= 2.0 * g0 / 3.0:
+            raise ParameterError("material.bulk_modulus",
+                                 f"must be >= 2 G(0)/3 = {2 * g0 / 3:.6g} Pa (Poisson ratio nu(0) >= 0), got {k}")
+
+    @staticmethod
+    def poisson_ratio_of(shear_modulus: float, bulk_modulus: float) -> float:
+        """nu = (3K - 2G) / (2 (3K + G)) [-] (0.5 for K = inf)."""
+        if np.isinf(bulk_modulus):
+            return 0.5
+        return float((3 * bulk_modulus - 2 * shear_modulus) / (2 * (3 * bulk_modulus + shear_modulus)))
+
+    @property
+    def poisson_ratio_instantaneous(self) -> float:
+        """nu(0) from G(0) and K [-]."""
+        return self.poisson_ratio_of(self.shear.shear_modulus_instantaneous, self.bulk_modulus)
+
+    @property
+    def poisson_ratio_long_term(self) -> float:
+        """nu(inf) from G(inf) and K [-]."""
+        return self.poisson_ratio_of(self.shear.shear_modulus_long_term, self.bulk_modulus)
+
+    @cached_property
+    def shear_creep(self) -> CreepSpectrum:
+        """J(t), Carson transform 1/G~(s) [1/Pa]."""
+        m = self.shear
+        return prony_creep_spectrum(m.g_inf, m.g, m.tau)
+
+    @cached_property
+    def bulk_shear_creep(self) -> CreepSpectrum:
+        """L(t), Carson transform 1/(G~(s) + 3K) [1/Pa] (zero when K = inf)."""
+        m = self.shear
+        return prony_creep_spectrum(m.g_inf, m.g, m.tau, 3.0 * self.bulk_modulus)
+
+    def factor(self, name: str) -> CreepSpectrum:
+        """Time response [1/Pa] of an influence factor (module docstring): ``normal`` (1-nu)/G,
+        ``tangential`` 1/G, ``tangential_poisson`` nu/G, ``coupling`` (1-2nu)/G."""
+        j, l_ = self.shear_creep, self.bulk_shear_creep
+        parts = {"normal": [(0.5, j), (1.5, l_)], "tangential": [(1.0, j)],
+                 "tangential_poisson": [(0.5, j), (-1.5, l_)], "coupling": [(3.0, l_)]}
+        if name not in parts:
+            raise ValueError(f"factor must be one of {FACTORS}, got {name!r}")
+        return linear_combination(parts[name])
+
+    def elastic_factor(self, name: str, shear_modulus: float) -> float:
+        """The same factor [1/Pa] of an elastic material (G, K), nu from :meth:`poisson_ratio_of`."""
+        nu = self.poisson_ratio_of(shear_modulus, self.bulk_modulus)
+        return {"normal": (1 - nu), "tangential": 1.0, "tangential_poisson": nu,
+                "coupling": (1 - 2 * nu)}[name] / shear_modulus
+
+
+def half_space_terms(grid: Grid, material: BulkElasticMaterial,
+                     components: tuple[str, ...] = ("zz", "xx", "xz", "zx")) -> list[ComplianceTerm]:
+    """Compliance terms of the homogeneous half-space with K elastic (module docstring).
+
+    The kernels of :mod:`viscontact.kernels` are affine in nu, IC(nu) = IC(0) + nu (IC(1) - IC(0)):
+    ``S = IC(0)`` and ``D = IC(1) - IC(0)`` are the shape parts. zz, xz, zx are proportional to
+    (1 - nu), (1 - 2 nu): one term each; xx gives two (1/G on S_xx, nu/G on D_xx). A component
+    whose response vanishes (coupling with K = inf) is left out.
+    """
+    at0 = influence_coefficients(grid, 0.0)
+    terms: list[ComplianceTerm] = []
+    for comp in components:
+        disp, trac = comp[0], comp[1]
+        if comp == "zz":
+            parts = [("zz", at0["zz"], "normal")]
+        elif comp == "xx":
+            d_xx = influence_coefficients(grid, 1.0)["xx"] - at0["xx"]
+            parts = [("xx", at0["xx"], "tangential"), ("xx:poisson", d_xx, "tangential_poisson")]
+        else:
+            parts = [(comp, at0[comp], "coupling")]
+        for name, kernel, factor in parts:
+            response = material.factor(factor)
+            if response.instantaneous == 0.0 and not np.any(response.amplitudes):
+                continue
+            terms.append(ComplianceTerm(disp, trac, kernel, response, name))
+    return terms
