@@ -1,0 +1,149 @@
+"""Subsurface stresses of an elastic half-space under the current surface tractions.
+
+The stress field below the surface is computed for surface tractions given on the grid (pressure p
+into the solid, shear q_x and optionally q_y acting on the solid), each uniform over its cell, in a
+homogeneous isotropic half-space with Poisson ratio nu. The field does not depend on the shear
+modulus, so for a viscoelastic half-space with constant nu it is the elastic field of the current
+tractions (correspondence principle: the stresses are tied to the tractions at the same instant).
+
+Method: Fourier transform in the surface plane. For a wavevector q = k e (|e| = 1, e_perp = z x e)
+the problem splits into an in-plane (e, z) problem and an anti-plane one. With the Papkovich-Neuber
+potentials phi = (alpha/k) E, psi = b E, E = exp(-k z) (2 G u = grad(phi + z psi) - 4 (1 - nu) psi e_z;
+Barber, *Elasticity*, ch. 20; Johnson, *Contact Mechanics*, ch. 2-3), P = k b = -p + i t_e and
+A = k alpha = -i t_e - (1 - 2 nu) P satisfy the surface conditions sigma_zz = -p, sigma_ez = -t_e, and
+
+    sigma_zz = [ A + k z P + 2 (1 - nu) P ] E
+    sigma_ee = [-A - k z P + 2 nu P ] E
+    sigma_ez = i [-A - k z P - (1 - 2 nu) P ] E
+    sigma_pp = 2 nu P E                               (plane strain along e_perp)
+    sigma_zp = -t_p E,   sigma_ep = i t_p E          (anti-plane, t_p the traction along e_perp)
+
+rotated back to x, y. Tension is positive; z > 0 is the depth [m]. Tractions are zero-padded to
+``padding`` times the grid (the transform is periodic: images of the load sit at least
+(padding - 1) x the domain width away) and multiplied by the cell footprint sinc(q_x dx/2) sinc(q_y dx/2).
+The section y = 0 is obtained exactly (phase shift in q_y, sum over q_y) at the cell centres in x.
+The transform resolves wavelengths down to 2 dx: fields closer to the surface than about 2 dx carry
+the truncation of the cell footprint (at z = 0, sigma_zz = -p only to within that).
+
+Von Mises: sqrt(3 J2); maximum shear (Tresca): (sigma_1 - sigma_3)/2 of the principal stresses.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.fft
+
+from .grid import Grid
+
+#: names of the stress components (tension positive) [Pa]
+STRESS_COMPONENTS = ("xx", "yy", "zz", "xy", "xz", "yz")
+
+
+@dataclass(frozen=True)
+class SectionStresses:
+    """Stresses in the section y = 0 at the depths ``depth`` [m] and the cell centres ``x`` [m].
+
+    ``stress[c]`` has shape (len(depth), len(x)) [Pa] for c in :data:`STRESS_COMPONENTS`.
+    """
+
+    depth: np.ndarray
+    x: np.ndarray
+    stress: dict[str, np.ndarray]
+
+    def tensor(self) -> np.ndarray:
+        """The stress tensor, shape (depths, x, 3, 3) [Pa]."""
+        s = self.stress
+        rows = [[s["xx"], s["xy"], s["xz"]], [s["xy"], s["yy"], s["yz"]], [s["xz"], s["yz"], s["zz"]]]
+        return np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
+
+    @property
+    def von_mises(self) -> np.ndarray:
+        """sqrt(((s1-s2)^2 + (s2-s3)^2 + (s3-s1)^2)/2) [Pa], shape (depths, x)."""
+        s = self.stress
+        return np.sqrt(0.5 * ((s["xx"] - s["yy"]) ** 2 + (s["yy"] - s["zz"]) ** 2 + (s["zz"] - s["xx"]) ** 2)
+                       + 3.0 * (s["xy"] ** 2 + s["xz"] ** 2 + s["yz"] ** 2))
+
+    @property
+    def max_shear(self) -> np.ndarray:
+        """Tresca maximum shear stress (sigma_max - sigma_min)/2 [Pa], shape (depths, x)."""
+        principal = np.linalg.eigvalsh(self.tensor())
+        return 0.5 * (principal[..., -1] - principal[..., 0])
+
+
+def _plane_mode_stresses(kx: np.ndarray, ky: np.ndarray, z: float, nu: float, p_hat: np.ndarray,
+                         tx_hat: np.ndarray, ty_hat: np.ndarray) -> dict[str, np.ndarray]:
+    """Stress spectra at depth z [m] of surface traction spectra (module docstring)."""
+    k = np.hypot(kx, ky)
+    zero = k == 0
+    k_safe = np.where(zero, 1.0, k)
+    c, s = np.where(zero, 1.0, kx / k_safe), np.where(zero, 0.0, ky / k_safe)
+    t_e = c * tx_hat + s * ty_hat
+    t_p = -s * tx_hat + c * ty_hat
+    decay = np.exp(-k * z)
+    kz = k * z
+    big_p = -p_hat + 1j * t_e
+    big_a = -1j * t_e - (1 - 2 * nu) * big_p
+    s_zz = (big_a + kz * big_p + 2 * (1 - nu) * big_p) * decay
+    s_ee = (-big_a - kz * big_p + 2 * nu * big_p) * decay
+    s_ez = 1j * (-big_a - kz * big_p - (1 - 2 * nu) * big_p) * decay
+    s_pp = 2 * nu * big_p * decay
+    s_zp = -t_p * decay
+    s_ep = 1j * t_p * decay
+    out = {
+        "xx": s_ee * c**2 + s_pp * s**2 - 2 * s_ep * c * s,
+        "yy": s_ee * s**2 + s_pp * c**2 + 2 * s_ep * c * s,
+        "zz": s_zz,
+        "xy": (s_ee - s_pp) * c * s + s_ep * (c**2 - s**2),
+        "xz": s_ez * c - s_zp * s,
+        "yz": s_ez * s + s_zp * c,
+    }
+    # q = 0: a uniform traction; sigma_zz, sigma_xz, sigma_yz carry it at every depth (equilibrium),
+    # the in-plane normal stresses take their direction average -(1 + 2 nu) p / 2
+    if np.any(zero):
+        p0, tx0, ty0 = p_hat[zero], tx_hat[zero], ty_hat[zero]
+        for name, value in (("zz", -p0), ("xz", -tx0), ("yz", -ty0), ("xx", -(1 + 2 * nu) * p0 / 2),
+                            ("yy", -(1 + 2 * nu) * p0 / 2), ("xy", 0.0 * p0)):
+            out[name][zero] = value
+    return out
+
+
+def section_stresses(grid: Grid, poisson_ratio: float, depths: np.ndarray | list[float], pressure: np.ndarray,
+                     shear_x: np.ndarray | None = None, shear_y: np.ndarray | None = None,
+                     padding: int = 2, workers: int = -1) -> SectionStresses:
+    """Stresses [Pa] in the section y = 0 of the half-space at ``depths`` [m] (>= 0).
+
+    Parameters
+    ----------
+    grid
+        The surface grid; ``pressure`` etc. have shape (n, n) indexed [y, x] [Pa].
+    poisson_ratio
+        nu of the half-space [-].
+    pressure, shear_x, shear_y
+        Surface tractions on the solid: p into the solid, q_x and q_y along +x, +y [Pa].
+    padding
+        Zero-padding factor of the transform (>= 2).
+    """
+    n, dx = grid.n, grid.spacing
+    depths = np.atleast_1d(np.asarray(depths, dtype=float))
+    if np.any(depths < 0) or not np.all(np.isfinite(depths)):
+        raise ValueError(f"subsurface depths must be finite and >= 0 m, got {depths}")
+    if padding < 2:
+        raise ValueError(f"padding must be >= 2, got {padding}")
+    m = padding * n
+    zero = np.zeros((n, n))
+    spectra = [scipy.fft.fft2(t if t is not None else zero, s=(m, m), workers=workers)
+               for t in (pressure, shear_x, shear_y)]
+    q = 2.0 * np.pi * scipy.fft.fftfreq(m, dx)
+    ky, kx = q[:, None], q[None, :]
+    footprint = np.sinc(kx * dx / (2 * np.pi)) * np.sinc(ky * dx / (2 * np.pi))
+    spectra = [sp * footprint for sp in spectra]
+    # value at y = 0: the transform's row 0 is y_0 = grid.y[0]
+    phase_y = np.exp(1j * q * (0.0 - grid.y[0]))[:, None] / m
+    out = {c: np.empty((depths.size, n)) for c in STRESS_COMPONENTS}
+    for i, z in enumerate(depths):
+        fields = _plane_mode_stresses(kx, ky, float(z), poisson_ratio, *spectra)
+        for c in STRESS_COMPONENTS:
+            row = np.sum(fields[c] * phase_y, axis=0)
+            out[c][i] = scipy.fft.ifft(row, workers=workers)[:n].real
+    return SectionStresses(depths, grid.x.copy(), out)
