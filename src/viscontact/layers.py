@@ -1,0 +1,449 @@
+"""An elastic layer on a rigid or elastic substrate: exact Fourier-space surface compliance and kernels.
+
+Geometry: a layer 0 < z < h (shear modulus G, Poisson ratio nu) on a substrate z > h, rigid or an
+elastic half-space (G_s, nu_s), the interface bonded (displacements and tractions continuous) or
+frictionless (normal displacement and normal traction continuous, no shear traction). Surface
+tractions p (into the solid) and q_x, q_y act at z = 0.
+
+Fourier-space compliance. For a wavevector q = k e (k = |q|, e unit, e_perp = z x e) the response
+splits into an in-plane (e, z) problem and an anti-plane one:
+
+    u_z = A_zz(k) p + A_ze(k) t_e,   u_e = A_ez(k) p + A_ee(k) t_e,   u_perp = A_pp(k) t_perp
+
+so that, with c = q_x/k, the components used by the contact solvers are
+
+    M_zz = A_zz,   M_xz = c A_ez,   M_zx = c A_ze,   M_xx = c^2 A_ee + (1 - c^2) A_pp.
+
+In-plane: in each material the displacement is given by Papkovich-Neuber potentials
+phi = (alpha/k) E, psi = b E with E = exp(-s k (z - z0)) (2 G u = grad(phi + (z - z0) psi)
+- 4 (1 - nu) psi e_z; Barber, *Elasticity*, ch. 20; the same representation as
+:mod:`viscontact.subsurface`): the layer has a family decaying from z0 = 0 (s = +1) and one decaying
+from z0 = h (s = -1), the substrate one decaying from z0 = h (s = +1), so every basis function is
+bounded by 1 and the 4 x 4 (rigid) or 6 x 6 (elastic) system of surface and interface conditions is
+well conditioned for any k h. It is solved for every distinct |q|. Anti-plane (closed form, with
+T = tanh(kh) and r = G_s/G):
+
+    A_pp = T/(G k) (rigid, bonded),  (1 + r T)/((T + r) G k) (elastic, bonded),
+           1/(T G k) (frictionless: no shear reaches the substrate).
+
+Limits checked by the tests: k h -> inf gives the half-space (1 - nu)/(G k) etc.; a thin bonded
+layer on a rigid base has A_zz -> h / M with the oedometric modulus M = 2 G (1 - nu)/(1 - 2 nu) and
+A_pp, A_ee -> h/G; the rigid-bonded A_zz equals the closed form
+
+    A_zz = (1 - nu)/(G k) [(3 - 4 nu) sinh 2kh - 2kh] / [(3 - 4 nu) cosh 2kh + 2 (kh)^2 + 5 - 12 nu + 8 nu^2].
+
+On a frictionless interface A_ee and A_pp grow as 1/k^2 at small k (the layer slides as a plate):
+the tangential kernels are then unbounded and only the periodic ones (mean displacement free) exist.
+
+Kernels. Periodic (:func:`periodic_spectra`): M(q) times the cell footprint
+sinc(q_x dx/2) sinc(q_y dx/2) on the n x n grid's wavevectors (Stanley & Kato 1997), the q = 0 term
+being the uniform mode (h/M on a rigid base; set to 0 where it is unbounded). Non-periodic
+(:func:`influence_coefficients`, the DC-FFT offset grid of :mod:`viscontact.kernels`): the
+half-space kernels of the layer material (closed-form cell integrals) carry the 1/k behaviour at
+large k; the long-wavelength 1/k behaviour (that of the substrate, or none on a rigid base) is
+swapped in through kernels smoothed to depth H, whose real-space forms are
+
+    e^{-kH}/k            ->  1 / (2 pi R),               R = sqrt(r^2 + H^2)
+    e^{-kH} cos(2 theta_q)/k   ->  -cos(2 theta) (R - H)^2 / (2 pi r^2 R)
+    i e^{-kH} cos(theta_q)/k   ->  -cos(theta) (R - H) / (2 pi r R)
+
+(Hankel transforms of e^{-kH} J_n; Gradshteyn & Ryzhik 6.611.1), integrated over each cell by
+Gauss-Legendre quadrature (smooth on the scale H >= 2 dx). The remainder spectrum is bounded at
+q = 0 and decays as exp(-k min(H, 2h)); it is sampled on a periodic box of ``box`` x the domain
+(at least 8 max(H, h)) with cells refined until its Nyquist wavenumber reaches 14/min(H, 2h),
+multiplied by the footprint, folded onto the coarse wavevectors and transformed back. Its real-space
+tail (~ m1/r^3, m1 the |k| coefficient of the remainder at small k) has periodic images whose sum
+near the origin, -m1 Z/(2 pi P^3) (Z the cubic lattice sum of the square lattice), is removed, and
+its q = 0 sample is extrapolated from the two smallest rings: measured against an independent
+Hankel-quadrature kernel the error is a near-constant offset of ~1e-4 of the self-coefficient
+(a rigid shift of the displacement under load control) falling as P^-3.6.
+
+Time response. With a rigid substrate and constant nu every A is 1/G times a function of (k h, nu),
+so the kernels at unit modulus times the shear creep compliance J(t) are exact for a viscoelastic
+layer (one term per component, as for the half-space). On an elastic substrate M depends on G/G_s
+and does not factor: for each q the response to a traction step is a sum of exponentials whose rates
+move with |q| between the layer's and the substrate-influenced ones. See :func:`modal_design` for the
+data layout and its cost: one kernel (spectrum) and one history field set per mode and component.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.fft
+
+from .errors import ParameterError
+from .grid import Grid
+from .kernels import rectangle_influence
+
+SUBSTRATES = ("rigid", "elastic")
+INTERFACES = ("bonded", "frictionless")
+COMPONENTS = ("zz", "xx", "xz", "zx")
+#: sum over the square lattice Z^2 without 0 of 1/|m|^3 = 4 zeta(3/2) beta(3/2)
+_LATTICE_ZETA3 = 9.033621683100950
+
+
+@dataclass(frozen=True)
+class Layer:
+    """An elastic layer on a substrate (module docstring).
+
+    Parameters
+    ----------
+    thickness
+        h [m], > 0.
+    shear_modulus, poisson_ratio
+        G [Pa] and nu of the layer.
+    substrate
+        ``"rigid"`` or ``"elastic"``.
+    interface
+        ``"bonded"`` or ``"frictionless"``.
+    substrate_shear_modulus, substrate_poisson_ratio
+        G_s [Pa] and nu_s (elastic substrate only).
+    """
+
+    thickness: float
+    shear_modulus: float
+    poisson_ratio: float
+    substrate: str = "rigid"
+    interface: str = "bonded"
+    substrate_shear_modulus: float = float("inf")
+    substrate_poisson_ratio: float = 0.3
+
+    def __post_init__(self) -> None:
+        if not (np.isfinite(self.thickness) and self.thickness > 0):
+            raise ParameterError("layer.thickness", f"must be > 0 m, got {self.thickness}")
+        if not (np.isfinite(self.shear_modulus) and self.shear_modulus > 0):
+            raise ParameterError("material.shear_modulus", f"must be > 0 Pa, got {self.shear_modulus}")
+        if not 0.0 <= self.poisson_ratio <= 0.5:
+            raise ParameterError("material.poisson_ratio", f"must be in [0, 0.5], got {self.poisson_ratio}")
+        if self.substrate not in SUBSTRATES:
+            raise ParameterError("layer.substrate", f"must be one of {SUBSTRATES}, got {self.substrate!r}")
+        if self.interface not in INTERFACES:
+            raise ParameterError("layer.interface", f"must be one of {INTERFACES}, got {self.interface!r}")
+        if self.substrate == "elastic":
+            gs, nus = self.substrate_shear_modulus, self.substrate_poisson_ratio
+            if not (np.isfinite(gs) and gs > 0):
+                raise ParameterError("layer.substrate_shear_modulus", f"must be > 0 Pa, got {gs}")
+            if not 0.0 <= nus <= 0.5:
+                raise ParameterError("layer.substrate_poisson_ratio", f"must be in [0, 0.5], got {nus}")
+
+    @property
+    def oedometric_modulus(self) -> float:
+        """M = 2 G (1 - nu)/(1 - 2 nu) [Pa] (inf for nu = 0.5)."""
+        nu = self.poisson_ratio
+        return float("inf") if nu == 0.5 else 2 * self.shear_modulus * (1 - nu) / (1 - 2 * nu)
+
+    @property
+    def tangential_bounded(self) -> bool:
+        """Whether the tangential compliance stays bounded as k -> 0 (bonded interface)."""
+        return self.interface == "bonded"
+
+
+# --- Fourier-space compliance -------------------------------------------------------------------
+
+def _family_rows(kz: np.ndarray, s: float, shear_modulus: float, nu: float) -> dict[str, np.ndarray]:
+    """Rows (..., 2) acting on (alpha, b) of one potential family at k (z - z0) = kz, k = 1:
+    u_z, u_x / i, sigma_zz / k, sigma_xz / (i k) (module docstring)."""
+    e = np.exp(-s * kz)
+    inv2g = 0.5 / shear_modulus
+    one = np.ones_like(kz)
+    return {
+        "uz": np.stack([-s * one, -s * kz - (3 - 4 * nu)], axis=-1) * (inv2g * e)[..., None],
+        "ux": np.stack([one, kz], axis=-1) * (inv2g * e)[..., None],
+        "szz": np.stack([one, kz + 2 * (1 - nu) * s], axis=-1) * e[..., None],
+        "sxz": np.stack([-s * one, -s * kz - (1 - 2 * nu)], axis=-1) * e[..., None],
+    }
+
+
+def in_plane_compliance(layer: Layer, k: np.ndarray) -> dict[str, np.ndarray]:
+    """A_zz, A_ze, A_ez, A_ee [m/Pa] at wavenumbers k [1/m] (> 0); A_ze, A_ez are imaginary."""
+    k = np.asarray(k, dtype=float)
+    kh = k * layer.thickness
+    g, nu = 1.0, layer.poisson_ratio  # solved at G = 1, k = 1; scaled at the end
+    zero = np.zeros_like(kh)
+    top_near = _family_rows(zero, 1.0, g, nu)      # layer family from z0 = 0, at z = 0
+    top_far = _family_rows(-kh, -1.0, g, nu)       # layer family from z0 = h, at z = 0
+    bot_near = _family_rows(zero, -1.0, g, nu)     # layer family from z0 = h, at z = h
+    bot_far = _family_rows(kh, 1.0, g, nu)         # layer family from z0 = 0, at z = h
+    elastic = layer.substrate == "elastic"
+    size = 6 if elastic else 4
+    mat = np.zeros(kh.shape + (size, size))
+    mat[..., 0, 0:2], mat[..., 0, 2:4] = -top_near["szz"], -top_far["szz"]   # -sigma_zz = p
+    mat[..., 1, 0:2], mat[..., 1, 2:4] = top_near["sxz"], top_far["sxz"]     # sigma_xz/(ik) = -tau
+    layer_at_h = {key: np.concatenate([bot_far[key], bot_near[key]], axis=-1) for key in bot_far}
+    if elastic:
+        sub = _family_rows(zero, 1.0, layer.substrate_shear_modulus / layer.shear_modulus,
+                           layer.substrate_poisson_ratio)
+        keys = ("uz", "ux", "szz", "sxz") if layer.interface == "bonded" else ("uz", "szz")
+        row = 2
+        for key in keys:
+            mat[..., row, 0:4], mat[..., row, 4:6] = layer_at_h[key], -sub[key]
+            row += 1
+        if layer.interface == "frictionless":
+            mat[..., row, 0:4] = layer_at_h["sxz"]
+            mat[..., row + 1, 4:6] = sub["sxz"]
+    else:
+        keys = ("uz", "ux") if layer.interface == "bonded" else ("uz", "sxz")
+        for row, key in enumerate(keys, start=2):
+            mat[..., row, 0:4] = layer_at_h[key]
+    rhs = np.zeros(kh.shape + (size, 2))
+    rhs[..., 0, 0] = 1.0   # p = 1
+    rhs[..., 1, 1] = -1.0  # t_x = i tau, tau = 1: sigma_xz/(ik) = -1
+    coef = np.linalg.solve(mat, rhs)[..., 0:4, :]
+    uz = np.einsum("...j,...jc->...c", np.concatenate([top_near["uz"], top_far["uz"]], axis=-1), coef)
+    ux = np.einsum("...j,...jc->...c", np.concatenate([top_near["ux"], top_far["ux"]], axis=-1), coef)
+    scale = 1.0 / (layer.shear_modulus * k)
+    return {"zz": uz[..., 0] * scale, "ze": -1j * uz[..., 1] * scale,
+            "ez": 1j * ux[..., 0] * scale, "ee": ux[..., 1] * scale}
+
+
+def anti_plane_compliance(layer: Layer, k: np.ndarray) -> np.ndarray:
+    """A_pp [m/Pa] at wavenumbers k [1/m] (> 0) (module docstring)."""
+    k = np.asarray(k, dtype=float)
+    t = np.tanh(k * layer.thickness)
+    if layer.interface == "frictionless":
+        factor = 1.0 / t
+    elif layer.substrate == "rigid":
+        factor = t
+    else:
+        r = layer.substrate_shear_modulus / layer.shear_modulus
+        factor = (1 + r * t) / (t + r)
+    return factor / (layer.shear_modulus * k)
+
+
+def fourier_compliance(layer: Layer, qx: np.ndarray, qy: np.ndarray,
+                       components: tuple[str, ...] = COMPONENTS) -> dict[str, np.ndarray]:
+    """M_zz, M_xx, M_xz, M_zx [m/Pa] at wavevectors (qx, qy) [1/m] (q != 0), u^ = M t^ with
+    u(x) = int u^(q) exp(i q.x) d^2q / (2 pi)^2. Solves once per distinct |q|."""
+    qx, qy = np.broadcast_arrays(np.asarray(qx, dtype=float), np.asarray(qy, dtype=float))
+    k = np.hypot(qx, qy)
+    uniq, inverse = np.unique(k, return_inverse=True)
+    inverse = inverse.reshape(k.shape)
+    a = {key: v[inverse] for key, v in in_plane_compliance(layer, uniq).items()}
+    c = qx / k
+    out = {"zz": a["zz"], "xz": c * a["ez"], "zx": c * a["ze"]}
+    if "xx" in components:
+        out["xx"] = c**2 * a["ee"] + (1 - c**2) * anti_plane_compliance(layer, uniq)[inverse]
+    return {name: out[name] for name in components}
+
+
+def uniform_compliance(layer: Layer) -> dict[str, float]:
+    """Displacement per uniform traction [m/Pa] (the q = 0 mode; 0 where unbounded, the mean
+    displacement then being free): a rigid base gives h/M normally (lateral strain is zero in a
+    uniformly loaded layer, bonded or not) and h/G tangentially when bonded."""
+    h = layer.thickness
+    rigid = layer.substrate == "rigid"
+    nu = layer.poisson_ratio
+    zz = h * (1 - 2 * nu) / (2 * layer.shear_modulus * (1 - nu)) if rigid else 0.0
+    xx = h / layer.shear_modulus if rigid and layer.interface == "bonded" else 0.0
+    return {"zz": zz, "xx": xx, "xz": 0.0, "zx": 0.0}
+
+
+# --- kernel helpers -----------------------------------------------------------------------------
+
+def _depth_smoothed(dx: np.ndarray, dy: np.ndarray, depth: float, order: int) -> np.ndarray:
+    """Real-space form [1/m] of exp(-kH)/k times 1, i cos(theta_q), cos(2 theta_q) for order 0, 1, 2
+    (module docstring), at offsets (dx, dy) [m]."""
+    big_r = np.sqrt(dx**2 + dy**2 + depth**2)
+    if order == 0:
+        return 1.0 / (2 * np.pi * big_r)
+    if order == 1:
+        # -cos(theta) (R - H) / (r R) = -dx / (R (R + H))   (R - H = r^2 / (R + H))
+        return -dx / (2 * np.pi * big_r * (big_r + depth))
+    # -cos(2 theta) (R - H)^2 / (r^2 R) = -(dx^2 - dy^2) / ((R + H)^2 R)
+    return -(dx**2 - dy**2) / (2 * np.pi * (big_r + depth) ** 2 * big_r)
+
+
+def _cell_average(func, dx: np.ndarray, dy: np.ndarray, cell: float, points: int = 6) -> np.ndarray:
+    """int over the cell of side ``cell`` centred at offset (dx, dy) of func(x, y), Gauss-Legendre."""
+    nodes, weights = np.polynomial.legendre.leggauss(points)
+    nodes, weights = 0.5 * cell * nodes, 0.5 * cell * weights
+    out = np.zeros(np.broadcast(dx, dy).shape)
+    for xi, wx in zip(nodes, weights):
+        for yj, wy in zip(nodes, weights):
+            out += wx * wy * func(dx + xi, dy + yj)
+    return out
+
+
+def _long_wave_coefficients(layer: Layer) -> dict[str, dict[int, float]]:
+    """Coefficients [1/Pa] of the 1/k behaviour as k -> 0, by angular order: zz {0}, xx {0, 2},
+    xz, zx {1} (M_xz ~ i c d/k, M_zx ~ -i c d'/k written as i c (-d')/k)."""
+    if layer.substrate == "elastic":
+        if layer.interface == "bonded":
+            return _half_space_coefficients(layer.substrate_shear_modulus, layer.substrate_poisson_ratio)
+    if layer.interface == "bonded":
+        return {"zz": {0: 0.0}, "xx": {0: 0.0, 2: 0.0}, "xz": {1: 0.0}, "zx": {1: 0.0}}
+    # frictionless: k A(k) extrapolated linearly to k = 0 from k h = 1e-4, 2e-4; the tangential
+    # compliance grows as 1/k^2 (no 1/k coefficient: NaN, the non-periodic kernel refuses it)
+    k = np.array([1e-4, 2e-4]) / layer.thickness
+    lim = {key: 2 * (k * v)[0] - (k * v)[1] for key, v in in_plane_compliance(layer, k).items()}
+    zz = float(lim["zz"].real) if layer.substrate == "elastic" else 0.0
+    return {"zz": {0: zz}, "xz": {1: float(lim["ez"].imag)}, "zx": {1: float(lim["ze"].imag)},
+            "xx": {0: np.nan, 2: np.nan}}
+
+
+def _half_space_coefficients(shear_modulus: float, nu: float) -> dict[str, dict[int, float]]:
+    """Half-space M = coefficient/k by angular order: zz (1-nu)/G; xx (1 - nu/2)/G, -nu/(2G);
+    xz (1-2nu)/(2G) (M_xz = i c (1-2nu)/(2Gk)); zx -(1-2nu)/(2G)."""
+    g = shear_modulus
+    return {"zz": {0: (1 - nu) / g}, "xx": {0: (1 - nu / 2) / g, 2: -nu / (2 * g)},
+            "xz": {1: (1 - 2 * nu) / (2 * g)}, "zx": {1: -(1 - 2 * nu) / (2 * g)}}
+
+
+def _angular(order: int, qx: np.ndarray, k: np.ndarray) -> np.ndarray:
+    """1, i cos(theta_q), cos(2 theta_q) for order 0, 1, 2."""
+    c = qx / k
+    return {0: np.ones_like(c), 1: 1j * c, 2: 2 * c**2 - 1}[order]
+
+
+# --- kernels ----------------------------------------------------------------------------------------
+
+def _smoothing_depth(grid: Grid, layer: Layer, depth: float | None) -> float:
+    """H [m]: max(2h, 2dx) unless given."""
+    return max(2 * layer.thickness, 2 * grid.spacing) if depth is None else float(depth)
+
+
+def _refinement(grid: Grid, layer: Layer, big_h: float) -> int:
+    """Cells per grid cell of the refined transform: Nyquist wavenumber >= 14 / min(H, 2h)."""
+    return max(1, int(np.ceil(14.0 * grid.spacing / (np.pi * min(big_h, 2 * layer.thickness)))))
+
+
+def _half_space_near(ox: np.ndarray, oy: np.ndarray, cell: float, layer: Layer, big_h: float,
+                     components: tuple[str, ...], coefficients: dict[str, dict[int, float]] | None = None
+                     ) -> dict[str, np.ndarray]:
+    """Cell-integrated real-space part [m/Pa] at offsets (ox, oy) [m]: the half-space kernels of the
+    layer material plus, for each angular order, (c_low - c_high) times the kernels smoothed to
+    depth H (module docstring). ``coefficients`` None: c_low = 0 (the periodic near part)."""
+    high = _half_space_coefficients(layer.shear_modulus, layer.poisson_ratio)
+    hs = rectangle_influence(ox, oy, cell / 2, cell / 2, layer.poisson_ratio, components)
+    out = {}
+    for name in components:
+        kern = hs[name] / layer.shear_modulus
+        for order, c_high in high[name].items():
+            delta = (coefficients[name][order] if coefficients is not None else 0.0) - c_high
+            if delta != 0.0:
+                kern = kern + delta * _cell_average(lambda x, y, o=order: _depth_smoothed(x, y, big_h, o), ox, oy, cell)
+        out[name] = kern
+    return out
+
+
+def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: float, cells: int,
+                  low: dict[str, dict[int, float]] | None, max_fine: int) -> dict[str, np.ndarray]:
+    """Cell kernels [m/Pa] on a periodic box of ``cells`` x ``cells`` grid cells (real space,
+    wrap-around order) of the spectrum M - c_high (1 - e^{-kH})/k - c_low e^{-kH}/k, sampled on a
+    refined grid, times the cell footprint, folded onto the box wavevectors.
+
+    ``low`` None (periodic kernels): c_low = 0 and the q = 0 term makes the kernel's mean the
+    uniform compliance (0 where unbounded). Otherwise (non-periodic) the remainder is bounded at
+    q = 0: its q = 0 sample and the periodic images of its |k| tail are handled as in the module
+    docstring."""
+    dx = grid.spacing
+    refine = _refinement(grid, layer, big_h)
+    fine = cells * refine
+    if fine > max_fine:
+        raise ParameterError("layer.thickness", f"{layer.thickness:.4g} m needs a {fine}^2 transform for the layer "
+                             f"kernels (limit {max_fine}^2) with cells of {dx:.4g} m: thinner than the cells "
+                             "needs refinement, thicker than the domain a larger box; change grid.n or half_width")
+    ds = dx / refine
+    q = 2 * np.pi * scipy.fft.fftfreq(fine, ds)
+    qx, qy = np.broadcast_arrays(q[None, :], q[:, None])
+    k = np.hypot(qx, qy)
+    nonzero = k > 0
+    m = fourier_compliance(layer, qx[nonzero], qy[nonzero], components)
+    kk, cx = k[nonzero], qx[nonzero]
+    footprint = np.sinc(qx * dx / (2 * np.pi)) * np.sinc(qy * dx / (2 * np.pi)) * dx**2
+    decay = np.exp(-kk * big_h)
+    high = _half_space_coefficients(layer.shear_modulus, layer.poisson_ratio)
+    uniform = uniform_compliance(layer)
+    out = {}
+    for name in components:
+        rem = m[name].astype(complex)
+        for order, c_high in high[name].items():
+            c_low = low[name][order] if low is not None else 0.0
+            rem -= _angular(order, cx, kk) * (c_high * (1 - decay) + c_low * decay) / kk
+        full = np.zeros(k.shape, dtype=complex)
+        full[nonzero] = rem
+        spec = full * footprint
+        tail = 0.0
+        if low is None:
+            # mean of the periodic kernel: uniform compliance, less the near part's c_high H
+            spec[0, 0] = (uniform[name] - high[name].get(0, 0.0) * big_h) * dx**2 if uniform[name] else \
+                -high[name].get(0, 0.0) * big_h * dx**2
+        else:
+            # bounded at q = 0 with an angle-independent part M0 + m1 |k| (orders 1, 2 average out
+            # over the four axis wavevectors): M0 extrapolated from the rings q1, 2 q1; the -m1/(2 pi r^3)
+            # tail's periodic images add -m1 Z/(2 pi P^3) near the origin, removed below
+            ring1 = 0.25 * (full[0, 1] + full[0, -1] + full[1, 0] + full[-1, 0]).real
+            ring2 = 0.25 * (full[0, 2] + full[0, -2] + full[2, 0] + full[-2, 0]).real
+            spec[0, 0] = (2 * ring1 - ring2) * dx**2
+            tail = (ring2 - ring1) / q[1] * _LATTICE_ZETA3 * dx**2 / (2 * np.pi * (cells * dx) ** 3)
+        folded = spec.reshape(refine, cells, refine, cells).sum(axis=(0, 2))
+        out[name] = scipy.fft.ifft2(folded).real / dx**2 + tail
+    return out
+
+
+def influence_coefficients(grid: Grid, layer: Layer, components: tuple[str, ...] = COMPONENTS,
+                           depth: float | None = None, box: int = 4, max_fine: int = 8192
+                           ) -> dict[str, np.ndarray]:
+    """Influence coefficients [m per Pa of cell traction] of the layer on the DC-FFT offset grid
+    (2n, 2n), wrap-around order, row/column n zeroed, like
+    :func:`viscontact.kernels.influence_coefficients` but in physical units (at the layer's G).
+
+    ``depth`` is the smoothing depth H [m] (default max(2h, 2dx)); ``box`` the periodic box of
+    the remainder in domain widths (at least 8 max(H, h)); ``max_fine`` caps the refined
+    transform (ParameterError beyond it).
+    """
+    n, dx = grid.n, grid.spacing
+    if not layer.tangential_bounded and "xx" in components:
+        raise ParameterError("layer.interface", "a frictionless interface leaves the tangential compliance "
+                             "unbounded at long wavelengths (the layer slides); use interface = \"bonded\"")
+    big_h = _smoothing_depth(grid, layer, depth)
+    low = _long_wave_coefficients(layer)
+    off = grid.offsets()
+    ox, oy = np.meshgrid(off, off, indexing="xy")
+    out = _half_space_near(ox, oy, dx, layer, big_h, components, low)
+    cells = max(box * n, 2 * int(np.ceil(4 * max(big_h, layer.thickness) / dx)))
+    remainder = _fourier_part(grid, layer, components, big_h, cells, low, max_fine)
+    idx = np.concatenate([np.arange(0, n + 1), np.arange(cells - n + 1, cells)])
+    for name in components:
+        out[name] = out[name] + remainder[name][np.ix_(idx, idx)]
+        out[name][n, :] = 0.0
+        out[name][:, n] = 0.0
+    return out
+
+
+def periodic_spectra(grid: Grid, layer: Layer, components: tuple[str, ...] = COMPONENTS,
+                     depth: float | None = None, images: int = 3, max_fine: int = 8192) -> dict[str, np.ndarray]:
+    """Spectra (n, n//2 + 1) of the layer's kernels on the periodic n x n grid (rfft2 layout):
+    u = irfft2(K^ rfft2(t)) [m] for cell tractions t [Pa].
+
+    Ewald-like split: the near part (half-space kernels of the layer material less their copies
+    smoothed to depth H, cell integrals in closed form / quadrature, decaying as H^2/r^3) is summed
+    over ``images`` periodic images per direction in real space (the farther ones, a nearly uniform
+    field, through the near part's known integral c_0 H); the rest, whose spectrum decays as
+    exp(-k min(H, 2h)), is sampled in Fourier space on a refined grid and folded (no aliasing).
+    The mean (q = 0) is the uniform compliance (:func:`uniform_compliance`), 0 where unbounded.
+    """
+    n, dx = grid.n, grid.spacing
+    big_h = _smoothing_depth(grid, layer, depth)
+    period = n * dx
+    off = np.where(np.arange(n) <= n // 2, np.arange(n), np.arange(n) - n) * dx
+    ox, oy = np.meshgrid(off, off, indexing="xy")
+    near = {name: np.zeros((n, n)) for name in components}
+    for mx in range(-images, images + 1):
+        for my in range(-images, images + 1):
+            part = _half_space_near(ox - mx * period, oy - my * period, dx, layer, big_h, components)
+            for name in components:
+                near[name] += part[name]
+    far = _fourier_part(grid, layer, components, big_h, n, None, max_fine)
+    high = _half_space_coefficients(layer.shear_modulus, layer.poisson_ratio)
+    out = {}
+    for name in components:
+        # images beyond the summed ones: a nearly uniform field that completes the near part's
+        # integral c_0 H (orders 1, 2 sum to zero over the square lattice)
+        near[name] += (high[name].get(0, 0.0) * big_h - near[name].sum()) / n**2
+        spec = scipy.fft.rfft2(near[name] + far[name])
+        if name in ("xz", "zx"):
+            spec = 1j * spec.imag  # an odd real kernel has an imaginary spectrum
+        out[name] = spec
+    return out

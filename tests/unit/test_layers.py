@@ -1,0 +1,183 @@
+"""Layer on a substrate (viscontact.layers): Fourier compliance and kernels against independent truths.
+
+* Fourier space: the classical closed form of the bonded layer on a rigid base (A_zz), a substrate
+  identical to the layer (exactly the half-space, every component), k h -> inf (half-space), k h -> 0
+  (h/M with the oedometric modulus, h/G in shear), r = G_s/G -> inf (rigid). Tolerances are
+  round-off (1e-9) except where a limit is approached at finite k h (stated).
+* Kernels: an independent 1-D Hankel quadrature of the same compliance (composite Gauss-Legendre
+  of (A - A_half-space) J_n(k r) k dk, integrated over the cell by Gauss-Legendre, plus the closed-form
+  half-space cell integrals). The FFT kernels differ from it by a near-constant offset of ~1e-4 of the
+  self-coefficient (periodic-image residue, module docstring); tolerance 3e-4 of the self-coefficient.
+* Periodic kernels: on a rigid base the kernel decays exponentially, so the periodic kernel of a
+  domain much wider than h equals the non-periodic one near the origin (two different splits).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import scipy.fft
+from scipy.special import jv
+
+from viscontact.errors import ParameterError
+from viscontact.grid import Grid
+from viscontact.kernels import rectangle_influence
+from viscontact.layers import (Layer, anti_plane_compliance, fourier_compliance, in_plane_compliance,
+                               influence_coefficients, periodic_spectra)
+
+G, NU = 1.0e6, 0.3
+K = np.logspace(-3, 1.5, 19)  # k h from 1e-3 to 30 with h = 1
+
+
+def half_space(k: np.ndarray, g: float = G, nu: float = NU) -> dict[str, np.ndarray]:
+    return {"zz": (1 - nu) / (g * k), "ee": (1 - nu) / (g * k), "ez": 1j * (1 - 2 * nu) / (2 * g * k),
+            "ze": -1j * (1 - 2 * nu) / (2 * g * k)}
+
+
+@pytest.mark.parametrize("nu", [0.0, 0.3, 0.5])
+def test_rigid_bonded_closed_form(nu):
+    """Relative 1e-9 for k h >= 1e-2. (Incompressible, k h -> 0, A_zz ~ (k h)^3 comes out of a
+    cancellation among O(1/(k h)) coefficients: 2e-7 at k h = 1e-3; kernels sample k h >= 2 pi h / box.)"""
+    layer = Layer(1.0, G, nu)
+    kh = K[K >= 1e-2]
+    closed = ((1 - nu) / (G * kh) * ((3 - 4 * nu) * np.sinh(2 * kh) - 2 * kh)
+              / ((3 - 4 * nu) * np.cosh(2 * kh) + 2 * kh**2 + 5 - 12 * nu + 8 * nu**2))
+    np.testing.assert_allclose(in_plane_compliance(layer, kh)["zz"], closed, rtol=1e-9)
+
+
+@pytest.mark.parametrize("interface", ["bonded", "frictionless"])
+def test_identical_bonded_substrate_is_the_half_space(interface):
+    layer = Layer(1.0, G, NU, "elastic", "bonded", G, NU)
+    a = in_plane_compliance(layer, K)
+    for key, ref in half_space(K).items():
+        np.testing.assert_allclose(a[key], ref, rtol=1e-12, atol=0, err_msg=key)
+    np.testing.assert_allclose(anti_plane_compliance(layer, K), 1 / (G * K), rtol=1e-12)
+    # thick layers on anything tend to the half-space of the layer material
+    far = np.array([40.0, 200.0])
+    thick = in_plane_compliance(Layer(1.0, G, NU, "elastic", interface, 5 * G, 0.1), far)
+    for key, ref in half_space(far).items():
+        np.testing.assert_allclose(thick[key], ref, rtol=1e-12, err_msg=key)
+
+
+def test_thin_limits_rigid_bonded():
+    """k h = 1e-4: A_zz -> h/M, A_ee, A_pp -> h/G, couplings -> 0 (relative corrections O((k h)^2))."""
+    h = 2e-3
+    layer = Layer(h, G, NU)
+    k = np.array([1e-4 / h])
+    a = in_plane_compliance(layer, k)
+    assert a["zz"][0] == pytest.approx(h / layer.oedometric_modulus, rel=1e-7)
+    assert a["ee"][0] == pytest.approx(h / G, rel=1e-7)
+    assert anti_plane_compliance(layer, k)[0] == pytest.approx(h / G, rel=1e-7)
+    assert abs(a["ez"][0]) < 1e-3 * h / G
+    # frictionless base: no lateral constraint along e at long wavelengths -> plane-strain uniaxial
+    assert in_plane_compliance(Layer(h, G, NU, interface="frictionless"), k)["zz"][0] == \
+        pytest.approx(h * (1 - NU) / (2 * G), rel=1e-6)
+
+
+def test_stiff_elastic_substrate_tends_to_rigid():
+    """(The substrate adds 1/(G_s k) ~ 1e-12 (k h)^-1 / G: below rtol 1e-6 for k h >= 1e-3.)"""
+    rigid = in_plane_compliance(Layer(1.0, G, NU), K)
+    stiff = in_plane_compliance(Layer(1.0, G, NU, "elastic", "bonded", 1e12 * G, 0.3), K)
+    for key in rigid:
+        np.testing.assert_allclose(stiff[key], rigid[key], rtol=1e-6, atol=1e-8 / G, err_msg=key)
+    np.testing.assert_allclose(anti_plane_compliance(Layer(1.0, G, NU, "elastic", "bonded", 1e12 * G, 0.3), K),
+                               anti_plane_compliance(Layer(1.0, G, NU), K), rtol=1e-8)
+
+
+def test_fourier_compliance_rotation():
+    """M_xx = c^2 A_ee + s^2 A_pp, M_xz = c A_ez: along x the in-plane values, along y the anti-plane."""
+    layer = Layer(1.0, G, NU, "elastic", "bonded", 3 * G, 0.2)
+    k = np.array([0.7])
+    a, app = in_plane_compliance(layer, k), anti_plane_compliance(layer, k)
+    along_x = fourier_compliance(layer, k, 0 * k)
+    along_y = fourier_compliance(layer, 0 * k, k)
+    assert along_x["xx"][0] == pytest.approx(a["ee"][0])
+    assert along_y["xx"][0] == pytest.approx(app[0])
+    assert along_x["xz"][0] == pytest.approx(a["ez"][0])
+    assert along_y["xz"][0] == 0
+
+
+def hankel_kernel(layer: Layer, name: str, offsets: list[tuple[int, int]], dx: float) -> np.ndarray:
+    """Independent cell kernels at integer offsets: closed-form half-space cell integrals + 6 x 6
+    Gauss-Legendre cell integral of the Hankel transform of (A - A_hs), order 0 for zz, order 1 for xz
+    (M_xz = i cos(theta_q) beta(k) -> -cos(theta) int beta J_1(k r) k dk / (2 pi)), the k-integral by
+    composite 8-point Gauss-Legendre on 1200 panels up to k h = 40."""
+    key, order = {"zz": ("zz", 0), "xz": ("ez", 1)}[name]
+    edges = np.linspace(0.0, 40.0 / layer.thickness, 1201)
+    nodes, weights = np.polynomial.legendre.leggauss(8)
+    width = np.diff(edges)[:, None]
+    k = (edges[:-1, None] + 0.5 * width * (nodes + 1)).ravel()
+    wk = (0.5 * width * weights).ravel()
+    diff = in_plane_compliance(layer, k)[key] - half_space(k)[key]
+    diff = diff.real if order == 0 else diff.imag
+    gl, gw = np.polynomial.legendre.leggauss(6)
+    gl, gw = 0.5 * dx * gl, 0.5 * dx * gw
+    out = []
+    for i, j in offsets:
+        ox, oy = i * dx, j * dx
+        hs = rectangle_influence(np.array(ox), np.array(oy), dx / 2, dx / 2, NU, (name,))[name] / G
+        x = (ox + gl)[:, None] * np.ones(6)[None, :]
+        y = np.ones(6)[:, None] * (oy + gl)[None, :]
+        r = np.hypot(x, y)[..., None]
+        value = np.sum(wk * diff * jv(order, k * r) * k, axis=-1) / (2 * np.pi)
+        if order == 1:
+            value = -value * x / r[..., 0]
+        out.append(float(hs) + float(np.sum(gw[:, None] * gw[None, :] * value)))
+    return np.array(out)
+
+
+@pytest.mark.parametrize("layer_kind", ["rigid", "elastic"])
+def test_kernels_against_hankel_quadrature(layer_kind):
+    grid = Grid(24, 1.2e-3)
+    dx = grid.spacing
+    layer = Layer(2 * dx, G, NU) if layer_kind == "rigid" else Layer(2 * dx, G, NU, "elastic", "bonded", 3 * G, 0.2)
+    kern = influence_coefficients(grid, layer, ("zz", "xz"))
+    offsets = [(0, 0), (1, 0), (2, 3), (6, 1), (11, 0)]
+    ref = hankel_kernel(layer, "zz", offsets, dx)
+    got = np.array([kern["zz"][j, i] for i, j in offsets])
+    np.testing.assert_allclose(got, ref, atol=3e-4 * ref[0])
+    offsets = [(1, 0), (2, 1), (5, 3)]
+    got = np.array([kern["xz"][j, i] for i, j in offsets])
+    np.testing.assert_allclose(got, hankel_kernel(layer, "xz", offsets, dx), atol=3e-4 * ref[0])
+    # the coupling kernels are odd in x and reciprocal: IC_xz(x) = IC_zx(-x)
+    assert np.allclose(kern["xz"][:, 1:], -kern["xz"][:, :0:-1], atol=1e-12 * ref[0])
+
+
+def test_periodic_matches_non_periodic_on_a_rigid_base():
+    n = 24
+    grid = Grid(n, 1.2e-3)
+    dx = grid.spacing
+    layer = Layer(1.5 * dx, G, NU)
+    dc = influence_coefficients(grid, layer)
+    per = periodic_spectra(Grid(3 * n, 3 * 1.2e-3), layer)
+    for name, spec in per.items():
+        real = scipy.fft.irfft2(spec, s=(3 * n, 3 * n))
+        scale = np.abs(dc[name]).max()
+        for i, j in ((0, 0), (1, 0), (0, 2), (3, 2), (-2, 1)):
+            assert real[j, i] == pytest.approx(dc[name][j, i], abs=1e-4 * scale), (name, i, j)
+    # the uniform mode of a rigid base: h/M
+    assert per["zz"][0, 0].real == pytest.approx(layer.thickness / layer.oedometric_modulus, rel=1e-9)
+
+
+def test_frictionless_tangential_refused():
+    with pytest.raises(ParameterError, match="layer.interface"):
+        influence_coefficients(Grid(8, 1e-3), Layer(1e-4, G, NU, interface="frictionless"))
+    # normal and coupling kernels exist, the periodic tangential ones too
+    influence_coefficients(Grid(8, 1e-3), Layer(3e-4, G, NU, interface="frictionless"), ("zz", "xz"))
+    periodic_spectra(Grid(8, 1e-3), Layer(3e-4, G, NU, interface="frictionless"), ("xx",))
+
+
+@pytest.mark.parametrize("kwargs, key", [({"thickness": 0.0}, "layer.thickness"),
+                                          ({"substrate": "soft"}, "layer.substrate"),
+                                          ({"interface": "glued"}, "layer.interface"),
+                                          ({"substrate": "elastic"}, "layer.substrate_shear_modulus"),
+                                          ({"substrate": "elastic", "substrate_shear_modulus": 1e6,
+                                            "substrate_poisson_ratio": 0.7}, "layer.substrate_poisson_ratio")])
+def test_bad_layers(kwargs, key):
+    base = {"thickness": 1e-4, "shear_modulus": G, "poisson_ratio": NU}
+    with pytest.raises(ParameterError, match=key):
+        Layer(**{**base, **kwargs})
+
+
+def test_too_thin_for_the_grid():
+    with pytest.raises(ParameterError, match="layer.thickness"):
+        influence_coefficients(Grid(64, 1e-3), Layer(1e-7, G, NU), ("zz",))
