@@ -62,8 +62,10 @@ Time response. With a rigid substrate and constant nu every A is 1/G times a fun
 so the kernels at unit modulus times the shear creep compliance J(t) are exact for a viscoelastic
 layer (one term per component, as for the half-space). On an elastic substrate M depends on G/G_s
 and does not factor: for each q the response to a traction step is a sum of exponentials whose rates
-move with |q| between the layer's and the substrate-influenced ones. See :func:`modal_design` for the
-data layout and its cost: one kernel (spectrum) and one history field set per mode and component.
+move with |q| (:func:`modulus_poles`: A(k; G) = alpha0/G + sum_j alpha_j/(G + shift_j(k)), so each
+pole j brings the creep function of G(t) + shift_j(k)). :func:`viscoelastic_periodic_modes` gives
+that data per wavevector and states the cost: one kernel (spectrum) and one history field per mode
+and component, M (1 + number of poles) modes for an M-term Prony series.
 """
 from __future__ import annotations
 
@@ -155,16 +157,18 @@ def _family_rows(kz: np.ndarray, s: float, shear_modulus: float, nu: float) -> d
     }
 
 
-def in_plane_compliance(layer: Layer, k: np.ndarray) -> dict[str, np.ndarray]:
-    """A_zz, A_ze, A_ez, A_ee [m/Pa] at wavenumbers k [1/m] (> 0); A_ze, A_ez are imaginary."""
-    k = np.asarray(k, dtype=float)
-    kh = k * layer.thickness
-    g, nu = 1.0, layer.poisson_ratio  # solved at G = 1, k = 1; scaled at the end
+def _in_plane_system(layer: Layer, kh: np.ndarray, modulus_ratio: float
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The interface-condition system at G = 1, k = 1 (module docstring) for k h = ``kh`` and
+    G_s/G = ``modulus_ratio`` (inf: substrate displacement rows vanish). Returns the matrix
+    (..., N, N), the right-hand sides (..., N, 2) for p = 1 and t_x = i (tau = 1), and the output
+    rows (..., 2, N) giving (u_z, u_x / i) at the surface."""
+    nu = layer.poisson_ratio
     zero = np.zeros_like(kh)
-    top_near = _family_rows(zero, 1.0, g, nu)      # layer family from z0 = 0, at z = 0
-    top_far = _family_rows(-kh, -1.0, g, nu)       # layer family from z0 = h, at z = 0
-    bot_near = _family_rows(zero, -1.0, g, nu)     # layer family from z0 = h, at z = h
-    bot_far = _family_rows(kh, 1.0, g, nu)         # layer family from z0 = 0, at z = h
+    top_near = _family_rows(zero, 1.0, 1.0, nu)      # layer family from z0 = 0, at z = 0
+    top_far = _family_rows(-kh, -1.0, 1.0, nu)       # layer family from z0 = h, at z = 0
+    bot_near = _family_rows(zero, -1.0, 1.0, nu)     # layer family from z0 = h, at z = h
+    bot_far = _family_rows(kh, 1.0, 1.0, nu)         # layer family from z0 = 0, at z = h
     elastic = layer.substrate == "elastic"
     size = 6 if elastic else 4
     mat = np.zeros(kh.shape + (size, size))
@@ -172,8 +176,7 @@ def in_plane_compliance(layer: Layer, k: np.ndarray) -> dict[str, np.ndarray]:
     mat[..., 1, 0:2], mat[..., 1, 2:4] = top_near["sxz"], top_far["sxz"]     # sigma_xz/(ik) = -tau
     layer_at_h = {key: np.concatenate([bot_far[key], bot_near[key]], axis=-1) for key in bot_far}
     if elastic:
-        sub = _family_rows(zero, 1.0, layer.substrate_shear_modulus / layer.shear_modulus,
-                           layer.substrate_poisson_ratio)
+        sub = _family_rows(zero, 1.0, modulus_ratio, layer.substrate_poisson_ratio)
         keys = ("uz", "ux", "szz", "sxz") if layer.interface == "bonded" else ("uz", "szz")
         row = 2
         for key in keys:
@@ -189,12 +192,23 @@ def in_plane_compliance(layer: Layer, k: np.ndarray) -> dict[str, np.ndarray]:
     rhs = np.zeros(kh.shape + (size, 2))
     rhs[..., 0, 0] = 1.0   # p = 1
     rhs[..., 1, 1] = -1.0  # t_x = i tau, tau = 1: sigma_xz/(ik) = -1
-    coef = np.linalg.solve(mat, rhs)[..., 0:4, :]
-    uz = np.einsum("...j,...jc->...c", np.concatenate([top_near["uz"], top_far["uz"]], axis=-1), coef)
-    ux = np.einsum("...j,...jc->...c", np.concatenate([top_near["ux"], top_far["ux"]], axis=-1), coef)
+    out = np.zeros(kh.shape + (2, size))
+    out[..., 0, 0:4] = np.concatenate([top_near["uz"], top_far["uz"]], axis=-1)
+    out[..., 1, 0:4] = np.concatenate([top_near["ux"], top_far["ux"]], axis=-1)
+    return mat, rhs, out
+
+
+#: (output row, right-hand side, factor) of each in-plane compliance in units 1/(G k)
+_IN_PLANE = {"zz": (0, 0, 1.0), "ze": (0, 1, -1j), "ez": (1, 0, 1j), "ee": (1, 1, 1.0)}
+
+
+def in_plane_compliance(layer: Layer, k: np.ndarray) -> dict[str, np.ndarray]:
+    """A_zz, A_ze, A_ez, A_ee [m/Pa] at wavenumbers k [1/m] (> 0); A_ze, A_ez are imaginary."""
+    k = np.asarray(k, dtype=float)
+    mat, rhs, out = _in_plane_system(layer, k * layer.thickness, layer.substrate_shear_modulus / layer.shear_modulus)
+    response = out @ np.linalg.solve(mat, rhs)  # (..., 2 outputs, 2 loads)
     scale = 1.0 / (layer.shear_modulus * k)
-    return {"zz": uz[..., 0] * scale, "ze": -1j * uz[..., 1] * scale,
-            "ez": 1j * ux[..., 0] * scale, "ee": ux[..., 1] * scale}
+    return {key: factor * response[..., o, i] * scale for key, (o, i, factor) in _IN_PLANE.items()}
 
 
 def anti_plane_compliance(layer: Layer, k: np.ndarray) -> np.ndarray:
@@ -446,4 +460,167 @@ def periodic_spectra(grid: Grid, layer: Layer, components: tuple[str, ...] = COM
         if name in ("xz", "zx"):
             spec = 1j * spec.imag  # an odd real kernel has an imaginary spectrum
         out[name] = spec
+    return out
+
+
+# --- viscoelastic layer on an elastic substrate: modes per wavevector -----------------------------
+
+@dataclass(frozen=True)
+class ModulusPoles:
+    """Partial fractions of a compliance A(k; G) in the layer's shear modulus G (nu, substrate fixed):
+
+        A(k; G) = alpha0(k) / G + sum_j alpha_j(k) / (G + shift_j(k))                     [m/Pa]
+
+    ``alpha0`` (nk,) [m], ``alpha`` (nk, J) [m], ``shift`` (nk, J) [Pa] (> 0). J = 0 on a rigid
+    substrate (A proportional to 1/G), 2 for the in-plane and 1 for the anti-plane compliance on a
+    bonded elastic substrate, 1 in-plane and 0 anti-plane on a frictionless one.
+    """
+
+    alpha0: np.ndarray
+    alpha: np.ndarray
+    shift: np.ndarray
+
+
+def _pole_count(layer: Layer, key: str) -> int:
+    if layer.substrate == "rigid":
+        return 0
+    if key == "pp":
+        return 1 if layer.interface == "bonded" else 0
+    return 2 if layer.interface == "bonded" else 1
+
+
+def modulus_poles(layer: Layer, k: np.ndarray, key: str) -> ModulusPoles:
+    """Poles and residues in G of A_key(k; G), key in zz, ze, ez, ee (in-plane; the coupling ones as
+    their imaginary parts) or pp (anti-plane), at wavenumbers k [1/m].
+
+    In-plane: only the substrate's displacement rows of the interface system depend on G, linearly
+    in rho = G/G_s, so the system is S0 + rho S1 and G k A = o^T (S0 + rho S1)^-1 b. Its poles are
+    the finite generalised eigenvalues rho_j of (S0, -S1) (scipy.linalg.eig, left and right
+    eigenvectors w, v), with residues c_j = (o.v)(w^H b)/(w^H S1 v); hence
+    A = A(rho -> 0) + sum_j c_j/(k rho_j) / (G - rho_j G_s) (:class:`ModulusPoles`, shift = -rho_j G_s).
+    Anti-plane (bonded): A = (1 + r T)/((T + r) G k), r = G_s/G, T = tanh(kh), has the single pole
+    G = -G_s/T: A = T/(G k) + (1 - T^2)/(T k (G + G_s/T)).
+    """
+    import scipy.linalg
+
+    k = np.asarray(k, dtype=float)
+    count = _pole_count(layer, key)
+    if key == "pp":
+        t = np.tanh(k * layer.thickness)
+        if count == 0:
+            return ModulusPoles(layer.shear_modulus * anti_plane_compliance(layer, k), np.zeros(k.shape + (0,)),
+                                np.zeros(k.shape + (0,)))
+        gs = layer.substrate_shear_modulus
+        return ModulusPoles(t / k, ((1 - t**2) / (t * k))[..., None], (gs / t)[..., None])
+    o_row, i_col, factor = _IN_PLANE[key]
+    sign = (factor / 1j).real if key in ("ze", "ez") else 1.0
+    kh = k * layer.thickness
+    mat0, rhs, out = _in_plane_system(layer, kh, np.inf)
+    alpha0 = sign * (out @ np.linalg.solve(mat0, rhs))[..., o_row, i_col] / k
+    if count == 0:
+        return ModulusPoles(alpha0, np.zeros(k.shape + (0,)), np.zeros(k.shape + (0,)))
+    mat1 = _in_plane_system(layer, kh, 1.0)[0] - mat0
+    alpha = np.zeros(k.shape + (count,))
+    shift = np.full(k.shape + (count,), np.inf)
+    for idx in np.ndindex(k.shape):
+        rho, left, right = scipy.linalg.eig(mat0[idx], -mat1[idx], left=True, right=True)
+        finite = np.flatnonzero(np.isfinite(rho))
+        if finite.size != count or np.any(np.abs(rho[finite].imag) > 1e-9 * np.abs(rho[finite])):
+            raise ValueError(f"layer compliance: expected {count} real poles in G at k = {k[idx]:.4g} 1/m")
+        for j, e in enumerate(finite[np.argsort(rho[finite].real)]):
+            v, w = right[:, e], left[:, e]
+            c = (out[idx][o_row] @ v) * (w.conj() @ rhs[idx][:, i_col]) / (w.conj() @ mat1[idx] @ v)
+            r = rho[e].real
+            alpha[idx + (j,)] = sign * c.real / (k[idx] * r)
+            shift[idx + (j,)] = -r * layer.substrate_shear_modulus
+    return ModulusPoles(alpha0, alpha, shift)
+
+
+@dataclass(frozen=True)
+class SpectralModes:
+    """Time response of one kernel component in Fourier space, per wavevector q:
+
+        u^(q, t) = [instantaneous(q) + sum_m amplitudes_m(q) (1 - exp(-t / retardation_times_m(q)))] t^(q)
+
+    for a traction step t^ at t = 0. ``instantaneous`` has the shape of the wavevector grid,
+    ``amplitudes`` and ``retardation_times`` one more leading axis (modes) [m per Pa of cell
+    traction; s]. Modes whose time does not depend on q (those of J(t)) have constant rows.
+    """
+
+    component: str
+    instantaneous: np.ndarray
+    amplitudes: np.ndarray
+    retardation_times: np.ndarray
+
+
+def viscoelastic_periodic_modes(grid: Grid, layer: Layer, shear, components: tuple[str, ...] = ("zz",)
+                                ) -> dict[str, SpectralModes]:
+    """Per-wavevector creep modes of a viscoelastic layer (Prony shear modulus ``shear``, a
+    :class:`~viscontact.materials.Material`; constant nu = ``layer.poisson_ratio``; ``layer``'s own
+    shear modulus is not used) on its substrate, on the periodic n x n grid (rfft2 layout, cell
+    footprint applied, q = 0 left at zero).
+
+    By the correspondence principle A(k; G) -> A(k; G~(s)) in the Carson domain, and with the
+    partial fractions of :func:`modulus_poles` the creep response at each q is
+
+        alpha0(k) J(t) + sum_j alpha_j(k) L_j(k, t),   L_j: Carson transform 1/(G~(s) + shift_j(k)),
+
+    J the shear creep compliance and L_j the creep function of the Prony modulus G(t) + shift_j(k)
+    (:func:`viscontact.poisson.prony_creep_spectra`): M retardation times shared by every q and
+    J_poles x M more whose times move with |q|.
+
+    Cost (the design): where the time response does not factor (elastic substrate) each mode is its
+    own kernel. Per traction component and kernel component the hereditary history holds one field
+    per mode, here a spectrum updated per q (H_m <- exp(-dt/lambda_m(q)) H_m + beta_m(q) dt^): with an
+    M-term Prony series that is M (1 + J_poles) fields per component (3M for zz on a bonded elastic
+    substrate, 3M + 3M c^2 / s^2 parts for xx), against M on a rigid substrate; each costs one
+    multiply-add per wavevector and step, no extra transforms. This is exact on a periodic domain. For
+    the non-periodic DC-FFT domain the same spectra on the 2n x 2n padded grid give the convolution
+    with period 2 x domain (error: the kernel's tail beyond one domain width), or each mode's times
+    must be frozen to fixed values to keep real-space kernels; neither is wired yet.
+    """
+    from .poisson import prony_creep_spectra
+
+    n, dx = grid.n, grid.spacing
+    qy = 2 * np.pi * scipy.fft.fftfreq(n, dx)[:, None]
+    qx = 2 * np.pi * scipy.fft.rfftfreq(n, dx)[None, :]
+    qx, qy = np.broadcast_arrays(qx, qy)
+    k = np.hypot(qx, qy)
+    nonzero = k > 0
+    uniq, inverse = np.unique(k[nonzero], return_inverse=True)
+    cx = (qx[nonzero] / k[nonzero])
+    footprint = (np.sinc(qx * dx / (2 * np.pi)) * np.sinc(qy * dx / (2 * np.pi)))[nonzero]
+    j_inst, j_amp, j_time = prony_creep_spectra(shear.g_inf, shear.g, shear.tau, np.array([0.0]))
+    # angular weights of the in-plane / anti-plane compliances in each component (k-scaled: A ~ 1/k)
+    parts = {"zz": [("zz", 1.0, 1.0)], "xz": [("ez", 1j, cx)], "zx": [("ze", 1j, cx)],
+             "xx": [("ee", 1.0, cx**2), ("pp", 1.0, 1 - cx**2)]}
+    out = {}
+    for name in components:
+        inst = np.zeros(inverse.size, dtype=complex)
+        alpha0_total = np.zeros(inverse.size, dtype=complex)
+        amps, times = [], []
+        for key, phase, weight in parts[name]:
+            poles = modulus_poles(layer, uniq, key)
+            factor = phase * weight * footprint
+            alpha0_total += factor * poles.alpha0[inverse]
+            for j in range(poles.shift.shape[1]):
+                l_inst, l_amp, l_time = prony_creep_spectra(shear.g_inf, shear.g, shear.tau, poles.shift[:, j])
+                coef = factor * poles.alpha[inverse, j]
+                inst = inst + coef * l_inst[inverse]
+                for m in range(l_amp.shape[1]):
+                    amps.append(coef * l_amp[inverse, m])
+                    times.append(l_time[inverse, m])
+        inst = inst + alpha0_total * j_inst[0]
+        for m in range(j_amp.shape[1]):
+            amps.append(alpha0_total * j_amp[0, m])
+            times.append(np.full(inverse.size, j_time[0, m]))
+
+        def place(values: np.ndarray, fill: float) -> np.ndarray:
+            full = np.full(k.shape, fill, dtype=complex if np.iscomplexobj(values) else float)
+            full[nonzero] = values
+            return full
+
+        out[name] = SpectralModes(name, place(inst, 0.0),
+                                  np.array([place(a, 0.0) for a in amps]).reshape((len(amps),) + k.shape),
+                                  np.array([place(t, 1.0) for t in times]).reshape((len(times),) + k.shape))
     return out

@@ -22,8 +22,8 @@ creep function L(t) of the modulus G(t) + 3K (Carson 1/(G~ + 3K)). Both are exac
 exponentials, J0 + sum_m J_m (1 - exp(-t/lambda_m)), with retardation rates 1/lambda_m the roots
 of G~(s) = -c (c = 0 for J, 3K for L). With G~(s) = G(0) - sum_i g_i r_i / (s + r_i) (r_i = 1/tau_i)
 this is a secular equation: G~ is increasing between its poles -r_i, so exactly one root lies in
-each interval (-r_{i+1}, -r_i) and one in (-r_1, 0). Each root is found by bracketed Brent
-iteration on the equation written relative to the nearer pole (as LAPACK's dlaed4 does), so the
+each interval (-r_{i+1}, -r_i) and one in (-r_1, 0). Each root is found by bisection on the
+equation written relative to the nearer pole (as LAPACK's dlaed4 does), so the
 rates keep full relative accuracy for spectra over many decades, where the roots of the expanded
 polynomial (coefficients spanning hundreds of orders of magnitude) do not. The amplitude of a root
 s_m = -rho_m is the residue: J_m = 1 / (rho_m G~'(s_m)), G~'(s) = sum_i g_i r_i / (s + r_i)^2.
@@ -44,7 +44,6 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
-from scipy.optimize import brentq
 
 from .compliance_terms import ComplianceTerm, linear_combination
 from .errors import ParameterError
@@ -56,36 +55,69 @@ from .materials import CreepSpectrum, Material
 FACTORS = ("normal", "tangential", "tangential_poisson", "coupling")
 
 
-def _secular_root(rates: np.ndarray, weights: np.ndarray, level: float, m: int) -> tuple[float, float]:
-    """Root of level - sum_i w_i / (s + r_i) = 0 in (-r_m, -r_{m-1}) (r_{-1} = 0); ``rates``
-    ascending. Returns (rho = -s [1/s], sum_i w_i / (s + r_i)^2 [Pa s])."""
+def _secular_roots(rates: np.ndarray, weights: np.ndarray, levels: np.ndarray, m: int,
+                   iterations: int = 110) -> tuple[np.ndarray, np.ndarray]:
+    """Roots of level - sum_i w_i / (s + r_i) = 0 in (-r_m, -r_{m-1}) (r_{-1} = 0) for each of
+    ``levels`` (S,); ``rates`` ascending. Returns rho = -s [1/s] and sum_i w_i / (s + r_i)^2 [Pa s],
+    each (S,).
+
+    The root is sought relative to the nearer end of its interval (decided by the sign at the
+    midpoint): near a pole k, s = -r_k + delta and h(delta) = delta f(s) = delta (level -
+    sum_{i != k} w_i / (r_i - r_k + delta)) - w_k, finite at delta = 0; near s = 0 (m = 0), f itself.
+    Bisection on that bracket (``iterations`` halvings, vectorised over the levels) keeps full
+    relative accuracy however close the root is to the pole.
+    """
+    levels = np.asarray(levels, dtype=float)
     lo_rate = rates[m - 1] if m > 0 else 0.0
     mid_rate = 0.5 * (rates[m] + lo_rate)
-    f_mid = level - np.sum(weights / (rates - mid_rate))
-    if f_mid > 0.0 or m > 0:
-        # relative to a pole k: s = -r_k + delta; h(delta) = delta f(s) is finite at delta = 0
-        k = m if f_mid > 0.0 else m - 1
-        gaps = rates - rates[k]
-        others = np.arange(rates.size) != k
+    f_mid = levels - np.sum(weights / (rates - mid_rate))
+    direct = (f_mid <= 0.0) & (m == 0)                  # root in (-r_0/2, 0): no pole nearby
+    origin = np.where(f_mid > 0.0, m, max(m - 1, 0))     # the nearer pole otherwise
+    origin_rate = np.where(direct, 0.0, rates[origin])
+    gaps = rates[None, :] - origin_rate[:, None]          # r_i - r_k (S, n)
+    others = direct[:, None] | (np.arange(rates.size)[None, :] != origin[:, None])
+    w_origin = np.where(direct, 0.0, weights[origin])
 
-        def h(delta: float) -> float:
-            return delta * (level - np.sum(weights[others] / (gaps[others] + delta))) - weights[k]
+    def value(delta: np.ndarray) -> np.ndarray:
+        denom = np.where(others, gaps + delta[:, None], 1.0)
+        rest = levels - np.sum(np.where(others, weights[None, :] / denom, 0.0), axis=1)
+        return np.where(direct, -rest, delta * rest - w_origin)
 
-        delta_mid = rates[k] - mid_rate
-        if f_mid == 0.0:
-            delta = delta_mid
-        else:
-            delta = brentq(h, *sorted((0.0, delta_mid)), xtol=1e-300, rtol=4 * np.finfo(float).eps)
-        diffs = gaps + delta
-        rho = rates[k] - delta
-    else:
-        # root in (-r_0 / 2, 0): no pole nearby, solve for rho = -s directly
-        def f(rho_: float) -> float:
-            return level - np.sum(weights / (rates - rho_))
+    # bracket: value(neg) < 0 (delta = 0), value(pos) >= 0 (delta at the midpoint)
+    neg = np.zeros_like(levels)
+    pos = origin_rate - mid_rate
+    for _ in range(iterations):
+        mid = 0.5 * (neg + pos)
+        below = value(mid) < 0.0
+        neg = np.where(below, mid, neg)
+        pos = np.where(below, pos, mid)
+    delta = 0.5 * (neg + pos)
+    diffs = gaps + delta[:, None]
+    return origin_rate - delta, np.sum(weights[None, :] / diffs**2, axis=1)
 
-        rho = brentq(f, 0.0, mid_rate, xtol=1e-300, rtol=4 * np.finfo(float).eps)
-        diffs = rates - rho
-    return float(rho), float(np.sum(weights / diffs**2))
+
+def prony_creep_spectra(g_inf: float, g: np.ndarray | tuple[float, ...], tau: np.ndarray | tuple[float, ...],
+                        shifts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`prony_creep_spectrum` for many ``shifts`` (S,) [Pa] at once: returns the instantaneous
+    values (S,) [1/Pa], amplitudes (S, M) [1/Pa] and retardation times (S, M) [s], ascending in
+    time along each row (M distinct relaxation times; an infinite shift gives zeros, times 1 s)."""
+    shifts = np.asarray(shifts, dtype=float)
+    g = np.asarray(g, dtype=float)
+    rates, inverse = np.unique(1.0 / np.asarray(tau, dtype=float), return_inverse=True)
+    moduli = np.zeros(rates.size)
+    np.add.at(moduli, inverse, g)
+    finite = np.isfinite(shifts)
+    levels = g_inf + float(moduli.sum()) + np.where(finite, shifts, 0.0)
+    weights = moduli * rates
+    rho = np.empty((shifts.size, rates.size))
+    amps = np.empty_like(rho)
+    for m in range(rates.size):
+        rho[:, m], slope = _secular_roots(rates, weights, levels, m)
+        amps[:, m] = 1.0 / (rho[:, m] * slope)
+    times = 1.0 / rho[:, ::-1]  # rates descending in m -> times ascending
+    amps = amps[:, ::-1]
+    return (np.where(finite, 1.0 / levels, 0.0), np.where(finite[:, None], amps, 0.0),
+            np.where(finite[:, None], times, 1.0))
 
 
 def prony_creep_spectrum(g_inf: float, g: np.ndarray | tuple[float, ...], tau: np.ndarray | tuple[float, ...],
@@ -99,21 +131,8 @@ def prony_creep_spectrum(g_inf: float, g: np.ndarray | tuple[float, ...], tau: n
     """
     if np.isinf(shift):
         return CreepSpectrum(0.0, np.zeros(0), np.zeros(0))
-    g = np.asarray(g, dtype=float)
-    tau = np.asarray(tau, dtype=float)
-    rates_all = 1.0 / tau
-    rates, inverse = np.unique(rates_all, return_inverse=True)
-    moduli = np.zeros(rates.size)
-    np.add.at(moduli, inverse, g)
-    level = g_inf + float(moduli.sum()) + shift
-    weights = moduli * rates
-    rho = np.empty(rates.size)
-    amps = np.empty(rates.size)
-    for m in range(rates.size):
-        rho[m], slope = _secular_root(rates, weights, level, m)
-        amps[m] = 1.0 / (rho[m] * slope)
-    order = np.argsort(1.0 / rho)
-    return CreepSpectrum(1.0 / level, amps[order], (1.0 / rho)[order])
+    inst, amps, times = prony_creep_spectra(g_inf, g, tau, np.array([shift]))
+    return CreepSpectrum(float(inst[0]), amps[0], times[0])
 
 
 @dataclass(frozen=True)
