@@ -101,6 +101,17 @@ class Layer:
         ``"bonded"`` or ``"frictionless"``.
     substrate_shear_modulus, substrate_poisson_ratio
         G_s [Pa] and nu_s (elastic substrate only).
+
+    Examples
+    --------
+    A 0.1 mm layer (G = 1 MPa, nu = 0.3) bonded to a rigid base: at long wavelengths the oedometric
+    compliance h/M, at short ones the half-space (1 - nu)/(G k):
+
+    >>> import numpy as np
+    >>> layer = Layer(1e-4, 1e6, 0.3)
+    >>> a = in_plane_compliance(layer, np.array([1.0, 1e6]))["zz"]
+    >>> round(float(a[0]) * layer.oedometric_modulus / layer.thickness, 6), round(float(a[1]) * 1e12 / 0.7, 6)
+    (1.0, 1.0)
     """
 
     thickness: float

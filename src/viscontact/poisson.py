@@ -146,6 +146,18 @@ class BulkElasticMaterial:
     bulk_modulus
         K [Pa], elastic; ``inf`` for an incompressible material. K >= 2 G(0)/3 so that
         nu(0) >= 0.
+
+    Examples
+    --------
+    The seed's material with K = 10 G(0): nu rises from 0.45 to 0.495 as G relaxes, and the normal
+    factor (1 - nu)/G gains the retardation time of G(t) + 3K beside that of J(t):
+
+    >>> from viscontact.materials import Material
+    >>> m = BulkElasticMaterial(Material.zener(1.93e6, 1.93e5, 0.01, 0.3), 19.3e6)
+    >>> round(m.poisson_ratio_instantaneous, 4), round(m.poisson_ratio_long_term, 4)
+    (0.4516, 0.495)
+    >>> m.factor("normal").retardation_times.round(5).tolist()
+    [0.00103, 0.01]
     """
 
     shear: Material
