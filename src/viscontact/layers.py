@@ -243,13 +243,41 @@ def fourier_compliance(layer: Layer, qx: np.ndarray, qy: np.ndarray,
     qx, qy = np.broadcast_arrays(np.asarray(qx, dtype=float), np.asarray(qy, dtype=float))
     k = np.hypot(qx, qy)
     uniq, inverse = np.unique(k, return_inverse=True)
-    inverse = inverse.reshape(k.shape)
-    a = {key: v[inverse] for key, v in in_plane_compliance(layer, uniq).items()}
-    c = qx / k
+    return _rotate(layer, qx / k, uniq, inverse.reshape(k.shape), components)
+
+
+def _rotate(layer: Layer, cosine: np.ndarray, k_unique: np.ndarray, inverse: np.ndarray,
+            components: tuple[str, ...]) -> dict[str, np.ndarray]:
+    """M from the in-plane and anti-plane compliances at the distinct wavenumbers ``k_unique``
+    (``inverse`` maps each wavevector to its |q|; ``cosine`` = q_x/|q|)."""
+    a = {key: v[inverse] for key, v in in_plane_compliance(layer, k_unique).items()}
+    c = cosine
     out = {"zz": a["zz"], "xz": c * a["ez"], "zx": c * a["ze"]}
     if "xx" in components:
-        out["xx"] = c**2 * a["ee"] + (1 - c**2) * anti_plane_compliance(layer, uniq)[inverse]
+        out["xx"] = c**2 * a["ee"] + (1 - c**2) * anti_plane_compliance(layer, k_unique)[inverse]
     return {name: out[name] for name in components}
+
+
+def _lattice_compliance(layer: Layer, size: int, spacing: float, components: tuple[str, ...]
+                        ) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
+    """M on the wavevectors of a size x size transform with cells ``spacing`` [m] (fft order,
+    q = 0 excluded: returned as 0), solving once per distinct i^2 + j^2 (no sort). Returns
+    (M by component, q_x, |q|)."""
+    idx = np.rint(scipy.fft.fftfreq(size) * size).astype(np.int64)
+    keys = idx[None, :] ** 2 + idx[:, None] ** 2
+    present = np.zeros(int(keys.max()) + 1, dtype=bool)
+    present[keys] = True
+    present[0] = False
+    lookup = np.cumsum(present) - 1
+    dq = 2 * np.pi / (size * spacing)
+    k_unique = dq * np.sqrt(np.flatnonzero(present).astype(float))
+    qx = np.broadcast_to(dq * idx[None, :].astype(float), keys.shape)
+    k = dq * np.sqrt(keys.astype(float))
+    k_safe = np.where(keys == 0, 1.0, k)
+    m = _rotate(layer, qx / k_safe, k_unique, np.where(keys == 0, 0, lookup[keys]), components)
+    for name in m:
+        m[name] = np.where(keys == 0, 0.0, m[name])
+    return m, qx, k
 
 
 def uniform_compliance(layer: Layer) -> dict[str, float]:
@@ -315,10 +343,12 @@ def _half_space_coefficients(shear_modulus: float, nu: float) -> dict[str, dict[
             "xz": {1: (1 - 2 * nu) / (2 * g)}, "zx": {1: -(1 - 2 * nu) / (2 * g)}}
 
 
-def _angular(order: int, qx: np.ndarray, k: np.ndarray) -> np.ndarray:
+def _angular(order: int, qx: np.ndarray, k: np.ndarray) -> np.ndarray | float:
     """1, i cos(theta_q), cos(2 theta_q) for order 0, 1, 2."""
+    if order == 0:
+        return 1.0
     c = qx / k
-    return {0: np.ones_like(c), 1: 1j * c, 2: 2 * c**2 - 1}[order]
+    return 1j * c if order == 1 else 2 * c**2 - 1
 
 
 # --- kernels ----------------------------------------------------------------------------------------
@@ -334,11 +364,13 @@ def _refinement(grid: Grid, layer: Layer, big_h: float) -> int:
 
 
 def _half_space_near(ox: np.ndarray, oy: np.ndarray, cell: float, layer: Layer, big_h: float,
-                     components: tuple[str, ...], coefficients: dict[str, dict[int, float]] | None = None
-                     ) -> dict[str, np.ndarray]:
+                     components: tuple[str, ...], coefficients: dict[str, dict[int, float]] | None = None,
+                     points: int = 6) -> dict[str, np.ndarray]:
     """Cell-integrated real-space part [m/Pa] at offsets (ox, oy) [m]: the half-space kernels of the
     layer material plus, for each angular order, (c_low - c_high) times the kernels smoothed to
-    depth H (module docstring). ``coefficients`` None: c_low = 0 (the periodic near part)."""
+    depth H (module docstring). ``coefficients`` None: c_low = 0 (the periodic near part).
+    ``points``: Gauss-Legendre points per direction in each cell (6: the smoothed kernels vary on
+    the scale H >= 2 dx; 2 is plenty for far periodic images)."""
     high = _half_space_coefficients(layer.shear_modulus, layer.poisson_ratio)
     hs = rectangle_influence(ox, oy, cell / 2, cell / 2, layer.poisson_ratio, components)
     out = {}
@@ -347,7 +379,8 @@ def _half_space_near(ox: np.ndarray, oy: np.ndarray, cell: float, layer: Layer, 
         for order, c_high in high[name].items():
             delta = (coefficients[name][order] if coefficients is not None else 0.0) - c_high
             if delta != 0.0:
-                kern = kern + delta * _cell_average(lambda x, y, o=order: _depth_smoothed(x, y, big_h, o), ox, oy, cell)
+                kern = kern + delta * _cell_average(lambda x, y, o=order: _depth_smoothed(x, y, big_h, o), ox, oy, cell,
+                                                     points)
         out[name] = kern
     return out
 
@@ -370,12 +403,12 @@ def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: 
                              f"kernels (limit {max_fine}^2) with cells of {dx:.4g} m: thinner than the cells "
                              "needs refinement, thicker than the domain a larger box; change grid.n or half_width")
     ds = dx / refine
-    q = 2 * np.pi * scipy.fft.fftfreq(fine, ds)
-    qx, qy = np.broadcast_arrays(q[None, :], q[:, None])
-    k = np.hypot(qx, qy)
+    m, qx, k = _lattice_compliance(layer, fine, ds, components)
+    q1 = 2 * np.pi / (fine * ds)
     nonzero = k > 0
-    m = fourier_compliance(layer, qx[nonzero], qy[nonzero], components)
+    m = {name: v[nonzero] for name, v in m.items()}
     kk, cx = k[nonzero], qx[nonzero]
+    qy = np.broadcast_to(2 * np.pi * scipy.fft.fftfreq(fine, ds)[:, None], k.shape)
     footprint = np.sinc(qx * dx / (2 * np.pi)) * np.sinc(qy * dx / (2 * np.pi)) * dx**2
     decay = np.exp(-kk * big_h)
     high = _half_space_coefficients(layer.shear_modulus, layer.poisson_ratio)
@@ -401,7 +434,7 @@ def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: 
             ring1 = 0.25 * (full[0, 1] + full[0, -1] + full[1, 0] + full[-1, 0]).real
             ring2 = 0.25 * (full[0, 2] + full[0, -2] + full[2, 0] + full[-2, 0]).real
             spec[0, 0] = (2 * ring1 - ring2) * dx**2
-            tail = (ring2 - ring1) / q[1] * _LATTICE_ZETA3 * dx**2 / (2 * np.pi * (cells * dx) ** 3)
+            tail = (ring2 - ring1) / q1 * _LATTICE_ZETA3 * dx**2 / (2 * np.pi * (cells * dx) ** 3)
         folded = spec.reshape(refine, cells, refine, cells).sum(axis=(0, 2))
         out[name] = scipy.fft.ifft2(folded).real / dx**2 + tail
     return out
@@ -457,7 +490,8 @@ def periodic_spectra(grid: Grid, layer: Layer, components: tuple[str, ...] = COM
     near = {name: np.zeros((n, n)) for name in components}
     for mx in range(-images, images + 1):
         for my in range(-images, images + 1):
-            part = _half_space_near(ox - mx * period, oy - my * period, dx, layer, big_h, components)
+            part = _half_space_near(ox - mx * period, oy - my * period, dx, layer, big_h, components,
+                                    points=6 if mx == my == 0 else 2)
             for name in components:
                 near[name] += part[name]
     far = _fourier_part(grid, layer, components, big_h, n, None, max_fine)
