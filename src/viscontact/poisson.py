@@ -29,14 +29,14 @@ polynomial (coefficients spanning hundreds of orders of magnitude) do not. The a
 s_m = -rho_m is the residue: J_m = 1 / (rho_m G~'(s_m)), G~'(s) = sum_i g_i r_i / (s + r_i)^2.
 
 With the shape kernels at unit modulus taken at nu = 0 (``S``) and their nu-derivative (``D``),
-the half-space displacements are (cf. :func:`half_space_terms`)
+the half-space displacements are
 
     u_z = S_zz [(1-nu)/G] p + S_zx [(1-2nu)/G] q_x
     u_x = S_xx [1/G] q_x + D_xx [nu/G] q_x + S_xz [(1-2nu)/G] p
 
-where the bracketed operators act as hereditary convolutions with the spectra above. The zz term
-carries 2M retardation times for an M-term Prony series (those of J and those of L); the history
-of each term costs one internal field per retardation time (:mod:`viscontact.history`).
+where the bracketed operators act as hereditary convolutions with the spectra above;
+:func:`half_space_terms` regroups them by the two basis functions J and L (two histories per
+traction component, each with one internal field per retardation time, :mod:`viscontact.history`).
 """
 from __future__ import annotations
 
@@ -217,27 +217,32 @@ class BulkElasticMaterial:
 
 def half_space_terms(grid: Grid, material: BulkElasticMaterial,
                      components: tuple[str, ...] = ("zz", "xx", "xz", "zx")) -> list[ComplianceTerm]:
-    """Compliance terms of the homogeneous half-space with K elastic (module docstring).
+    """Compliance terms of the homogeneous half-space with K elastic (module docstring), grouped by
+    the two basis creep functions J ("shear") and L ("bulk") so that each traction component needs
+    two hereditary histories (2M internal fields for an M-term Prony series, twice the
+    constant-nu cost) and each displacement at most three kernels:
+
+        u_z = S_zz/2 (J (*) dp) + 3 S_zz/2 (L (*) dp) + 3 S_zx (L (*) dq)
+        u_x = (S_xx + D_xx/2) (J (*) dq) - 3 D_xx/2 (L (*) dq) + 3 S_xz (L (*) dp)
 
     The kernels of :mod:`viscontact.kernels` are affine in nu, IC(nu) = IC(0) + nu (IC(1) - IC(0)):
-    ``S = IC(0)`` and ``D = IC(1) - IC(0)`` are the shape parts. zz, xz, zx are proportional to
-    (1 - nu), (1 - 2 nu): one term each; xx gives two (1/G on S_xx, nu/G on D_xx). A component
-    whose response vanishes (coupling with K = inf) is left out.
+    ``S = IC(0)`` and ``D = IC(1) - IC(0)`` are the shape parts. Terms whose response vanishes
+    (every L term when K = inf) are left out.
     """
     at0 = influence_coefficients(grid, 0.0)
+    d_xx = influence_coefficients(grid, 1.0)["xx"] - at0["xx"] if "xx" in components else None
+    shear, bulk = material.shear_creep, material.bulk_shear_creep
+    parts = {
+        "zz": [(0.5 * at0["zz"], shear), (1.5 * at0["zz"], bulk)],
+        "xx": [(at0["xx"] + 0.5 * d_xx, shear), (-1.5 * d_xx, bulk)] if d_xx is not None else [],
+        "xz": [(3.0 * at0["xz"], bulk)],
+        "zx": [(3.0 * at0["zx"], bulk)],
+    }
     terms: list[ComplianceTerm] = []
     for comp in components:
-        disp, trac = comp[0], comp[1]
-        if comp == "zz":
-            parts = [("zz", at0["zz"], "normal")]
-        elif comp == "xx":
-            d_xx = influence_coefficients(grid, 1.0)["xx"] - at0["xx"]
-            parts = [("xx", at0["xx"], "tangential"), ("xx:poisson", d_xx, "tangential_poisson")]
-        else:
-            parts = [(comp, at0[comp], "coupling")]
-        for name, kernel, factor in parts:
-            response = material.factor(factor)
+        for kernel, response in parts[comp]:
             if response.instantaneous == 0.0 and not np.any(response.amplitudes):
                 continue
-            terms.append(ComplianceTerm(disp, trac, kernel, response, name))
+            label = "shear" if response is shear else "bulk"
+            terms.append(ComplianceTerm(comp[0], comp[1], kernel, response, f"{comp}:{label}"))
     return terms

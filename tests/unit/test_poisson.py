@@ -118,14 +118,17 @@ def test_incompressible_limit():
 
 
 def test_constant_nu_kernels_reproduced():
-    """Elastic shear, finite K: the terms sum to IC(nu)/G of viscontact.kernels."""
+    """Elastic shear, finite K: the terms sum to IC(nu)/G of viscontact.kernels (and, with a Prony
+    shear modulus, at every time to IC(nu(t)) of the factors: checked through the Carson test)."""
     g, k = 2.0e6, 5.0e6
     bm = BulkElasticMaterial(Material.elastic(g, 0.3), k)
     nu = bm.poisson_ratio_instantaneous
     grid = Grid(8, 1e-3)
     ref = influence_coefficients(grid, nu)
     total = {c: np.zeros_like(ref[c]) for c in ref}
-    for term in half_space_terms(grid, bm):
+    terms = half_space_terms(grid, bm)
+    assert sorted(t.name for t in terms) == ["xx:bulk", "xx:shear", "xz:bulk", "zx:bulk", "zz:bulk", "zz:shear"]
+    for term in terms:
         assert term.response.amplitudes.size == 0
         total[term.displacement + term.traction] += term.kernel * term.response.instantaneous
     for c in ref:
@@ -134,10 +137,29 @@ def test_constant_nu_kernels_reproduced():
 
 def test_incompressible_terms_drop_coupling():
     terms = half_space_terms(Grid(4, 1e-3), BulkElasticMaterial(SEED, np.inf))
-    assert sorted(t.name for t in terms) == ["xx", "xx:poisson", "zz"]
+    assert sorted(t.name for t in terms) == ["xx:shear", "zz:shear"]
 
 
 @pytest.mark.parametrize("bulk", [0.0, -1.0, 1.0e6, float("nan")])
 def test_bulk_modulus_too_small(bulk):
     with pytest.raises(ParameterError, match="material.bulk_modulus"):
         BulkElasticMaterial(SEED, bulk)
+
+
+def test_terms_regroup_the_factors():
+    """At any t the terms sum to S (1-nu)/G(t), S_xx/G + D_xx nu/G and S (1-2nu)/G as operators."""
+    bm = BulkElasticMaterial(SEED, 5e6)
+    grid = Grid(6, 1e-3)
+    s0 = influence_coefficients(grid, 0.0)
+    d_xx = influence_coefficients(grid, 1.0)["xx"] - s0["xx"]
+    terms = half_space_terms(grid, bm)
+    for t in (0.0, 3e-3, 0.05, 10.0):
+        value = {c: 0.0 for c in ("zz", "xx", "xz", "zx")}
+        for term in terms:
+            value[term.displacement + term.traction] = (value[term.displacement + term.traction]
+                                                        + term.kernel * float(creep_function(term.response, t)))
+        f = {name: float(creep_function(bm.factor(name), t)) for name in FACTORS}
+        expected = {"zz": s0["zz"] * f["normal"], "xx": s0["xx"] * f["tangential"] + d_xx * f["tangential_poisson"],
+                    "xz": s0["xz"] * f["coupling"], "zx": s0["zx"] * f["coupling"]}
+        for c in expected:
+            np.testing.assert_allclose(value[c], expected[c], rtol=1e-12, atol=1e-14 * np.abs(expected[c]).max())
