@@ -73,10 +73,14 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.fft
+import scipy.linalg
 
+from .compliance_terms import ComplianceTerm
 from .errors import ParameterError
 from .grid import Grid
 from .kernels import rectangle_influence
+from .materials import Material
+from .poisson import prony_creep_spectra, prony_creep_spectrum
 
 SUBSTRATES = ("rigid", "elastic")
 INTERFACES = ("bonded", "frictionless")
@@ -508,6 +512,25 @@ def periodic_spectra(grid: Grid, layer: Layer, components: tuple[str, ...] = COM
     return out
 
 
+# --- viscoelastic layer on a rigid base: one term per component ---------------------------------
+
+def rigid_base_terms(grid: Grid, layer: Layer, shear: Material, components: tuple[str, ...] = ("zz", "xx", "xz", "zx")
+                     ) -> list[ComplianceTerm]:
+    """Compliance terms (:class:`~viscontact.compliance_terms.ComplianceTerm`) of a viscoelastic
+    layer (Prony shear modulus ``shear``, a :class:`~viscontact.materials.Material`, constant
+    nu = ``layer.poisson_ratio``) on a rigid base: every compliance is 1/G times a function of
+    (k h, nu), so each component is its unit-modulus kernel (:func:`influence_coefficients` times G)
+    times the shear creep compliance J(t): one history per traction component, as for the
+    half-space. (On an elastic substrate the response does not factor: see
+    :func:`viscoelastic_periodic_modes`.)"""
+    if layer.substrate != "rigid":
+        raise ParameterError("layer.substrate", "kernel x J(t) terms exist for a rigid substrate only; an elastic "
+                             "substrate needs one term per relaxation mode (viscoelastic_periodic_modes)")
+    kernels = influence_coefficients(grid, layer, components)
+    creep = prony_creep_spectrum(shear.g_inf, shear.g, shear.tau)
+    return [ComplianceTerm(c[0], c[1], kernels[c] * layer.shear_modulus, creep, c) for c in components]
+
+
 # --- viscoelastic layer on an elastic substrate: modes per wavevector -----------------------------
 
 @dataclass(frozen=True)
@@ -546,8 +569,6 @@ def modulus_poles(layer: Layer, k: np.ndarray, key: str) -> ModulusPoles:
     Anti-plane (bonded): A = (1 + r T)/((T + r) G k), r = G_s/G, T = tanh(kh), has the single pole
     G = -G_s/T: A = T/(G k) + (1 - T^2)/(T k (G + G_s/T)).
     """
-    import scipy.linalg
-
     k = np.asarray(k, dtype=float)
     count = _pole_count(layer, key)
     if key == "pp":
@@ -598,7 +619,7 @@ class SpectralModes:
     retardation_times: np.ndarray
 
 
-def viscoelastic_periodic_modes(grid: Grid, layer: Layer, shear, components: tuple[str, ...] = ("zz",)
+def viscoelastic_periodic_modes(grid: Grid, layer: Layer, shear: Material, components: tuple[str, ...] = ("zz",)
                                 ) -> dict[str, SpectralModes]:
     """Per-wavevector creep modes of a viscoelastic layer (Prony shear modulus ``shear``, a
     :class:`~viscontact.materials.Material`; constant nu = ``layer.poisson_ratio``; ``layer``'s own
@@ -624,8 +645,6 @@ def viscoelastic_periodic_modes(grid: Grid, layer: Layer, shear, components: tup
     with period 2 x domain (error: the kernel's tail beyond one domain width), or each mode's times
     must be frozen to fixed values to keep real-space kernels; neither is wired yet.
     """
-    from .poisson import prony_creep_spectra
-
     n, dx = grid.n, grid.spacing
     qy = 2 * np.pi * scipy.fft.fftfreq(n, dx)[:, None]
     qx = 2 * np.pi * scipy.fft.rfftfreq(n, dx)[None, :]

@@ -252,3 +252,22 @@ def periodic_spectra_plain(grid: Grid, layer: Layer, components) -> dict[str, np
         full[nonzero] = m[name] * foot
         out[name] = full
     return out
+
+
+def test_rigid_base_terms_factor_the_creep_compliance():
+    """Unit-modulus kernels do not depend on the G the layer was given; the response is J(t)."""
+    from dataclasses import replace
+
+    from viscontact.layers import rigid_base_terms
+    from viscontact.materials import Material
+
+    shear = Material.zener(2e6, 2e5, 0.01, NU)
+    grid = Grid(8, 1e-3)
+    layer = Layer(2e-4, G, NU)
+    terms = rigid_base_terms(grid, layer, shear, ("zz", "xz"))
+    other = rigid_base_terms(grid, replace(layer, shear_modulus=7 * G), shear, ("zz", "xz"))
+    for a, b in zip(terms, other):
+        np.testing.assert_allclose(a.kernel, b.kernel, rtol=1e-9, atol=1e-12 * np.abs(a.kernel).max())
+        np.testing.assert_allclose(a.response.retardation_times, shear.creep.retardation_times, rtol=1e-10)
+    with pytest.raises(ParameterError, match="layer.substrate"):
+        rigid_base_terms(grid, Layer(2e-4, G, NU, "elastic", "bonded", G, NU), shear)
