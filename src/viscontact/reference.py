@@ -82,11 +82,25 @@ def lee_radok_creep(load: float, sphere_radius: float, material, t: np.ndarray |
 
     with J(t) the shear creep compliance [1/Pa] of ``material`` (:class:`viscontact.materials.Material`)
     and R = ``sphere_radius`` [m]. At t = 0 this is Hertz with G(0); as t -> inf, Hertz with G(inf).
+    With a time-dependent Poisson ratio (:class:`viscontact.poisson.BulkElasticMaterial`) (1 - nu) J(t)
+    is the creep function of the operator (1 - nu)/G (:func:`normal_creep`).
     """
     t = _times(t)
-    nu = material.poisson_ratio
-    a = (3.0 * load * sphere_radius * (1.0 - nu) * material.creep_compliance(t) / 8.0) ** (1.0 / 3.0)
+    a = (3.0 * load * sphere_radius * normal_creep(material, t) / 8.0) ** (1.0 / 3.0)
     return ViscoelasticHertz(t, a, a**2 / sphere_radius, np.full(t.shape, float(load)))
+
+
+def normal_creep(material, t: np.ndarray | float) -> np.ndarray:
+    """Creep function [1/Pa] of the normal compliance operator (1 - nu)/G at times t [s]:
+    (1 - nu) J(t) for a constant Poisson ratio (:class:`viscontact.materials.Material`), the
+    computed spectrum of :meth:`viscontact.poisson.BulkElasticMaterial.factor` ("normal") when the
+    bulk modulus is elastic and nu(t) varies. With it, Lee & Radok's creep under a held load reads
+    a(t)^3 = 3 W R normal_creep(t) / 8 for both."""
+    if hasattr(material, "bulk_modulus"):
+        from .compliance_terms import creep_function
+
+        return creep_function(material.factor("normal"), t)
+    return (1.0 - material.poisson_ratio) * material.creep_compliance(t)
 
 
 def lee_radok_relaxation(approach: float, sphere_radius: float, material, t: np.ndarray | float) -> ViscoelasticHertz:

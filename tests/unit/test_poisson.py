@@ -163,3 +163,34 @@ def test_terms_regroup_the_factors():
                     "xz": s0["xz"] * f["coupling"], "zx": s0["zx"] * f["coupling"]}
         for c in expected:
             np.testing.assert_allclose(value[c], expected[c], rtol=1e-12, atol=1e-14 * np.abs(expected[c]).max())
+
+
+def test_kernels_at_zero_and_infinity():
+    """Issue 12: at t = 0 the terms are the half-space of (G(0), nu(0)), as t -> inf of (G(inf), nu(inf))."""
+    bm = BulkElasticMaterial(SEED, 5e6)
+    grid = Grid(6, 1e-3)
+    terms = half_space_terms(grid, bm)
+    for t, g, nu in ((0.0, SEED.shear_modulus_instantaneous, bm.poisson_ratio_instantaneous),
+                     (1e6, SEED.shear_modulus_long_term, bm.poisson_ratio_long_term)):
+        ref = influence_coefficients(grid, nu)
+        total = {c: np.zeros_like(ref[c]) for c in ref}
+        for term in terms:
+            total[term.displacement + term.traction] += term.kernel * float(creep_function(term.response, t))
+        for c in ref:
+            np.testing.assert_allclose(total[c], ref[c] / g, rtol=1e-10, atol=1e-12 * np.abs(ref[c]).max() / g)
+
+
+def test_lee_radok_with_bulk_modulus():
+    """Lee-Radok creep radius: a(t)^3 proportional to the normal creep function; t = 0 and inf give
+    Hertz with (G(0), nu(0)) and (G(inf), nu(inf)); an elastic shear modulus gives Hertz with its nu."""
+    from viscontact.reference import hertz_from_load, lee_radok_creep
+
+    bm = BulkElasticMaterial(SEED, 5e6)
+    creep = lee_radok_creep(0.15, 0.01, bm, np.array([0.0, 1e6]))
+    for a, g, nu in zip(creep.radius, (SEED.shear_modulus_instantaneous, SEED.shear_modulus_long_term),
+                        (bm.poisson_ratio_instantaneous, bm.poisson_ratio_long_term)):
+        assert a == pytest.approx(hertz_from_load(0.15, 0.01, g, nu).radius, rel=1e-10)
+    elastic = BulkElasticMaterial(Material.elastic(2e6, 0.3), 5e6)
+    nu = elastic.poisson_ratio_instantaneous
+    assert float(lee_radok_creep(0.15, 0.01, elastic, 3.0).radius) == pytest.approx(
+        float(lee_radok_creep(0.15, 0.01, Material.elastic(2e6, nu), 3.0).radius), rel=1e-12)
