@@ -86,3 +86,37 @@ def linear_combination(parts: Iterable[tuple[float, CreepSpectrum]]) -> CreepSpe
     np.add.at(summed, inverse, a)
     keep = summed != 0.0
     return CreepSpectrum(float(inst), summed[keep], uniq[keep])
+
+
+def history_key(term: ComplianceTerm) -> str:
+    """Key of the hereditary history a term reads: its traction component and response label
+    (``"zz:bulk"`` and ``"xz:bulk"`` both read p through L(t): ``"z:bulk"``; an unlabelled term
+    ``"zz"``: ``"z:creep"``)."""
+    label = term.name.split(":", 1)[1] if ":" in term.name else "creep"
+    return f"{term.traction}:{label}"
+
+
+def term_substrate(grid, terms: Iterable[ComplianceTerm], scheme, dt: float, *, workers: int = -1,
+                   direct: bool = False):
+    """A :class:`~viscontact.substrate.TermSubstrate` of compliance terms (DC-FFT kernels): each term
+    a kernel named after it, terms with the same :func:`history_key` sharing one history (they must
+    share the response), Fourier preconditioners for the self (zz, xx) kernels. For the solvers'
+    ``substrate=`` argument (e.g. :func:`viscontact.transient.steps`)."""
+    import scipy.fft
+
+    from .convolution import Convolver, FourierPreconditioner
+    from .substrate import Term, TermSubstrate
+
+    terms = list(terms)
+    responses: dict[str, CreepSpectrum] = {}
+    for term in terms:
+        key = history_key(term)
+        if key in responses and responses[key] is not term.response:
+            raise ValueError(f"terms reading history {key!r} have different responses")
+        responses[key] = term.response
+    kernels = {t.name: t.kernel for t in terms}
+    conv = Convolver.from_kernels(grid.n, kernels, workers, xp=np, fft=scipy.fft)
+    precond = {t.name: FourierPreconditioner.for_kernel(t.kernel, 1.0, workers, fft=scipy.fft)
+               for t in terms if t.displacement == t.traction}
+    core_terms = [Term(t.displacement, t.traction, t.name, history_key(t)) for t in terms]
+    return TermSubstrate(grid, core_terms, responses, conv, precond, scheme, dt, direct)

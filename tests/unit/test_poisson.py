@@ -194,3 +194,22 @@ def test_lee_radok_with_bulk_modulus():
     nu = elastic.poisson_ratio_instantaneous
     assert float(lee_radok_creep(0.15, 0.01, elastic, 3.0).radius) == pytest.approx(
         float(lee_radok_creep(0.15, 0.01, Material.elastic(2e6, nu), 3.0).radius), rel=1e-12)
+
+
+def test_term_substrate_of_an_elastic_shear_modulus_is_the_half_space():
+    """The core seam: the nu(t) terms with an elastic shear modulus give the HalfSpace substrate's
+    operators with nu = nu(0) (normal and tangential self operators, coupling)."""
+    from viscontact.compliance_terms import term_substrate
+    from viscontact.substrate import HalfSpace
+
+    g, k = 2.0e6, 5.0e6
+    bm = BulkElasticMaterial(Material.elastic(g, 0.3), k)
+    grid = Grid(8, 1e-3)
+    ours = term_substrate(grid, half_space_terms(grid, bm), "linear", 1e-3)
+    ref = HalfSpace(grid, Material.elastic(g, bm.poisson_ratio_instantaneous), ("zz", "xx", "xz", "zx"), "linear", 1e-3)
+    field = np.random.default_rng(1).random((8, 8))
+    for comp in ("z", "x"):
+        np.testing.assert_allclose(ours.elastic_operator(comp, True).apply(field),
+                                   ref.elastic_operator(comp, True).apply(field), rtol=1e-10)
+    np.testing.assert_allclose(ours.cross_displacement("z", "x", field, True), ref.cross_displacement("z", "x", field, True),
+                               rtol=1e-10)
