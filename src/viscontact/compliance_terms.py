@@ -48,15 +48,6 @@ class ComplianceTerm:
     name: str = ""
 
 
-def creep_function(spectrum: CreepSpectrum, t: np.ndarray | float) -> np.ndarray:
-    """phi(t) = J0 + sum_m J_m (1 - exp(-t/lambda_m)) [1/Pa] at times t [s]."""
-    t = np.asarray(t, dtype=float)
-    out = np.full(t.shape, float(spectrum.instantaneous))
-    for jm, lm in zip(spectrum.amplitudes, spectrum.retardation_times):
-        out = out + jm * (-np.expm1(-t / lm))
-    return out
-
-
 def carson_transform(spectrum: CreepSpectrum, s: np.ndarray | float) -> np.ndarray:
     """s phi^(s) = phi(inf) - sum_m J_m s / (s + 1/lambda_m) [1/Pa] at Laplace variables s [1/s]."""
     s = np.asarray(s, dtype=complex if np.iscomplexobj(s) else float)

@@ -97,9 +97,7 @@ def normal_creep(material, t: np.ndarray | float) -> np.ndarray:
     bulk modulus is elastic and nu(t) varies. With it, Lee & Radok's creep under a held load reads
     a(t)^3 = 3 W R normal_creep(t) / 8 for both."""
     if hasattr(material, "bulk_modulus"):
-        from .compliance_terms import creep_function
-
-        return creep_function(material.factor("normal"), t)
+        return material.factor("normal").compliance(t)
     return (1.0 - material.poisson_ratio) * material.creep_compliance(t)
 
 

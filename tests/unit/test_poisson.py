@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from viscontact.compliance_terms import carson_transform, creep_function
+from viscontact.compliance_terms import carson_transform
 from viscontact.errors import ParameterError
 from viscontact.grid import Grid
 from viscontact.kernels import influence_coefficients
@@ -90,8 +90,8 @@ def test_limits_are_the_elastic_factors(material):
     g0, ginf = material.shear_modulus_instantaneous, material.shear_modulus_long_term
     for name in FACTORS:
         f = bm.factor(name)
-        assert float(creep_function(f, 0.0)) == pytest.approx(bm.elastic_factor(name, g0), rel=1e-12)
-        assert float(creep_function(f, 1e12)) == pytest.approx(bm.elastic_factor(name, ginf), rel=1e-10)
+        assert float(f.compliance(0.0)) == pytest.approx(bm.elastic_factor(name, g0), rel=1e-12)
+        assert float(f.compliance(1e12)) == pytest.approx(bm.elastic_factor(name, ginf), rel=1e-10)
     assert bm.poisson_ratio_instantaneous == pytest.approx((15e6 - 2 * g0) / (2 * (15e6 + g0)))
     assert bm.poisson_ratio_long_term > bm.poisson_ratio_instantaneous  # nu rises as G relaxes
 
@@ -109,12 +109,12 @@ def test_incompressible_limit():
     t = np.logspace(-5, 1, 13)
     inc = BulkElasticMaterial(SEED, np.inf)
     assert inc.poisson_ratio_instantaneous == inc.poisson_ratio_long_term == 0.5
-    assert creep_function(inc.factor("coupling"), t) == pytest.approx(np.zeros_like(t), abs=0)
+    assert inc.factor("coupling").compliance(t) == pytest.approx(np.zeros_like(t), abs=0)
     for name in ("normal", "tangential_poisson"):
-        np.testing.assert_allclose(creep_function(inc.factor(name), t), 0.5 * SEED.creep_compliance(t), rtol=1e-13)
+        np.testing.assert_allclose(inc.factor(name).compliance(t), 0.5 * SEED.creep_compliance(t), rtol=1e-13)
     big = BulkElasticMaterial(SEED, 1e6 * 1.93e6)
-    np.testing.assert_allclose(creep_function(big.factor("normal"), t), 0.5 * SEED.creep_compliance(t), rtol=1e-6)
-    assert np.max(creep_function(big.factor("coupling"), t)) < 1e-6 * j.long_term
+    np.testing.assert_allclose(big.factor("normal").compliance(t), 0.5 * SEED.creep_compliance(t), rtol=1e-6)
+    assert np.max(big.factor("coupling").compliance(t)) < 1e-6 * j.long_term
 
 
 def test_constant_nu_kernels_reproduced():
@@ -157,8 +157,8 @@ def test_terms_regroup_the_factors():
         value = {c: 0.0 for c in ("zz", "xx", "xz", "zx")}
         for term in terms:
             value[term.displacement + term.traction] = (value[term.displacement + term.traction]
-                                                        + term.kernel * float(creep_function(term.response, t)))
-        f = {name: float(creep_function(bm.factor(name), t)) for name in FACTORS}
+                                                        + term.kernel * float(term.response.compliance(t)))
+        f = {name: float(bm.factor(name).compliance(t)) for name in FACTORS}
         expected = {"zz": s0["zz"] * f["normal"], "xx": s0["xx"] * f["tangential"] + d_xx * f["tangential_poisson"],
                     "xz": s0["xz"] * f["coupling"], "zx": s0["zx"] * f["coupling"]}
         for c in expected:
@@ -175,7 +175,7 @@ def test_kernels_at_zero_and_infinity():
         ref = influence_coefficients(grid, nu)
         total = {c: np.zeros_like(ref[c]) for c in ref}
         for term in terms:
-            total[term.displacement + term.traction] += term.kernel * float(creep_function(term.response, t))
+            total[term.displacement + term.traction] += term.kernel * float(term.response.compliance(t))
         for c in ref:
             np.testing.assert_allclose(total[c], ref[c] / g, rtol=1e-10, atol=1e-12 * np.abs(ref[c]).max() / g)
 
