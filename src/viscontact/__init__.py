@@ -4,8 +4,8 @@ half-space (boundary elements + DC-FFT), after Wang et al., Friction (2023).
 Public API::
 
     import viscontact as vc
-    case = vc.load_case("cases/creep_indentation.toml")
-    ds = vc.run(case)                       # xarray.Dataset (SPEC §3)
+    case = vc.load_case(vc.shipped_case("creep_indentation"))   # or a path to your own TOML file
+    ds = vc.run(case)                       # xarray.Dataset (see the result-file docs)
     vc.write_netcdf(ds, "creep.nc")
 """
 from importlib.metadata import version as _v
@@ -27,6 +27,7 @@ from .problem import (
 )
 from .records import StepRecord
 from .results import open_result, to_dataset, write_netcdf
+from .shipped import shipped_case
 
 __version__ = _v("viscontact")
 
@@ -52,6 +53,7 @@ __all__ = [
     "open_result",
     "run",
     "run_steady",
+    "shipped_case",
     "steady",
     "to_dataset",
     "write_netcdf",

@@ -31,10 +31,11 @@ MIN_CURVE_POINTS = 40
 
 
 def find_cases_dir(cases_dir: str | Path | None = None) -> Path:
-    """The folder holding ``seed_*.toml``: ``cases_dir``, else ``./cases``, else the repository's
-    ``cases/`` next to ``src/``."""
-    candidates = [Path(cases_dir)] if cases_dir is not None else [
-        Path.cwd() / "cases", Path(__file__).resolve().parents[3] / "cases"]
+    """The folder holding ``seed_*.toml``: ``cases_dir``, else ``./cases``, else the cases shipped
+    with the package (:func:`viscontact.shipped.shipped_cases_dir`)."""
+    from ..shipped import shipped_cases_dir
+
+    candidates = [Path(cases_dir)] if cases_dir is not None else [Path.cwd() / "cases", shipped_cases_dir()]
     for folder in candidates:
         if (folder / "seed_table1_v0.8.toml").is_file():
             return folder
