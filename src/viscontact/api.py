@@ -53,7 +53,7 @@ def checkpoint_path(out: str | Path) -> Path:
 def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
         checkpoint: str | Path | None = None, checkpoint_every: int = 0, resume: bool = False,
         should_stop: Callable[[], str | None] | None = None) -> xr.Dataset:
-    """Run the transient simulation of ``case`` and return its result Dataset (SPEC §3).
+    """Run the transient simulation of ``case`` and return its result Dataset (:ref:`result-file`).
 
     Parameters
     ----------

@@ -4,11 +4,15 @@ Bad input (case file, missing file, existing result) prints one line
 ``viscontact: error: <key>: <message>`` and exits with status 2; a failed solve (no convergence,
 numerical guard) exits with status 1, keeping the steps done in the result file (``complete = 0``).
 SIGINT / SIGTERM stop a run after its current step, write the steps done (``complete = 0``) and
-exit with 130 / 143.
+exit with 130 / 143. Every sub-command takes ``--quiet`` (no progress bar, summary or warnings) and
+``--log-level`` (the messages of the ``viscontact`` logger shown on stderr; warnings are at level
+``warning``).
 """
 from __future__ import annotations
 
 import argparse
+import logging
+import shlex
 import signal
 import sys
 import time
@@ -24,6 +28,8 @@ from .errors import ConvergenceError, NumericalGuardError, ParameterError, RunIn
 
 PROG = "viscontact"
 EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED, EXIT_TERMINATED = 1, 2, 130, 143
+LOG_LEVELS = ("debug", "info", "warning", "error")
+log = logging.getLogger("viscontact")
 
 
 def _version() -> str:
@@ -47,7 +53,7 @@ def _case_arguments(p: argparse.ArgumentParser) -> None:
 def _add_run(sub: Any) -> None:
     p = sub.add_parser("run", help="one transient simulation")
     _case_arguments(p)
-    p.add_argument("--quiet", action="store_true", help="no progress bar, no summary")
+    p.add_argument("--quiet", action="store_true", help="no progress bar, no summary, no warnings")
     p.add_argument("--checkpoint-every", type=int, default=0, metavar="N",
                    help="write the solver state every N steps to RESULT.nc.checkpoint.npz (atomic)")
     p.add_argument("--resume", action="store_true",
@@ -61,7 +67,7 @@ def _add_steady(sub: Any) -> None:
     p = sub.add_parser("steady", help="steady sliding state(s) (direct solver)")
     _case_arguments(p)
     p.add_argument("--speeds", metavar="V1,V2,...", help="speed sweep [m/s], comma-separated")
-    p.add_argument("--quiet", action="store_true", help="no summary")
+    p.add_argument("--quiet", action="store_true", help="no summary, no warnings")
     p.set_defaults(handler=_cmd_steady)
 
 
@@ -85,7 +91,7 @@ def _add_sweep(sub: Any) -> None:
     p.add_argument("--workers", type=int, metavar="N", help=f"local worker processes (default: one per core, "
                    f"{default_workers()} here)")
     p.add_argument("--plots", metavar="DIR", help="also write the sweep figures (PNG) into DIR")
-    p.add_argument("--quiet", action="store_true", help="no progress bar, no summary")
+    p.add_argument("--quiet", action="store_true", help="no progress bar, no summary, no warnings")
     p.set_defaults(handler=_cmd_sweep)
 
 
@@ -98,7 +104,7 @@ def _add_reproduce(sub: Any) -> None:
     p.add_argument("--n", type=int, default=None, metavar="N",
                    help="grid cells per side instead of the seed's 256 (quick preview; dt follows)")
     p.add_argument("--cases", default=None, metavar="DIR", help="folder of the seed_*.toml cases")
-    p.add_argument("--quiet", action="store_true", help="no progress bar, no summary")
+    p.add_argument("--quiet", action="store_true", help="no progress bar, no summary, no warnings")
     p.set_defaults(handler=_cmd_reproduce)
 
 
@@ -109,7 +115,19 @@ def _parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for add in (_add_run, _add_steady, _add_plot, _add_sweep, _add_reproduce):
         add(sub)
+    for command in sub.choices.values():  # options every sub-command shares
+        _add_shared_option(command, "--quiet", action="store_true", help="no progress bar, no summary, no warnings")
+        _add_shared_option(command, "--log-level", choices=LOG_LEVELS, default="warning", type=str.lower,
+                           help="messages shown on stderr, from the most detailed (default: warning)")
     return parser
+
+
+def _add_shared_option(parser: argparse.ArgumentParser, flag: str, **kwargs: Any) -> None:
+    """Add ``flag`` to ``parser`` unless the sub-command defines it already."""
+    try:
+        parser.add_argument(flag, **kwargs)
+    except argparse.ArgumentError:
+        pass
 
 
 # --- output on stderr -------------------------------------------------------------------------------
@@ -123,20 +141,42 @@ def _say(line: str) -> None:
         print(line, file=sys.stderr)
 
 
+class _LineHandler(logging.Handler):
+    """``viscontact: <level>: <message>`` on stderr, without breaking a progress bar."""
+
+    def emit(self, record: logging.LogRecord) -> None:
+        _say(f"{PROG}: {record.levelname.lower()}: {' '.join(record.getMessage().split())}")
+
+
+_HANDLER = _LineHandler()
+
+
+def _configure_logging(level: str, quiet: bool) -> None:
+    """The ``viscontact`` logger shows ``level`` and above on stderr; only errors when ``quiet``."""
+    log.setLevel(logging.ERROR if quiet else getattr(logging, level.upper()))
+    if _HANDLER not in log.handlers:
+        log.addHandler(_HANDLER)
+    log.propagate = False
+
+
 @contextmanager
-def _warnings_as_lines() -> Iterator[None]:
-    """Show every ViscontactWarning as ``viscontact: warning: ...`` (other warnings unchanged)."""
+def _warnings_as_lines(quiet: bool = False) -> Iterator[None]:
+    """Log every ViscontactWarning as ``viscontact: warning: ...`` (other warnings unchanged); with
+    ``quiet``, no warning at all."""
     previous = warnings.showwarning
 
     def show(message: Any, category: type, filename: str, lineno: int, file: Any = None, line: Any = None) -> None:
         if issubclass(category, ViscontactWarning):
-            _say(f"{PROG}: warning: {' '.join(str(message).split())}")
+            log.warning("%s", message)
         else:
             previous(message, category, filename, lineno, file, line)
 
     warnings.showwarning = show
     try:
-        yield
+        with warnings.catch_warnings():
+            if quiet:
+                warnings.simplefilter("ignore")
+            yield
     finally:
         warnings.showwarning = previous
 
@@ -203,6 +243,7 @@ def _prepare(args: argparse.Namespace) -> Any:
     """The case with its overrides, after checking (before any computing) that the result file may
     be written and that plotting is available."""
     case = _load(args)
+    _check_result_name(args.out)
     if Path(args.out).exists() and not (args.force or getattr(args, "resume", False)):
         raise FileExistsError(17, "exists; refusing to overwrite it without --force", args.out)
     if args.plots:
@@ -210,6 +251,12 @@ def _prepare(args: argparse.Namespace) -> Any:
 
         pyplot()
     return case
+
+
+def _check_result_name(out: str) -> None:
+    """A result file (``--out`` of run, steady, sweep) is netCDF-4: its name must end in ``.nc``."""
+    if Path(out).suffix != ".nc":
+        raise ParameterError("--out", f"must be a netCDF-4 result file named *.nc, got {out!r}")
 
 
 def _parse_speeds(text: str) -> list[float]:
@@ -226,6 +273,8 @@ def _finish(ds: Any, args: argparse.Namespace, started: float) -> None:
     from .plotting import plot_any  # imported before the run by _prepare when --plots is given
     from .results import write_netcdf
 
+    if getattr(args, "argv", None) is not None:
+        ds.attrs["history"] = f"{ds.attrs.get('history', '')} by the command: {PROG} {shlex.join(args.argv)}".strip()
     write_netcdf(ds, args.out, force=args.force)
     written = [Path(args.out)]
     if args.plots:
@@ -306,7 +355,8 @@ def _cmd_plot(args: argparse.Namespace) -> int:
     from .results import open_result
 
     for path in plot_any(open_result(args.result), args.out):
-        print(path)
+        if not args.quiet:
+            print(path)
     return 0
 
 
@@ -320,6 +370,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
         raise ParameterError("--workers", "sets the size of a local cluster; leave it out with --scheduler")
     if args.workers is not None and args.workers < 1:
         raise ParameterError("--workers", f"must be >= 1, got {args.workers}")
+    _check_result_name(args.out)
     spec = load_sweep(args.sweep)
     plan(spec)  # every problem with the sweep file, before connecting to anything
     if args.plots:
@@ -381,8 +432,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     stop by SIGINT 130 and by SIGTERM 143.
     """
     args = _parser().parse_args(argv)
+    args.argv = list(sys.argv[1:] if argv is None else argv)
+    _configure_logging(args.log_level, args.quiet)
+    log.debug("%s %s: %s", PROG, _version(), shlex.join(args.argv))
     try:
-        with _warnings_as_lines():
+        with _warnings_as_lines(args.quiet):
             return args.handler(args)
     except ParameterError as exc:
         return _error(f"{exc.key}: {exc.message}", EXIT_USAGE)

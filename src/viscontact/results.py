@@ -1,16 +1,19 @@
-"""Results: solver records -> :class:`xarray.Dataset` -> netCDF-4 (SPEC §3).
+"""Results: solver records -> :class:`xarray.Dataset` -> netCDF-4 (:ref:`result-file`).
 
 The Dataset is the only thing plots and users need: dimensions ``t`` [s], ``y``, ``x`` [m] (frame
 moving with the indenter, origin under its centre), fields ``pressure``, ``shear_x``, ``stick``
 (and ``displacement_z`` when recorded), the scalar histories of
 :class:`~viscontact.records.StepRecord`, and attributes for normalisation (``a0``, ``p0``,
-``retardation_time``) and provenance (``case``, ``version``).
+``retardation_time``; also scalar variables with units, :data:`SCALES`) and provenance (``case``,
+``version``, ``source``, ``references``, ``history``). ``stick`` and ``phase`` carry the CF
+``flag_values`` / ``flag_meanings``.
 """
 from __future__ import annotations
 
 import errno
 import os
 import tempfile
+from datetime import datetime, timezone
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -18,11 +21,14 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from .problem import PHASE_GROSS_SLIDING, Problem
+from .errors import ParameterError
+from .problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP, Problem
 from .records import StepRecord
 from .reference import hertz_from_approach, hertz_from_load
 
 __all__ = [
+    "REFERENCES",
+    "SCALES",
     "VARIABLES",
     "global_attrs",
     "hertz_scale",
@@ -55,6 +61,25 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "coupling_iterations": ("1", "normal/tangential alternations of the step"),
     "peak_pressure": ("Pa", "largest contact pressure"),
 }
+
+#: scales of a result: scalar variables with units (``a0`` and ``p0`` are also global attributes)
+SCALES: dict[str, tuple[str, str]] = {
+    "a0": ("m", "Hertz contact radius with G(0) at the reference normal value (sqrt(R delta) under "
+                "displacement control)"),
+    "p0": ("Pa", "Hertz peak pressure with G(0) at the reference normal value"),
+    "retardation_time": ("s", "shortest creep retardation time tau of the material"),
+    "t_gross_sliding": ("s", "first recorded time in gross sliding (0 when sliding from t = 0, NaN when never)"),
+}
+
+#: CF flags of the integer and boolean variables: (flag_values, flag_meanings)
+_FLAGS: dict[str, tuple[list[int], str]] = {
+    "stick": ([0, 1], "slip_or_no_contact stick"),
+    "phase": ([PHASE_INDENTATION, PHASE_PARTIAL_SLIP, PHASE_GROSS_SLIDING], "indentation partial_slip gross_sliding"),
+}
+
+#: the ``references`` attribute of every result
+REFERENCES = ("Wang et al., A numerical model to simulate the transient frictional viscoelastic sliding contact, "
+              "Friction (2023); the viscontact documentation (physics, numerics, result files)")
 
 # quantities that are zero by definition in a tangential mode, and why
 _UNDEFINED = {
@@ -132,6 +157,9 @@ def global_attrs(problem: Problem, case_text: str = "") -> dict[str, Any]:
         "case": case_text,
         "version": __version__,
         "Conventions": "CF-1.8",
+        "source": f"viscontact {__version__}: boundary elements with DC-FFT convolutions",
+        "references": REFERENCES,
+        "history": f"{datetime.now(timezone.utc).strftime('%Y-%m-%dT%H:%M:%SZ')} created by viscontact {__version__}",
     }
 
 
@@ -149,7 +177,19 @@ def _variable(name: str, dims: tuple[str, ...], data: np.ndarray, mode: str) -> 
     names, why = _UNDEFINED.get(mode, ((), ""))
     if name in names:
         attrs["note"] = why
+    if name in _FLAGS:
+        values, meanings = _FLAGS[name]
+        stored = np.int8 if data.dtype == bool else data.dtype  # a boolean is stored as int8 in the file
+        attrs.update(flag_values=np.array(values, dtype=stored), flag_meanings=meanings)
     return xr.Variable(dims, data, attrs)
+
+
+def _add_scales(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` with the :data:`SCALES` among its attributes also as scalar variables with units."""
+    for name, (units, long_name) in SCALES.items():
+        if name in ds.attrs:
+            ds[name] = xr.Variable((), float(ds.attrs[name]), {"units": units, "long_name": long_name})
+    return ds
 
 
 def _field_stack(records: Sequence[StepRecord], name: str, n: int) -> np.ndarray:
@@ -164,7 +204,7 @@ def _field_stack(records: Sequence[StepRecord], name: str, n: int) -> np.ndarray
 
 def to_dataset(records: Sequence[StepRecord], problem: Problem, *, case_text: str = "",
                attrs: dict[str, Any] | None = None) -> xr.Dataset:
-    """Dataset of a transient (or single steady) run, SPEC §3.
+    """Dataset of a transient (or single steady) run (:ref:`result-file`).
 
     Parameters
     ----------
@@ -207,7 +247,7 @@ def to_dataset(records: Sequence[StepRecord], problem: Problem, *, case_text: st
     last = records[-1].step if records else -1
     ds.attrs["complete"] = int(last == problem.time.n_steps - 1)
     ds.attrs.update(attrs or {})
-    return ds
+    return _add_scales(ds)
 
 
 def _t_gross_sliding(mode: str, t: np.ndarray, phase: np.ndarray) -> float:
@@ -246,7 +286,7 @@ def sweep_dataset(records: Sequence[StepRecord], speeds: Sequence[float], proble
     ds.attrs.update(base)
     ds.attrs.update({"solver": "steady", "complete": 1})
     ds.attrs.update(attrs or {})
-    return ds
+    return _add_scales(ds)
 
 
 def write_netcdf(ds: xr.Dataset, path: str | Path, *, force: bool = False) -> Path:
@@ -254,7 +294,7 @@ def write_netcdf(ds: xr.Dataset, path: str | Path, *, force: bool = False) -> Pa
 
     The file is written under a temporary name in the same folder, flushed to disk and renamed over
     ``path``: readers see the old file, or the complete new one, never a partial one. 3-D fields are
-    zlib-compressed in chunks of one time step.
+    zlib-compressed in chunks of one time step; coordinates have no ``_FillValue``.
 
     Raises
     ------
@@ -266,7 +306,7 @@ def write_netcdf(ds: xr.Dataset, path: str | Path, *, force: bool = False) -> Pa
         raise FileExistsError(errno.EEXIST, "exists; refusing to overwrite it without --force (force=True)",
                               str(path))
     path.parent.mkdir(parents=True, exist_ok=True)
-    encoding = {}
+    encoding: dict[str, dict[str, Any]] = {name: {"_FillValue": None} for name in ds.coords}
     for name, var in ds.data_vars.items():
         if var.ndim == 3:
             encoding[name] = {**_COMPRESSION, "chunksizes": (1,) + var.shape[1:]} if var.shape[0] else dict(_COMPRESSION)
@@ -291,9 +331,25 @@ def _umask() -> int:
 
 
 def open_result(path: str | Path) -> xr.Dataset:
-    """Load a result file fully into memory (the file is closed on return)."""
+    """Load a result file fully into memory (the file is closed on return).
+
+    Raises
+    ------
+    FileNotFoundError
+        ``path`` does not exist.
+    ParameterError
+        ``path`` is not a netCDF-4 file written by viscontact (``run``, ``steady`` or ``sweep``).
+    """
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(errno.ENOENT, "no such file", str(path))
-    with xr.open_dataset(path, engine="h5netcdf") as ds:
-        return ds.load()
+    not_a_result = ParameterError(str(path), "is not a viscontact result file (a netCDF-4 file written by "
+                                  "viscontact run, steady or sweep)")
+    try:
+        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            ds = ds.load()
+    except (OSError, ValueError, KeyError, TypeError):  # not HDF5, not netCDF, or unreadable layout
+        raise not_a_result from None
+    if not {"version", "case"} <= set(ds.attrs):
+        raise not_a_result
+    return ds

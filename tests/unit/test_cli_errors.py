@@ -101,3 +101,63 @@ def test_version() -> None:
 
     proc = subprocess.run([*COMMAND, "--version"], capture_output=True, text=True, timeout=60, check=False)
     assert proc.returncode == 0 and __version__ in proc.stdout
+
+
+def test_plot_refuses_a_file_that_is_not_a_result(tmp_path: Path) -> None:
+    (tmp_path / "notes.nc").write_text("not a netCDF file")
+    proc = viscontact("plot", "notes.nc", "--out", "figs", cwd=tmp_path)
+    assert_one_line_error(proc, "notes.nc")
+    assert "not a viscontact result file" in proc.stderr and "HDF5" not in proc.stderr
+    assert not (tmp_path / "figs").exists()
+
+
+@pytest.mark.parametrize("out", ["out.txt", "out", "out.nc.bak"])
+def test_out_must_be_a_netcdf_file(tmp_path: Path, out: str) -> None:
+    (tmp_path / "case.toml").write_text(edited(BASE, TINY))
+    for command, source in (("run", "case.toml"), ("steady", "case.toml"), ("sweep", "sweep.toml")):
+        proc = viscontact(command, source, "--out", out, cwd=tmp_path)
+        assert_one_line_error(proc, "--out")
+        assert ".nc" in proc.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["case.toml"]
+
+
+# --- messages: --quiet silences warnings, --log-level chooses what else is shown ---------------------------
+# dt = 2 ms is twice the material's shortest (relaxation) time of 1 ms: a ViscontactWarning, stable run
+COARSE = {**TINY, "t_end = 5e-4": "t_end = 4e-3", "dt = 2.5e-4": "dt = 2e-3"}
+
+
+def _run_in_process(tmp_path: Path, capsys, *options: str) -> tuple[str, str]:
+    from viscontact import cli
+
+    case = tmp_path / "case.toml"
+    case.write_text(edited(BASE, COARSE))
+    out = tmp_path / "out.nc"
+    assert cli.main(["run", str(case), "--out", str(out), "--force", *options]) == 0
+    captured = capsys.readouterr()
+    return captured.out, captured.err
+
+
+def test_warning_shown_by_default_and_silenced_by_quiet(tmp_path: Path, capsys) -> None:
+    _, err = _run_in_process(tmp_path, capsys)
+    assert "viscontact: warning: time.dt = 0.002 s" in err
+    out, err = _run_in_process(tmp_path, capsys, "--quiet")
+    assert out == "" and err == ""
+    _, err = _run_in_process(tmp_path, capsys, "--log-level", "error")
+    assert "warning" not in err
+
+
+def test_log_level_debug_shows_more(tmp_path: Path, capsys) -> None:
+    _, err = _run_in_process(tmp_path, capsys, "--log-level", "DEBUG")
+    lines = err.splitlines()
+    assert any(line.startswith("viscontact: debug: viscontact ") and " run " in line for line in lines), err
+    assert any(line.startswith("viscontact: warning: time.dt") for line in lines), err
+
+
+def test_history_names_the_command(tmp_path: Path, capsys) -> None:
+    import xarray as xr
+
+    _run_in_process(tmp_path, capsys, "--quiet")
+    with xr.open_dataset(tmp_path / "out.nc", engine="h5netcdf") as ds:
+        assert "created by viscontact" in ds.attrs["history"]
+        assert ds.attrs["history"].endswith(f"by the command: viscontact run {tmp_path / 'case.toml'} --out "
+                                            f"{tmp_path / 'out.nc'} --force --quiet")

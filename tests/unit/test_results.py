@@ -1,4 +1,4 @@
-"""Results: fake solver records -> Dataset (SPEC §3) -> netCDF and back; plots from a Dataset."""
+"""Results: fake solver records -> Dataset -> netCDF and back; plots from a Dataset."""
 from __future__ import annotations
 
 import dataclasses
@@ -15,8 +15,8 @@ from viscontact.records import StepRecord
 from viscontact.reference import hertz_from_load
 from viscontact.results import open_result, sweep_dataset, to_dataset, write_netcdf
 
-SPEC_VARIABLES = ("pressure", "shear_x", "stick", "load", "delta_z", "delta_x", "sliding_distance",
-                  "contact_area", "stick_ratio", "phase", "friction_force", "hysteresis_force", "mu_app")
+CONTRACT_VARIABLES = ("pressure", "shear_x", "stick", "load", "delta_z", "delta_x", "sliding_distance",
+                      "contact_area", "stick_ratio", "phase", "friction_force", "hysteresis_force", "mu_app")
 N = 16
 
 
@@ -43,7 +43,7 @@ def test_dataset_has_the_contract() -> None:
     records = fake_records(problem)
     ds = to_dataset(records, problem, case_text="title = 'x'", attrs={"extra": 7})
     assert dict(ds.sizes) == {"t": 5, "y": N, "x": N}
-    for name in SPEC_VARIABLES + ("contact_shift", "frame_offset", "wake_loss", "iterations", "coupling_iterations"):
+    for name in CONTRACT_VARIABLES + ("contact_shift", "frame_offset", "wake_loss", "iterations", "coupling_iterations"):
         assert name in ds, name
         assert ds[name].attrs["units"] and ds[name].attrs["long_name"], name
     assert ds["pressure"].dims == ("t", "y", "x") and ds["stick"].dtype == bool
@@ -135,3 +135,89 @@ def test_plots(tmp_path: Path) -> None:
     sweep = sweep_dataset(records[:3], [0.01, 0.1, 1.0], problem)
     assert sweep["deborah"].values[1] == pytest.approx(0.1 * 0.01 / sweep.attrs["a0"])
     assert [p.name for p in plot_speed_curve(sweep, tmp_path)] == ["speed_curve.png"]
+
+
+# --- self-describing result files (CF attributes, scales with units, provenance) -----------------------
+def test_scales_are_variables_with_units(tmp_path: Path) -> None:
+    """a0, p0, tau and the onset of gross sliding are scalar variables with units; a0 and p0 stay
+    global attributes (public contract) with the same values."""
+    problem = make_problem()
+    ds = to_dataset(fake_records(problem), problem)
+    hertz = hertz_from_load(0.15, 0.01, 1.93e6, 0.3)
+    expected = {"a0": (hertz.radius, "m"), "p0": (hertz.peak_pressure, "Pa"), "retardation_time": (0.01, "s"),
+                "t_gross_sliding": (3e-3, "s")}
+    back = open_result(write_netcdf(ds, tmp_path / "r.nc"))
+    for result in (ds, back):
+        for name, (value, units) in expected.items():
+            assert result[name].dims == () and result[name].attrs["units"] == units, name
+            assert float(result[name]) == pytest.approx(value), name
+        assert back.attrs["a0"] == float(result["a0"]) and back.attrs["p0"] == float(result["p0"])
+    sweep = sweep_dataset(fake_records(problem)[:2], [0.01, 0.1], problem)
+    assert float(sweep["a0"]) == pytest.approx(hertz.radius) and sweep["a0"].attrs["units"] == "m"
+
+
+def test_cf_flags_on_stick_and_phase(tmp_path: Path) -> None:
+    """CF flag_values / flag_meanings: one meaning per value, every stored value is a flag, and the
+    meanings follow the phase numbering of the solver."""
+    from viscontact.problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP
+
+    problem = make_problem()
+    path = write_netcdf(to_dataset(fake_records(problem), problem), tmp_path / "r.nc")
+    back = open_result(path)
+    for name in ("stick", "phase"):
+        values, meanings = back[name].attrs["flag_values"], back[name].attrs["flag_meanings"].split()
+        assert len(values) == len(meanings), name
+        assert set(np.unique(back[name].values.astype(int))) <= set(int(v) for v in values), name
+    phase = dict(zip(back["phase"].attrs["flag_values"].tolist(), back["phase"].attrs["flag_meanings"].split()))
+    assert phase == {PHASE_INDENTATION: "indentation", PHASE_PARTIAL_SLIP: "partial_slip",
+                     PHASE_GROSS_SLIDING: "gross_sliding"}
+    stick = dict(zip(back["stick"].attrs["flag_values"].tolist(), back["stick"].attrs["flag_meanings"].split()))
+    assert stick[1] == "stick"
+    import h5py
+
+    with h5py.File(path) as f:  # stored with the type of the variable in the file
+        assert f["stick"].attrs["flag_values"].dtype == f["stick"].dtype
+        assert f["phase"].attrs["flag_values"].dtype == f["phase"].dtype
+
+
+def test_coordinates_have_no_fill_value(tmp_path: Path) -> None:
+    import h5py
+
+    problem = make_problem()
+    records = fake_records(problem)
+    for name, ds in (("t.nc", to_dataset(records, problem)),
+                     ("speed.nc", sweep_dataset(records[:2], [0.01, 0.1], problem))):
+        path = write_netcdf(ds, tmp_path / name)
+        with h5py.File(path) as f:
+            for coord in ds.coords:
+                assert "_FillValue" not in f[coord].attrs, (name, coord)
+            assert "_FillValue" in f["mu_app"].attrs           # data variables keep theirs
+
+
+def test_provenance_attributes() -> None:
+    from datetime import datetime
+
+    from viscontact import __version__
+
+    problem = make_problem()
+    ds = to_dataset(fake_records(problem), problem)
+    assert "Friction (2023)" in ds.attrs["references"] and "transient frictional viscoelastic" in ds.attrs["references"]
+    assert ds.attrs["source"].startswith(f"viscontact {__version__}")
+    stamp, _, rest = ds.attrs["history"].partition(" ")
+    assert datetime.strptime(stamp, "%Y-%m-%dT%H:%M:%SZ") and __version__ in rest
+    assert ds.attrs["Conventions"] == "CF-1.8"
+
+
+def test_open_result_refuses_what_is_not_a_result(tmp_path: Path) -> None:
+    import xarray as xr
+
+    from viscontact.errors import ParameterError
+
+    text = tmp_path / "notes.nc"
+    text.write_text("not HDF5 at all")
+    foreign = tmp_path / "foreign.nc"
+    xr.Dataset({"a": ("t", np.arange(3.0))}).to_netcdf(foreign, engine="h5netcdf")
+    for path in (text, foreign):
+        with pytest.raises(ParameterError, match="not a viscontact result file") as info:
+            open_result(path)
+        assert info.value.key == str(path)
