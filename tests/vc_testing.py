@@ -7,7 +7,7 @@ from viscontact.materials import Material
 from viscontact.problem import (NormalLoading, OutputSettings, PiecewiseLinear, Problem, SolverSettings,
                                 TangentialLoading, TimeStepping)
 
-#: the seed's material and contact (SPEC section 1): G(0) = 1.93 MPa (the seed's mu = 2G),
+#: the seed's material and contact: G(0) = 1.93 MPa (the seed's mu = 2G),
 #: G(inf) = G(0)/10, retardation time 0.01 s, nu = 0.3, R = 10 mm, W = 0.15 N
 SEED_G0, SEED_TAU, SEED_NU, SEED_RADIUS, SEED_LOAD = 1.93e6, 0.01, 0.3, 0.01, 0.15
 SEED_GINF = SEED_G0 / 10

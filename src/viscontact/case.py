@@ -1,10 +1,10 @@
 """Case files: TOML text -> validated pydantic models -> :class:`~viscontact.problem.Problem`.
 
-The keys of SPEC §3 plus extensions (``tangential.steps_per_cell``, ``time.scheme``, ``[output]``,
-``[solver]``). Every problem with the input -- not TOML, unknown key, wrong type, value out of
-range, missing file -- is raised as one :class:`~viscontact.errors.ParameterError` whose ``key`` is
-the dotted case-file key and whose message gives the allowed range or values (and, for an unknown
-key, the closest valid one).
+Every key, with its unit, default and allowed range, is listed in the :ref:`case-key reference
+<case-keys>` (generated from the models below). Every problem with the input -- not TOML, unknown
+key, wrong type, value out of range, missing file -- is raised as one
+:class:`~viscontact.errors.ParameterError` whose ``key`` is the dotted case-file key and whose
+message gives the allowed range or values (and, for an unknown key, the closest valid one).
 
 Example (from the repository's root folder)
 -------------------------------------------
@@ -61,6 +61,9 @@ def _int(default: Any = ..., **constraints: Any) -> Any:
     return Field(default, json_schema_extra={"unit": ""}, **constraints)
 
 
+_POISSON = "Poisson ratio nu, constant in time"
+
+
 class _Section(BaseModel):
     # strict: TOML is typed, so "0.3" (a string) is not a number; ints are accepted as floats.
     model_config = ConfigDict(extra="forbid", frozen=True, strict=True)
@@ -71,10 +74,12 @@ class ZenerMaterial(_Section):
     """Standard linear solid: G(0), G(inf) [Pa] and the retardation (creep) time [s]."""
 
     type: Literal["zener"]
-    shear_modulus_instantaneous: float = _num(unit="Pa", gt=0)
-    shear_modulus_long_term: float = _num(unit="Pa", gt=0)
-    retardation_time: float = _num(unit="s", gt=0)
-    poisson_ratio: float = _num(unit="", ge=0, le=0.5)
+    shear_modulus_instantaneous: float = _num(unit="Pa", gt=0, description="instantaneous shear modulus G(0)")
+    shear_modulus_long_term: float = _num(unit="Pa", gt=0,
+                                          description="long-term shear modulus G(inf), at most G(0)")
+    retardation_time: float = _num(unit="s", gt=0, description="retardation (creep) time; the relaxation time "
+                                   "is retardation_time G(inf)/G(0)")
+    poisson_ratio: float = _num(unit="", ge=0, le=0.5, description=_POISSON)
 
     @model_validator(mode="after")
     def _ordered(self) -> ZenerMaterial:
@@ -93,10 +98,12 @@ class PronyMaterial(_Section):
     """Generalized Maxwell: G(t) = g_inf + sum g_i exp(-t/tau_i) [Pa]; tau in s."""
 
     type: Literal["prony"]
-    g_inf: float = _num(unit="Pa", gt=0)
-    g: list[Annotated[float, Field(gt=0, allow_inf_nan=False)]] = Field(json_schema_extra={"unit": "Pa"})
-    tau: list[Annotated[float, Field(gt=0, allow_inf_nan=False)]] = Field(json_schema_extra={"unit": "s"})
-    poisson_ratio: float = _num(unit="", ge=0, le=0.5)
+    g_inf: float = _num(unit="Pa", gt=0, description="long-term shear modulus G(inf)")
+    g: list[Annotated[float, Field(gt=0, allow_inf_nan=False)]] = Field(
+        json_schema_extra={"unit": "Pa"}, description="Prony shear moduli g_i, one per relaxation time")
+    tau: list[Annotated[float, Field(gt=0, allow_inf_nan=False)]] = Field(
+        json_schema_extra={"unit": "s"}, description="relaxation times tau_i, as many as g")
+    poisson_ratio: float = _num(unit="", ge=0, le=0.5, description=_POISSON)
 
     @model_validator(mode="after")
     def _same_length(self) -> PronyMaterial:
@@ -113,8 +120,8 @@ class ElasticMaterial(_Section):
     """Elastic half-space: shear modulus G [Pa]."""
 
     type: Literal["elastic"]
-    shear_modulus: float = _num(unit="Pa", gt=0)
-    poisson_ratio: float = _num(unit="", ge=0, le=0.5)
+    shear_modulus: float = _num(unit="Pa", gt=0, description="shear modulus G")
+    poisson_ratio: float = _num(unit="", ge=0, le=0.5, description=_POISSON)
 
     def build(self) -> Material:
         return Material.elastic(self.shear_modulus, self.poisson_ratio)
@@ -130,9 +137,11 @@ class IndenterSection(_Section):
     """``shape = "sphere"`` with ``radius`` [m], or ``shape = "surface"`` with ``file``: a .npy of
     heights h0 [m] on the grid (n x n, indexed [y, x]), relative to the case file's folder."""
 
-    shape: Literal["sphere", "surface"] = "sphere"
-    radius: float | None = _num(None, unit="m", gt=0)
-    file: str | None = None
+    shape: Literal["sphere", "surface"] = Field("sphere", description="a sphere (paraboloid gap "
+                                               "(x^2 + y^2)/(2 radius)) or a gap read from file")
+    radius: float | None = _num(None, unit="m", gt=0, description="sphere radius R; required with shape = 'sphere'")
+    file: str | None = Field(None, description="with shape = 'surface': .npy of heights h0 [m], (grid.n, grid.n), "
+                             "indexed [y, x], relative to the case file's folder")
 
     @model_validator(mode="after")
     def _consistent(self) -> IndenterSection:
@@ -152,16 +161,18 @@ class IndenterSection(_Section):
 class GridSection(_Section):
     """n x n cells on [-half_width, half_width]^2 [m]."""
 
-    n: int = _int(ge=MIN_GRID_N, le=MAX_GRID_N)
-    half_width: float = _num(unit="m", gt=0)
+    n: int = _int(ge=MIN_GRID_N, le=MAX_GRID_N, description="cells per side")
+    half_width: float = _num(unit="m", gt=0, description="the domain is [-half_width, half_width]^2")
 
 
 class NormalSection(_Section):
     """Load W [N] or approach delta_z [m]: a held ``value`` or a piecewise-linear ``history``."""
 
-    control: Literal["load", "displacement"]
-    value: float | None = _num(None, unit="N or m", gt=0)
-    history: list[list[float]] | None = Field(None, json_schema_extra={"unit": "[s, N or m]"})
+    control: Literal["load", "displacement"] = Field(description="prescribe the load W or the approach delta_z")
+    value: float | None = _num(None, unit="N or m", gt=0, description="held from t = 0 (give value or history)")
+    history: list[list[float]] | None = Field(None, json_schema_extra={"unit": "[s, N or m]"},
+                                              description="[[t, value], ...], piecewise linear, times increasing "
+                                              "from >= 0 (give value or history)")
 
     @model_validator(mode="after")
     def _one_of(self) -> NormalSection:
@@ -192,11 +203,16 @@ class NormalSection(_Section):
 class TangentialSection(_Section):
     """Tangential motion: ``mode`` and the friction coefficient, rates and speed [m/s]."""
 
-    mode: Literal["none", "frictionless_sliding", "gross_sliding", "partial_slip"] = "none"
-    friction_coefficient: float = _num(0.0, unit="", ge=0)
-    displacement_rate: float = _num(0.0, unit="m/s", ge=0)
-    sliding_speed: float = _num(0.0, unit="m/s", ge=0)
-    steps_per_cell: int = _int(1, ge=1)
+    mode: Literal["none", "frictionless_sliding", "gross_sliding", "partial_slip"] = Field(
+        "none", description="indentation only, sliding without friction, Coulomb sliding from t = 0, or partial "
+        "slip at displacement_rate until the stick zone vanishes, then sliding")
+    friction_coefficient: float = _num(0.0, unit="", ge=0, description="Coulomb coefficient mu_f; > 0 for "
+                                       "partial_slip")
+    displacement_rate: float = _num(0.0, unit="m/s", ge=0, description="rate of the tangential displacement "
+                                    "delta_x during partial slip; > 0 for partial_slip")
+    sliding_speed: float = _num(0.0, unit="m/s", ge=0, description="speed v once sliding; > 0 in every sliding mode")
+    steps_per_cell: int = _int(1, ge=1, description="time steps per grid cell of sliding (the default dt is "
+                               "one cell of travel divided by this)")
 
     @model_validator(mode="after")
     def _mode_needs(self) -> TangentialSection:
@@ -211,9 +227,11 @@ class TangentialSection(_Section):
 class TimeSection(_Section):
     """End time and step [s]; ``dt`` defaults to one cell of sliding per ``steps_per_cell`` steps."""
 
-    t_end: float = _num(unit="s", gt=0)
-    dt: float | None = _num(None, unit="s", gt=0)
-    scheme: Literal["constant", "linear"] = "constant"
+    t_end: float = _num(unit="s", gt=0, description="end time")
+    dt: float | None = _num(None, unit="s", gt=0, description="time step, <= t_end; required without sliding")
+    scheme: Literal["constant", "linear"] = Field("constant", description="traction constant within a step "
+                                                  "(the seed's, first order) or linear (second order, "
+                                                  "stable for any dt)")
 
 
 _FIELD_NAMES = Literal["pressure", "shear_x", "stick", "displacement_z"]
@@ -222,8 +240,9 @@ _FIELD_NAMES = Literal["pressure", "shear_x", "stick", "displacement_z"]
 class OutputSection(_Section):
     """Record every ``every``-th step (and the last) and these fields."""
 
-    every: int = _int(OutputSettings.every, ge=1)
-    fields: list[_FIELD_NAMES] = Field(list(OutputSettings.fields), json_schema_extra={"unit": ""})
+    every: int = _int(OutputSettings.every, ge=1, description="record every k-th step (and the last)")
+    fields: list[_FIELD_NAMES] = Field(list(OutputSettings.fields), json_schema_extra={"unit": ""},
+                                       description="fields on the grid kept at the recorded steps")
 
 
 class SolverSection(_Section):
@@ -231,13 +250,20 @@ class SolverSection(_Section):
     workers, the history algorithm, and ``coupling`` (false: drop the (1 - 2 nu) normal/tangential
     cross terms)."""
 
-    tolerance: float = _num(SolverSettings.tolerance, unit="", gt=0, lt=1)
-    max_iterations: int = _int(SolverSettings.max_iterations, ge=1)
-    coupling_tolerance: float = _num(SolverSettings.coupling_tolerance, unit="", gt=0, lt=1)
-    max_coupling_iterations: int = _int(SolverSettings.max_coupling_iterations, ge=1)
-    workers: int = _int(SolverSettings.workers, ge=-1)
-    history: Literal["recursive", "direct"] = SolverSettings.history
-    coupling: bool = SolverSettings.coupling
+    tolerance: float = _num(SolverSettings.tolerance, unit="", gt=0, lt=1,
+                            description="relative residual of the constrained conjugate-gradient solves")
+    max_iterations: int = _int(SolverSettings.max_iterations, ge=1, description="iteration cap of one solve")
+    coupling_tolerance: float = _num(SolverSettings.coupling_tolerance, unit="", gt=0, lt=1,
+                                     description="relative change of the tractions that ends the normal/"
+                                     "tangential coupling loop")
+    max_coupling_iterations: int = _int(SolverSettings.max_coupling_iterations, ge=1,
+                                        description="cap of the coupling loop")
+    workers: int = _int(SolverSettings.workers, ge=-1, description="FFT threads; -1 for all cores (0 is refused)")
+    history: Literal["recursive", "direct"] = Field(SolverSettings.history, description="hereditary sum: "
+                                                    "recursive (one field per retardation time) or the direct "
+                                                    "sum over all past steps (reference, slow)")
+    coupling: bool = Field(SolverSettings.coupling, description="false: drop the (1 - 2 nu) normal/tangential "
+                           "cross terms")
 
     @model_validator(mode="after")
     def _workers(self) -> SolverSection:
@@ -254,7 +280,7 @@ class Case(_Section):
     (``indenter.file``) refer to.
     """
 
-    title: str = ""
+    title: str = Field("", description="shown on figures and stored in the result")
     material: MaterialSection
     indenter: IndenterSection
     grid: GridSection

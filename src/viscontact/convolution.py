@@ -159,7 +159,7 @@ class FourierPreconditioner:
     K^ is the spectrum of the kernel wrapped periodically on the n x n grid (its symmetric part), so
     applying it costs a quarter of a DC-FFT convolution. It is the classical Fourier preconditioner of
     boundary-element contact solvers: the half-space operator is diagonal in Fourier space,
-    |k|^-1 up to a constant, and the preconditioned system has a bounded condition number.
+    ``|k|^-1`` up to a constant, and the preconditioned system has a bounded condition number.
     """
 
     inverse_symbol: np.ndarray

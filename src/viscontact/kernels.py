@@ -2,7 +2,7 @@
 
 Boussinesq (normal point force P into the solid) and Cerruti (tangential point force Q in +x)
 surface displacements for shear modulus G and Poisson ratio nu (Johnson, *Contact Mechanics*,
-Eqs. 3.19-3.20 and 3.86-3.87; Love 1929), u_z positive into the half-space:
+Eqs. 3.19-3.20 and 3.86-3.87; Love 1929), u_z positive into the half-space::
 
     u_z = (1 - nu) / (2 pi G) P / r                     (zz)
     u_x = -(1 - 2 nu) / (4 pi G) P x / r^2              (xz)
@@ -12,7 +12,7 @@ Eqs. 3.19-3.20 and 3.86-3.87; Love 1929), u_z positive into the half-space:
 (the signs of xz and zx follow from each other by Betti's reciprocity: IC_xz(x) = IC_zx(-x)).
 
 Integrating over a rectangle [x' in (xc - a, xc + a)] x [y' in (yc - b, yc + b)] gives closed forms
-F(xi, eta) summed over the four corners with xi = x - x', eta = y - y':
+F(xi, eta) summed over the four corners with xi = x - x', eta = y - y'::
 
     int int 1/r        = xi asinh(eta/|xi|) + eta asinh(xi/|eta|)
     int int xi^2/r^3   = eta asinh(xi/|eta|)

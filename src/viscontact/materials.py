@@ -51,6 +51,8 @@ class CreepSpectrum:
 class Material:
     """Isotropic linear viscoelastic material with constant Poisson ratio.
 
+    Use :meth:`elastic`, :meth:`zener` or :meth:`prony` to build one.
+
     Parameters
     ----------
     g_inf
@@ -61,8 +63,6 @@ class Material:
         Relaxation times tau_i [s], each > 0.
     poisson_ratio
         nu in [0, 0.5].
-
-    Use :meth:`elastic`, :meth:`zener` or :meth:`prony` to build one.
     """
 
     g_inf: float

@@ -112,7 +112,7 @@ def test_case_loads_and_converts(path):
 
 @pytest.mark.parametrize("path", SEED_CASES, ids=lambda p: p.stem)
 def test_seed_case_states_the_conversion(path):
-    """SPEC §1: shipped cases state the modulus / time / load conversion of the seed in a comment."""
+    """Shipped cases state the modulus / time / load conversion of the seed in a comment."""
     text = path.read_text()
     for phrase in ("TWICE the shear modulus", "G(0) = 1.93 MPa", "RETARDATION", "0.148 N / 0.15 N"):
         assert phrase in text

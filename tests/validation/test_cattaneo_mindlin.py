@@ -3,9 +3,9 @@
 Cattaneo-Mindlin (Johnson, Contact Mechanics, Sec. 7.2; :class:`viscontact.reference.CattaneoMindlin`)
 holds exactly for an elastic half-space with nu = 0.5 (no normal/tangential coupling): under a held
 load W and a tangential approach delta_x, Q / mu W = 1 - (1 - delta_x / delta*)^(3/2),
-c / a = (1 - Q / mu W)^(1/3), delta* = 3 mu W (2 - nu) / (16 G a). Tolerance 0.02 on Q / mu W
-(SPEC/issue); measured 1e-4 at n = 64 (a spans 43 cells). The stick radius is a count of cells:
-tolerance 0.03 a (about one cell). The shear traction along y = 0 is within 0.05 mu p0 of
+c / a = (1 - Q / mu W)^(1/3), delta* = 3 mu W (2 - nu) / (16 G a). Tolerance 0.02 on Q / mu W;
+measured 1e-4 at n = 64 (a spans 43 cells). The stick radius is a count of cells: tolerance 0.03 a
+(about one cell). The shear traction along y = 0 is within 0.05 mu p0 of
 mu p0 [sqrt(1 - r^2/a^2) - (c/a) sqrt(1 - r^2/c^2)] (the cells at the two square-root edges err most).
 """
 import numpy as np

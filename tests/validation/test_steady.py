@@ -1,8 +1,8 @@
 """Steady-state solver against Hertz limits, and the transient solver against the steady solver.
 
 References (independent of the transient solver):
-* slow sliding: the material is fully relaxed, Hertz with G(inf); fast sliding: Hertz with G(0)
-  (SPEC section 5). Tolerance 1 %: the grid resolves the Hertz peak to ~0.1 % at these sizes and
+* slow sliding: the material is fully relaxed, Hertz with G(inf); fast sliding: Hertz with G(0).
+  Tolerance 1 %: the grid resolves the Hertz peak to ~0.1 % at these sizes and
   v tau/a = 1e-4 / 1e4 leaves a residual viscous effect below 1e-3.
 * the transient at long times must converge to the steady state on the same grid. With the wake
   on the grid (+-5.12 a0), the remaining difference is the time discretisation of the moving frame

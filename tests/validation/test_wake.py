@@ -1,4 +1,4 @@
-"""History dropped at the trailing edge of the moving frame (seed Sec. 3, Fig. 5; SPEC section 2).
+"""History dropped at the trailing edge of the moving frame (seed Sec. 3, Fig. 5).
 
 The steady solver integrates the whole past of the material, so it is the domain-independent truth;
 the transient's estimate ``wake_loss`` must track the bias that truncating the domain makes and warn

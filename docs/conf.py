@@ -1,0 +1,103 @@
+"""Sphinx configuration of the viscontact documentation (``make docs``).
+
+Generated at build time, never by hand: the API reference (one page per public module, found by
+walking the package), the case-key reference (from the pydantic models of ``viscontact.case``), the
+result-variable table (from ``viscontact.results``), the command-line help (from the ``viscontact``
+command itself) and the gallery (the scripts in ``examples/``, run by sphinx-gallery).
+"""
+from __future__ import annotations
+
+import pkgutil
+import sys
+from pathlib import Path
+
+import matplotlib
+
+import viscontact
+
+matplotlib.use("Agg")
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE / "_ext"))
+
+project = "viscontact"
+author = "viscontact developers"
+copyright = "viscontact developers, BSD-3-Clause"
+release = viscontact.__version__
+version = release
+
+extensions = [
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.napoleon",
+    "sphinx.ext.mathjax",
+    "sphinx.ext.viewcode",
+    "myst_parser",
+    "sphinx_gallery.gen_gallery",
+    "viscontact_docs",
+]
+source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
+exclude_patterns = ["_build", "**.ipynb_checkpoints", "auto_examples/*.ipynb", "auto_examples/*.py",
+                    "auto_examples/*.zip", "auto_examples/*.md5", "auto_examples/*.json"]
+templates_path = ["_templates"]
+myst_enable_extensions = ["dollarmath", "deflist"]
+myst_heading_anchors = 3
+
+html_theme = "furo"
+html_title = f"viscontact {release}"
+
+autosummary_generate = True
+autodoc_member_order = "bysource"
+autodoc_typehints = "description"
+autodoc_typehints_format = "short"
+napoleon_numpy_docstring = True
+napoleon_google_docstring = False
+napoleon_use_rtype = False
+# pydantic internals and dataclass machinery add nothing to a reader's view of the classes
+autodoc_default_options = {"exclude-members": "model_config, model_fields, model_computed_fields"}
+
+sphinx_gallery_conf = {
+    "examples_dirs": str(HERE.parent / "examples"),
+    "gallery_dirs": "auto_examples",
+    "filename_pattern": r"/plot_",
+    "abort_on_example_error": True,
+    "download_all_examples": False,
+    "remove_config_comments": True,
+    "within_subsection_order": "FileNameSortKey",
+    "matplotlib_animations": False,
+}
+
+
+def _public_modules() -> list[str]:
+    """Every public module of the package (no leading underscore), found by walking it."""
+    return sorted(f"viscontact.{m.name}" for m in pkgutil.iter_modules(viscontact.__path__)
+                  if not m.name.startswith("_"))
+
+
+def _write_api_page() -> None:
+    """docs/api.rst: the top-level names and one autosummary entry per public module."""
+    lines = ["API reference", "=============", "",
+             "Generated from the docstrings of the package at build time.", "",
+             "Top-level names", "---------------", "",
+             "``import viscontact as vc`` gives these names; each is documented in its module.", "",
+             ".. list-table::", "   :header-rows: 1", "   :widths: 30 70", "",
+             "   * - name", "     - defined in"]
+    for name in viscontact.__all__:
+        obj = getattr(viscontact, name)
+        home = getattr(obj, "__module__", None)
+        if name.startswith("__") or home is None:
+            continue
+        if isinstance(obj, type(viscontact)):
+            target = f":py:mod:`{obj.__name__}`"
+        else:
+            target = f":py:obj:`{home}.{obj.__qualname__}`"
+        lines += [f"   * - ``vc.{name}``", f"     - {target}"]
+    lines += ["", "Modules", "-------", "", ".. autosummary::", "   :toctree: generated",
+              ""]
+    lines += [f"   {name}" for name in _public_modules()]
+    text = "\n".join(lines) + "\n"
+    path = HERE / "api.rst"
+    if not path.exists() or path.read_text() != text:
+        path.write_text(text)
+
+
+_write_api_page()
