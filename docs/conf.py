@@ -67,10 +67,12 @@ sphinx_gallery_conf = {
 }
 
 
-def _public_modules() -> list[str]:
-    """Every public module of the package (no leading underscore), found by walking it."""
-    return sorted(f"viscontact.{m.name}" for m in pkgutil.iter_modules(viscontact.__path__)
-                  if not m.name.startswith("_"))
+def _public_modules(packages: bool) -> list[str]:
+    """Every public module (``packages=False``) or sub-package (``True``) of viscontact, found by
+    walking it; a name with a part starting with an underscore is private."""
+    found = pkgutil.walk_packages(viscontact.__path__, "viscontact.")
+    return sorted(m.name for m in found if m.ispkg == packages
+                  and not any(part.startswith("_") for part in m.name.split(".")))
 
 
 def _write_api_page() -> None:
@@ -91,9 +93,11 @@ def _write_api_page() -> None:
         else:
             target = f":py:obj:`{home}.{obj.__qualname__}`"
         lines += [f"   * - ``vc.{name}``", f"     - {target}"]
-    lines += ["", "Modules", "-------", "", ".. autosummary::", "   :toctree: generated",
-              ""]
-    lines += [f"   {name}" for name in _public_modules()]
+    lines += ["", "Modules", "-------", "", ".. autosummary::", "   :toctree: generated", ""]
+    lines += [f"   {name}" for name in _public_modules(packages=False)]
+    lines += ["", "Packages", "--------", "", "Each groups modules listed above; its page tells how.", "",
+              ".. autosummary::", "   :toctree: generated", "   :template: autosummary/package.rst", ""]
+    lines += [f"   {name}" for name in _public_modules(packages=True)]
     text = "\n".join(lines) + "\n"
     path = HERE / "api.rst"
     if not path.exists() or path.read_text() != text:

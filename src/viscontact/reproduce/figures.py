@@ -3,16 +3,16 @@
 =======  ==============================================  ===========================================
 figure   cases                                           panels
 =======  ==============================================  ===========================================
-fig4     seed_table1_v{0.4,0.8,1.2} (frictionless, load)  p/p0 along y = 0 at t = 0, 0.5, 1, 2 tau per
+fig4     seed_table1_v{0.4,0.8,1.2} (load, no friction)  p/p0 along y = 0 at t = 0, 0.5, 1, 2 tau per
                                                          speed; mu_app(t/tau)
-fig6     seed_table2_ratio{3,5,10}_displacement           p/p0 at t = 0, 0.5, 1, 2, 4 tau per ratio;
+fig6     seed_table2_ratio{3,5,10}_displacement          p/p0 at t = 0, 0.5, 1, 2, 4 tau per ratio;
                                                          G(t)/G(0)
-fig7     seed_table2_ratio{3,5,10}_load                   p/p0 at t = 0, 0.5, 1, 2, 4 tau per ratio;
+fig7     seed_table2_ratio{3,5,10}_load                  p/p0 at t = 0, 0.5, 1, 2, 4 tau per ratio;
                                                          J(t) G(0)
 fig8     both sets of Table 2                            mu_app(t/tau): relaxation | creep
-fig9     seed_table3_case{1,2,3,4} (displacement)         per t = 0, 0.1, 0.5, 1, 1.5 tau: q_x of cases
+fig9     seed_table3_case{1,2,3,4} (displacement)        per t = 0, 0.1, 0.5, 1, 1.5 tau: q_x of cases
                                                          3, 4 with mu_f p and stick zones | p of all
-fig10    seed_fig10_case{1,2,3} (load)                    as fig9 at t = 0, 0.1, 0.2, 1, 4 tau (case 3)
+fig10    seed_fig10_case{1,2,3} (load)                   as fig9 at t = 0, 0.1, 0.2, 1, 4 tau (case 3)
 =======  ==============================================  ===========================================
 
 tau is the results' ``retardation_time`` (the shortest creep retardation time of the material;
