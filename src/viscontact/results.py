@@ -13,8 +13,8 @@ from __future__ import annotations
 import errno
 import os
 import tempfile
-from datetime import datetime, timezone
 from collections.abc import Sequence
+from datetime import datetime, timezone
 from pathlib import Path
 from typing import Any
 

@@ -151,7 +151,7 @@ def _guard_run(tmp_path, capsys, half_width=1.5e-3, mode="none", speed=0.05, t_e
                scheme="constant", extra=""):
     case = _case(tmp_path, BASE.format(half_width=half_width, mode=mode, speed=speed, t_end=t_end, dt=dt,
                                        scheme=scheme, extra=extra))
-    code = cli.main(["run", str(case), "--out", str(tmp_path / "r.nc"), "--quiet", "--force"])
+    code = cli.main(["run", str(case), "--out", str(tmp_path / "r.nc"), "--force"])  # not --quiet: warnings shown
     err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
     return code, err
 

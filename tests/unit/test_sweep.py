@@ -79,6 +79,8 @@ def test_transient_sweep_matches_runs_one_by_one(transient_sweep):
     folder, _, out, ds = transient_sweep
     base = load_case(folder / "base.toml")
     assert ds.attrs["kind"] == "sweep" and ds.attrs["runs_computed"] == 4 and ds.attrs["runs_failed"] == 0
+    assert "Friction (2023)" in ds.attrs["references"] and ds.attrs["source"].startswith("viscontact")
+    assert "created by viscontact" in ds.attrs["history"]
     assert ds["mu_app"].dims == ("tangential__sliding_speed", "material__shear_modulus_long_term")
     assert ds["tangential__sliding_speed"].attrs["key"] == "tangential.sliding_speed"
     assert ds["mu_app_t"].dims[-1] == "t"

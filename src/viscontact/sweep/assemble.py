@@ -136,7 +136,7 @@ def assemble(the_plan: Plan, results: Mapping[int, dict[str, Any]], transient: b
     ds = xr.Dataset(variables, coords=coords)
     base_attrs = global_attrs(the_plan.base.to_problem(), the_plan.base.text)
     for name in ("case", "a0", "p0", "retardation_time", "tangential_mode", "normal_control", "version",
-                 "Conventions"):
+                 "Conventions", "source", "references", "history"):
         ds.attrs[name] = base_attrs[name]
     ds.attrs.update({"kind": "sweep", "solver": spec.solver, "title": spec.title or the_plan.base.title,
                      "swept_keys": json.dumps(list(spec.keys)), "fixed_overrides": json.dumps(the_plan.fixed),
