@@ -106,7 +106,7 @@ class TimeScheme:
 
         State x_k = (e_k, H_1,k, ..., H_M,k) under a held displacement (module docstring):
         e_k = -(1/J_inst) sum_m J_m (beta_m e_{k-1} - A_m H_m,k-1) and
-        H_m,k = A_m H_m,k-1 + beta_m (e_k - e_{k-1}), i.e. x_k = T x_{k-1}. Returns max |eig(T)|
+        H_m,k = A_m H_m,k-1 + beta_m (e_k - e_{k-1}), i.e. x_k = T x_{k-1}. Returns ``max |eig(T)|``
         (``numpy.linalg.eigvals``). For one mode (Zener) with the constant scheme the non-zero
         eigenvalue is z = A - J_1 (1 - A) / J_inst.
         """
