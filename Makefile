@@ -34,7 +34,7 @@ test-all: $(STAMP_TEST)
 
 # the HTML site in docs/_build/html; any Sphinx warning fails the build; the gallery examples run
 docs: $(STAMP_DOCS)
-	$(VENV)/bin/sphinx-build -W --keep-going -q -b html docs docs/_build/html
+	$(VENV)/bin/sphinx-build -W --keep-going -q -j auto -b html docs docs/_build/html
 
 clean:
 	rm -rf demo/ .pytest_cache/ .hypothesis/ docs/_build/ docs/generated/ docs/auto_examples/ docs/api.rst

@@ -9,17 +9,18 @@
     The variables of a result file, from :data:`viscontact.results.VARIABLES` and
     :data:`viscontact.results.SCALES`.
 ``.. command-help::``
-    The ``--help`` text of ``viscontact`` and then of each of its sub-commands, as the installed
-    command prints them (run as subprocesses; the sub-commands are read from the top-level help).
+    The ``--help`` text of ``viscontact`` and then of each of its sub-commands, as the command
+    prints them (:func:`viscontact.cli.main` with ``--help``; the sub-commands are read from the
+    top-level help).
 
 A key, variable or option added to the package appears in the documentation on the next build.
 """
 from __future__ import annotations
 
+import contextlib
+import io
 import os
 import re
-import subprocess
-import sys
 import typing
 from typing import Any
 
@@ -220,12 +221,23 @@ class CommandHelp(SphinxDirective):
         return out
 
     def _help(self, args: list[str]) -> str:
-        env = {**os.environ, "COLUMNS": "100"}
-        done = subprocess.run([sys.executable, "-m", "viscontact.cli", *args, "--help"], capture_output=True,
-                              text=True, env=env, check=False)
-        if done.returncode != 0:
-            raise self.error(f"viscontact {' '.join(args)} --help failed: {done.stderr.strip()}")
-        return done.stdout
+        from viscontact.cli import main
+
+        text = io.StringIO()
+        columns = os.environ.get("COLUMNS")
+        os.environ["COLUMNS"] = "100"  # argparse wraps at the terminal width
+        try:
+            with contextlib.redirect_stdout(text):
+                main([*args, "--help"])
+        except SystemExit as done:
+            if done.code not in (0, None):
+                raise self.error(f"viscontact {' '.join(args)} --help exited with {done.code}") from None
+        finally:
+            if columns is None:
+                os.environ.pop("COLUMNS", None)
+            else:
+                os.environ["COLUMNS"] = columns
+        return text.getvalue()
 
     @staticmethod
     def _block(text: str) -> nodes.literal_block:
