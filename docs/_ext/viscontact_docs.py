@@ -8,6 +8,9 @@
 ``.. result-variables::``
     The variables of a result file, from :data:`viscontact.results.VARIABLES` and
     :data:`viscontact.results.SCALES`.
+Docstrings
+    Absolute values written as in the numerics, ``|q|``, ``|sigma_z - sigma_r|``, are kept as text
+    (reST would read them as substitutions) outside inline literals and literal blocks.
 ``.. command-help::``
     The ``--help`` text of ``viscontact`` and then of each of its sub-commands, as the command
     prints them (:func:`viscontact.cli.main` with ``--help``; the sub-commands are read from the
@@ -262,7 +265,40 @@ def _subcommands(top_help: str) -> list[str]:
     return names
 
 
+# --- docstrings --------------------------------------------------------------------------------------
+_ABSOLUTE = re.compile(r"(?<![\\`|])\|(?=[^\s|])([^|\n]*?[^\s|\\])\|(?![`|_])")
+_LITERAL = re.compile(r"(``.+?``)")
+
+
+def escape_absolute_values(lines: list[str]) -> list[str]:
+    r"""``|x|`` made literal text (``\|x\|``) in docstring lines, except in inline literals, in
+    literal blocks (the lines indented under one ending in ``::``), tables and line blocks."""
+    out: list[str] = []
+    parent: int | None = None     # indent of the line that opened a literal block
+    opened: int | None = None     # a line ending in "::" was seen at this indent
+    for line in lines:
+        indent = len(line) - len(line.lstrip())
+        if line.strip():
+            if opened is not None:
+                parent, opened = (opened if indent > opened else None), None
+            elif parent is not None and indent <= parent:
+                parent = None
+        literal = parent is not None or line.lstrip().startswith(("+", "| "))
+        if not literal:
+            line = "".join(part if part.startswith("``") else _ABSOLUTE.sub(r"\\|\1\\|", part)
+                           for part in _LITERAL.split(line))
+            if line.rstrip().endswith("::"):
+                opened = indent
+        out.append(line)
+    return out
+
+
+def _escape_docstring(app: Any, what: str, name: str, obj: Any, options: Any, lines: list[str]) -> None:
+    lines[:] = escape_absolute_values(lines)
+
+
 def setup(app: Any) -> dict[str, Any]:
+    app.connect("autodoc-process-docstring", _escape_docstring)
     app.add_directive("case-keys", CaseKeys)
     app.add_directive("result-variables", ResultVariables)
     app.add_directive("command-help", CommandHelp)
