@@ -33,7 +33,8 @@ from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError,
 
 from .errors import ParameterError
 from .grid import Grid
-from .materials import Material
+from .materials import Material, shear_from_tensile, wlf_shift_factor
+from .prony_table import parse_prony_table
 from .problem import (
     NormalLoading,
     OutputSettings,
@@ -70,7 +71,44 @@ class _Section(BaseModel):
 
 
 # --- [material] ---------------------------------------------------------------------------------
-class ZenerMaterial(_Section):
+class _ViscoelasticSection(_Section):
+    """Time-temperature superposition (WLF), shared by the viscoelastic materials: at
+    ``temperature`` every relaxation time is multiplied by a_T (:func:`~viscontact.materials.wlf_shift_factor`)
+    of ``reference_temperature``, ``wlf_c1``, ``wlf_c2``. Without ``temperature`` the material is
+    used at its reference temperature (a_T = 1)."""
+
+    temperature: float | None = _num(None, unit="degC", gt=-273.15,
+                                     description="temperature T; every relaxation time is shifted by a_T (WLF)")
+    reference_temperature: float | None = _num(None, unit="degC", gt=-273.15,
+                                               description="reference temperature T_ref of the moduli given")
+    wlf_c1: float | None = _num(None, unit="", gt=0, description="WLF constant C1")
+    wlf_c2: float | None = _num(None, unit="degC", gt=0, description="WLF constant C2")
+
+    @model_validator(mode="after")
+    def _wlf_complete(self) -> _ViscoelasticSection:
+        if self.temperature is not None:
+            for key in ("reference_temperature", "wlf_c1", "wlf_c2"):
+                if getattr(self, key) is None:
+                    raise ParameterError(f"material.{key}", "required with material.temperature (WLF shift: "
+                                         "reference_temperature [degC], wlf_c1 > 0, wlf_c2 > 0 [degC])")
+            self.shift_factor()  # T - T_ref <= -C2 is an error now, not at run time
+        return self
+
+    def shift_factor(self) -> float:
+        """a_T [-] (1 without ``temperature``)."""
+        if self.temperature is None:
+            return 1.0
+        return wlf_shift_factor(self.temperature, self.reference_temperature, self.wlf_c1, self.wlf_c2)
+
+    def build(self, base_dir: Path = Path(".")) -> Material:
+        """The material at ``temperature``; files named in the section are relative to ``base_dir``."""
+        return self._at_reference(base_dir).shifted(self.shift_factor())
+
+    def _at_reference(self, base_dir: Path) -> Material:
+        raise NotImplementedError
+
+
+class ZenerMaterial(_ViscoelasticSection):
     """Standard linear solid: G(0), G(inf) [Pa] and the retardation (creep) time [s]."""
 
     type: Literal["zener"]
@@ -89,31 +127,61 @@ class ZenerMaterial(_Section):
                                  f"got {self.shear_modulus_long_term:g} Pa")
         return self
 
-    def build(self) -> Material:
+    def _at_reference(self, base_dir: Path) -> Material:
         return Material.zener(self.shear_modulus_instantaneous, self.shear_modulus_long_term,
                               self.retardation_time, self.poisson_ratio)
 
 
-class PronyMaterial(_Section):
-    """Generalized Maxwell: G(t) = g_inf + sum g_i exp(-t/tau_i) [Pa]; tau in s."""
+class PronyMaterial(_ViscoelasticSection):
+    """Generalized Maxwell: G(t) = g_inf + sum g_i exp(-t/tau_i) [Pa]; tau in s. The terms are typed
+    (``g_inf``, ``g``, ``tau``) or read from ``file`` (:mod:`viscontact.prony_table`: the table
+    pyvisco writes, or a plain CSV), relative to the case file's folder. ``modulus = "tensile"``
+    says the moduli are tensile ones, E, converted to G = E / (2 (1 + poisson_ratio))."""
 
     type: Literal["prony"]
-    g_inf: float = _num(unit="Pa", gt=0, description="long-term shear modulus G(inf)")
-    g: list[Annotated[float, Field(gt=0, allow_inf_nan=False)]] = Field(
-        json_schema_extra={"unit": "Pa"}, description="Prony shear moduli g_i, one per relaxation time")
-    tau: list[Annotated[float, Field(gt=0, allow_inf_nan=False)]] = Field(
-        json_schema_extra={"unit": "s"}, description="relaxation times tau_i, as many as g")
+    g_inf: float | None = _num(None, unit="Pa", gt=0, description="long-term shear modulus G(inf) (or give file)")
+    g: list[Annotated[float, Field(gt=0, allow_inf_nan=False)]] | None = Field(
+        None, json_schema_extra={"unit": "Pa"}, description="Prony shear moduli g_i, one per relaxation time")
+    tau: list[Annotated[float, Field(gt=0, allow_inf_nan=False)]] | None = Field(
+        None, json_schema_extra={"unit": "s"}, description="relaxation times tau_i, as many as g")
+    file: str | None = Field(None, description="Prony table file (pyvisco's, or a plain CSV tau, g), relative "
+                             "to the case file, in place of g_inf, g and tau")
+    modulus: Literal["shear", "tensile"] = Field("shear", description="the moduli given are shear ones (G) or "
+                                                 "tensile ones (E, converted to G = E / (2 (1 + nu)))")
     poisson_ratio: float = _num(unit="", ge=0, le=0.5, description=_POISSON)
 
     @model_validator(mode="after")
-    def _same_length(self) -> PronyMaterial:
+    def _terms(self) -> PronyMaterial:
+        typed = [k for k in ("g_inf", "g", "tau") if getattr(self, k) is not None]
+        if self.file is not None:
+            if typed:
+                raise ParameterError(f"material.{typed[0]}", "give either material.file or g_inf, g and tau, not both")
+            return self
+        for key in ("g_inf", "g", "tau"):
+            if getattr(self, key) is None:
+                raise ParameterError(f"material.{key}", "required with type = 'prony' (or give material.file, "
+                                     "a Prony table)")
         if len(self.g) != len(self.tau):
             raise ParameterError("material.tau", f"must have as many entries as material.g ({len(self.g)}), "
                                  f"got {len(self.tau)}")
         return self
 
-    def build(self) -> Material:
-        return Material.prony(self.g_inf, self.g, self.tau, self.poisson_ratio)
+    def _at_reference(self, base_dir: Path) -> Material:
+        if self.file is None:
+            g_inf, g, tau, quantity = self.g_inf, self.g, self.tau, ""
+        else:
+            path = base_dir / self.file
+            table = parse_prony_table(read_input_file(path, "material.file"), str(path))
+            g_inf, g, tau, quantity = table.long_term, table.moduli, table.relaxation_times, table.quantity
+            expected = {"shear": "G", "tensile": "E"}[self.modulus]
+            if quantity and quantity != expected:
+                raise ParameterError("material.modulus", f"{path} holds {quantity}_0/{quantity}_i columns "
+                                     f"({'tensile' if quantity == 'E' else 'shear'} moduli); set modulus = "
+                                     f"'{'tensile' if quantity == 'E' else 'shear'}', got {self.modulus!r}")
+        if self.modulus == "tensile":
+            g_inf = shear_from_tensile(g_inf, self.poisson_ratio)
+            g = [shear_from_tensile(x, self.poisson_ratio) for x in g]
+        return Material.prony(g_inf, g, tau, self.poisson_ratio)
 
 
 class ElasticMaterial(_Section):
@@ -123,7 +191,7 @@ class ElasticMaterial(_Section):
     shear_modulus: float = _num(unit="Pa", gt=0, description="shear modulus G")
     poisson_ratio: float = _num(unit="", ge=0, le=0.5, description=_POISSON)
 
-    def build(self) -> Material:
+    def build(self, base_dir: Path = Path(".")) -> Material:
         return Material.elastic(self.shear_modulus, self.poisson_ratio)
 
 
@@ -319,6 +387,7 @@ class Case(_Section):
         except ValidationError as exc:
             raise _parameter_error(exc) from None
         case._text, case._base_dir, case._data = text, base_dir, data
+        case.material.build(base_dir)  # a Prony table file is read (and checked) now
         return case
 
     @property
@@ -393,7 +462,7 @@ class Case(_Section):
         grid = Grid(self.grid.n, self.grid.half_width)
         fields = tuple(f for f in StepRecord.FIELDS if f in self.output.fields)
         return Problem(
-            material=self.material.build(),
+            material=self.material.build(self._base_dir),
             grid=grid,
             gap=self.gap(grid),
             normal=self.normal.build(),

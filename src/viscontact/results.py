@@ -149,6 +149,7 @@ def global_attrs(problem: Problem, case_text: str = "") -> dict[str, Any]:
         "shear_modulus_instantaneous": mat.shear_modulus_instantaneous,
         "shear_modulus_long_term": mat.shear_modulus_long_term,
         "poisson_ratio": mat.poisson_ratio,
+        "a_T": mat.shift_factor,
         "radius": float("nan") if problem.radius is None else float(problem.radius),
         "dt": problem.time.dt,
         "time_scheme": problem.time.scheme,

@@ -130,6 +130,38 @@ def test_storage_and_loss_moduli_limits(name):
     assert np.all(m.loss_modulus(w) > 0)
 
 
+WIDE = {  # measured-spectrum shapes: 20 and 40 terms over 11 and 15 decades, equal and falling moduli
+    "20_terms": Material.prony(1e5, np.full(20, 1e5), np.geomspace(1e-8, 1e3, 20), 0.3),
+    "40_terms": Material.prony(2e4, 1e7 * np.geomspace(1, 1e-4, 40), np.geomspace(1e-10, 1e5, 40), 0.5),
+}
+
+
+@pytest.mark.parametrize("name", sorted(WIDE))
+def test_wide_spectrum_is_exact(name):
+    """Many terms over many decades: G* J* = 1 at every frequency to round-off, J_inf = 1/G(inf),
+    the retardation times interlace with the relaxation times (the expanded characteristic
+    polynomial loses these to cancellation; the secular-equation roots keep them)."""
+    m = WIDE[name]
+    c = m.creep
+    assert c.retardation_times.size == len(m.tau) and np.all(c.amplitudes > 0)
+    merged = np.empty(2 * len(m.tau))
+    merged[0::2], merged[1::2] = np.sort(m.tau), c.retardation_times
+    assert np.all(np.diff(merged) > 0)
+    assert c.long_term == pytest.approx(1.0 / m.g_inf, rel=1e-12)
+    w = np.geomspace(1e-3 / c.retardation_times.max(), 1e3 / m.shortest_time, 400)
+    g_star = m.storage_modulus(w) + 1j * m.loss_modulus(w)
+    j_star = c.instantaneous + np.sum(c.amplitudes[:, None] / (1 + 1j * w[None] * c.retardation_times[:, None]),
+                                      axis=0)
+    np.testing.assert_allclose(g_star * j_star, 1.0, rtol=1e-11, atol=1e-11)
+
+
+def test_equal_relaxation_times_merge():
+    split = Material.prony(1e5, [1e5, 2e5, 3e5], [1e-3, 1e-2, 1e-3], 0.3)
+    merged = Material.prony(1e5, [4e5, 2e5], [1e-3, 1e-2], 0.3)
+    np.testing.assert_allclose(split.creep.amplitudes, merged.creep.amplitudes, rtol=1e-14)
+    np.testing.assert_allclose(split.creep.retardation_times, merged.creep.retardation_times, rtol=1e-14)
+
+
 def test_zener_loss_peak():
     """Standard linear solid: G'' peaks at w = 1/tau_relax with height (G0 - Ginf)/2."""
     m = MATERIALS["zener"]

@@ -1,0 +1,266 @@
+"""The steady effective kernel of a many-term Prony material, built for all modes in one pass.
+
+In the frame of an indenter sliding at speed v the steady hereditary kernel is (see
+:mod:`viscontact.steady`)
+
+    K(d) = J_0 IC(d) + sum_m J_m F_m(d),   F_m(d) = int_0^inf exp(-xi/L_m)/L_m IC(d + xi) dxi,
+
+with decay lengths L_m = v lambda_m. Built mode by mode (``steady.history_kernels``) every mode
+evaluates the influence coefficients IC at its own quadrature nodes, so the cost grows with the
+number of terms. Here the x-integral is done by *product integration*: on each interval of a fixed
+partition of xi, IC(d + xi) is replaced by its polynomial interpolant at Chebyshev-Lobatto nodes
+xi_q, and the exponential weight is integrated exactly against each Lagrange basis polynomial:
+
+    int_I exp(-xi/L)/L IC(d + xi) dxi ~ sum_q c_q(L) IC(d + xi_q),
+    c_q(L) = int_I exp(-xi/L)/L l_q(xi) dxi                     (1-D, cheap, any L).
+
+The nodes, hence the costly IC evaluations on the (2n, 2n) offset grid, do not depend on L: they
+are computed once per grid (and reused for every speed of a sweep), and each mode only costs its
+1-D weights and a (modes x nodes) matrix product. The accuracy is that of the polynomial
+interpolation of IC, uniform in L; both limits are exact: L << dx gives c -> (1, 0, ...), i.e.
+F = IC(d) (the mode acts instantaneously), and L -> inf gives F -> 0.
+
+As in ``steady.history_kernels`` the whole past is covered by the exact backward recursion over
+the offsets d = -(n-1) dx ... (n-1) dx,
+
+    F(d) = int_0^dx exp(-xi/L)/L IC(d + xi) dxi + exp(-dx/L) F(d + dx),
+
+started from a tail integral to infinity at the largest offset (geometrically growing intervals
+up to 45 L_max, where exp(-45) ~ 3e-20). IC(d + xi) is analytic in xi on [0, dx] except, in the
+row dy = 0 and the two columns next to d = 0, at the cell edge xi = dx/2 (an x log x point); the
+partition of [0, dx] is graded geometrically towards dx/2 from both sides.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Sequence
+
+import numpy as np
+
+from .grid import Grid
+from .kernels import influence_coefficients, rectangle_influence
+
+#: exp(-45) ~ 3e-20: beyond 45 decay lengths a mode's weight is below double precision
+_DECAY_CUTOFF = 45.0
+_FINE_NODES, _FINE_WEIGHTS = np.polynomial.legendre.leggauss(16)
+
+
+def _lobatto(degree: int) -> tuple[np.ndarray, np.ndarray]:
+    """Chebyshev-Lobatto nodes on [0, 1] (ascending, ends included) and their barycentric weights."""
+    j = np.arange(degree + 1)
+    nodes = 0.5 * (1.0 - np.cos(np.pi * j / degree))
+    bary = (-1.0) ** j
+    bary[[0, -1]] *= 0.5
+    return nodes, bary
+
+
+def _lagrange(x: np.ndarray, nodes: np.ndarray, bary: np.ndarray) -> np.ndarray:
+    """Lagrange basis polynomials l_q(x) of ``nodes`` (barycentric formula), shape (x.size, nodes.size)."""
+    diff = x[:, None] - nodes[None, :]
+    exact = diff == 0.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        terms = bary[None, :] / diff
+        out = terms / terms.sum(axis=1, keepdims=True)
+    hit = exact.any(axis=1)
+    out[hit] = exact[hit].astype(float)
+    return out
+
+
+def _graded_unit_rule(levels: int = 10) -> tuple[np.ndarray, np.ndarray]:
+    """Composite 16-point Gauss-Legendre on [0, 1] with breaks 2^-k, k = 0..levels (and 0)."""
+    breaks = np.concatenate([[0.0], 0.5 ** np.arange(levels, -1, -1)])
+    lo, hi = breaks[:-1], breaks[1:]
+    nodes = ((0.5 * (hi - lo))[:, None] * (_FINE_NODES + 1.0) + lo[:, None]).ravel()
+    weights = ((0.5 * (hi - lo))[:, None] * _FINE_WEIGHTS).ravel()
+    return nodes, weights
+
+
+#: in t = xi/L the weight is exp(-t) on [0, T], T <= 45: graded down to T/1024 < 1/16
+_UNIT_NODES, _UNIT_WEIGHTS = _graded_unit_rule()
+
+
+def product_weights(start: float, stop: float, degree: int, lengths: np.ndarray) -> np.ndarray:
+    """c_mq = int_start^stop exp(-xi/L_m)/L_m l_q(xi) dxi for the Chebyshev-Lobatto basis of degree
+    ``degree`` on [start, stop] [m]; ``lengths`` L_m [m]. Shape (modes, degree + 1), dimensionless.
+
+    In t = (xi - start)/L the integral is exp(-start/L) int_0^beta exp(-t) l_q(t/beta) dt with
+    beta = (stop - start)/L, cut at T = min(beta, 45) (the rest is below double precision) and
+    done with one composite Gauss-Legendre rule graded towards t = 0, the same for every mode.
+    """
+    nodes, bary = _lobatto(degree)
+    lengths = np.asarray(lengths, dtype=float)
+    out = np.zeros((lengths.size, degree + 1))
+    live = start / lengths < 746.0  # exp(-746) underflows to 0
+    if not live.any():
+        return out
+    lengths = lengths[live]
+    beta = (stop - start) / lengths
+    cut = np.minimum(beta, _DECAY_CUTOFF)
+    t = cut[:, None] * _UNIT_NODES[None, :]
+    w = cut[:, None] * _UNIT_WEIGHTS[None, :] * np.exp(-t - (start / lengths)[:, None])
+    basis = _lagrange((t / beta[:, None]).ravel(), nodes, bary).reshape(*t.shape, degree + 1)
+    out[live] = np.einsum("mf,mfq->mq", w, basis)
+    return out
+
+
+def _local_breaks(spacing: float, grading: int) -> np.ndarray:
+    """Partition of [0, dx], graded geometrically towards the cell edge dx/2 from both sides."""
+    h = 0.5 * spacing
+    steps = h * 0.5 ** np.arange(1, grading + 1)  # h/2, h/4, ...
+    left = h - steps
+    right = h + steps
+    return np.unique(np.concatenate([[0.0, h, spacing], left, right]))
+
+
+@dataclass
+class SteadyKernelBuilder:
+    """Effective steady kernels of one grid for any creep spectrum and speed (product integration).
+
+    Parameters
+    ----------
+    grid
+        The grid (cell-centred, spacing dx [m]).
+    poisson_ratio
+        nu [-].
+    components
+        Influence components to build (``"zz"``, ``"zx"``, ...).
+    degree
+        Polynomial degree of the interpolation of IC on each interval.
+    grading
+        Geometric refinement levels towards the cell edge xi = dx/2 on each side.
+
+    The IC values at the local nodes (``len(components)`` x nodes x (2n)^2 doubles) are computed on
+    first use and kept, so a speed sweep pays for them once.
+    """
+
+    grid: Grid
+    poisson_ratio: float
+    components: tuple[str, ...] = ("zz", "zx")
+    degree: int = 6
+    grading: int = 2
+    _local: tuple | None = field(default=None, init=False, repr=False)
+    _tail_ic: dict = field(default_factory=dict, init=False, repr=False)
+    _base_ic: dict | None = field(default=None, init=False, repr=False)
+
+    # --- IC on the offset grid ------------------------------------------------------------
+    def _ic(self, dx_offsets: np.ndarray, dy_offsets: np.ndarray) -> np.ndarray:
+        h = 0.5 * self.grid.spacing
+        res = rectangle_influence(dx_offsets, dy_offsets, h, h, self.poisson_ratio, self.components)
+        return np.stack([res[c] for c in self.components])
+
+    @property
+    def _x_offsets(self) -> np.ndarray:
+        n = self.grid.n
+        return self.grid.spacing * np.arange(-(n - 1), n)
+
+    def _local_nodes(self) -> tuple[list[tuple[float, float]], list[np.ndarray], np.ndarray]:
+        """(intervals of [0, dx], node indices of each interval's Lobatto nodes, IC at every node for
+        every offset but the largest, shape (2n - 2, nodes, components * 2n))."""
+        if self._local is None:
+            dx = self.grid.spacing
+            breaks = _local_breaks(dx, self.grading)
+            unit, _ = _lobatto(self.degree)
+            positions: list[float] = []
+            index: list[np.ndarray] = []
+            for a, b in zip(breaks[:-1], breaks[1:]):
+                idx = []
+                for x in a + (b - a) * unit:
+                    hit = [i for i, p in enumerate(positions) if abs(p - x) <= 1e-12 * dx]
+                    if not hit:
+                        positions.append(float(x))
+                    idx.append(hit[0] if hit else len(positions) - 1)
+                index.append(np.array(idx))
+            dy = self.grid.offsets()[:, None]
+            d = self._x_offsets[:-1]
+            values = np.empty((d.size, len(positions), len(self.components) * dy.size))
+            for q, x in enumerate(positions):
+                values[:, q, :] = self._ic(d[None, :] + x, dy).reshape(-1, d.size).T
+            self._local = (list(zip(breaks[:-1], breaks[1:])), index, values)
+        return self._local
+
+    def _base(self) -> dict[str, np.ndarray]:
+        """IC at the integer offsets (``kernels.influence_coefficients``), kept."""
+        if self._base_ic is None:
+            ics = influence_coefficients(self.grid, self.poisson_ratio)
+            self._base_ic = {c: ics[c] for c in self.components}
+        return self._base_ic
+
+    # --- the kernels ----------------------------------------------------------------------
+    def history(self, amplitudes: Sequence[float], lengths: Sequence[float]) -> dict[str, np.ndarray]:
+        """sum_m J_m F_m(d) on the (2n, 2n) DC-FFT offset grid (wrap order, row/column n zero).
+
+        Parameters
+        ----------
+        amplitudes
+            J_m [1/Pa] (or any weights).
+        lengths
+            Decay lengths L_m = v lambda_m [m], > 0.
+        """
+        amps = np.asarray(amplitudes, dtype=float)
+        lengths = np.asarray(lengths, dtype=float)
+        n, dx = self.grid.n, self.grid.spacing
+        n_comp = len(self.components)
+        if amps.size == 0:
+            return {c: np.zeros((2 * n, 2 * n)) for c in self.components}
+        intervals, index, local_ic = self._local_nodes()
+        weights = np.zeros((lengths.size, local_ic.shape[1]))
+        for (a, b), idx in zip(intervals, index):
+            np.add.at(weights, (slice(None), idx), product_weights(a, b, self.degree, lengths))
+        running = self._tail(lengths)  # (M, C * 2n) at the largest offset
+        decay = np.exp(-dx / lengths)[:, None]
+        values = np.empty((2 * n - 1, n_comp * 2 * n))
+        values[-1] = amps @ running
+        for i in range(2 * n - 3, -1, -1):
+            running = weights @ local_ic[i] + decay * running
+            values[i] = amps @ running
+        return self._to_wrap_order(values.T.reshape(n_comp, 2 * n, 2 * n - 1))
+
+    def _tail(self, lengths: np.ndarray) -> np.ndarray:
+        """F_m at the largest offset d_max = (n-1) dx, shape (M, C * 2n): int_0^inf on intervals
+        [s (1.5^k - 1), s (1.5^(k+1) - 1)], s = d_max, up to 45 L_max. IC at their nodes is kept."""
+        d_max = self._x_offsets[-1]
+        scale = max(d_max, self.grid.spacing)
+        top = _DECAY_CUTOFF * float(lengths.max())
+        unit, _ = _lobatto(self.degree)
+        dy = self.grid.offsets()[:, None]
+        out = np.zeros((lengths.size, len(self.components) * dy.size))
+        k = 0
+        while True:
+            a, b = scale * (1.5**k - 1.0), scale * (1.5 ** (k + 1) - 1.0)
+            c = product_weights(a, b, self.degree, lengths)
+            if k not in self._tail_ic:
+                ic = self._ic(d_max + a + (b - a) * unit[None, :], dy)  # (C, 2n, q)
+                self._tail_ic[k] = ic.transpose(2, 0, 1).reshape(unit.size, -1)
+            out += c @ self._tail_ic[k]
+            if b >= top:
+                return out
+            k += 1
+
+    def _to_wrap_order(self, values: np.ndarray) -> dict[str, np.ndarray]:
+        n = self.grid.n
+        k = np.arange(-(n - 1), n)
+        cols = np.where(k >= 0, k, k + 2 * n)
+        out = {}
+        for ci, c in enumerate(self.components):
+            arr = np.zeros((2 * n, 2 * n))
+            arr[:, cols] = values[ci]
+            arr[n, :] = 0.0
+            arr[:, n] = 0.0
+            out[c] = arr
+        return out
+
+    def effective(self, instantaneous: float, amplitudes: Sequence[float], retardation_times: Sequence[float],
+                  speed: float) -> dict[str, np.ndarray]:
+        """K = J_0 IC + sum_m J_m F_m with L_m = speed * lambda_m: the steady kernel [m/Pa per Pa of
+        traction per cell... i.e. displacement = K (*) traction], J in 1/Pa, lambda in s, speed in m/s."""
+        base = self._base()
+        hist = self.history(amplitudes, speed * np.asarray(retardation_times, dtype=float))
+        return {c: instantaneous * base[c] + hist[c] for c in self.components}
+
+
+def steady_history_kernels(grid: Grid, poisson_ratio: float, amplitudes: Sequence[float],
+                           lengths: Sequence[float], components: Sequence[str] = ("zz", "zx")
+                           ) -> dict[str, np.ndarray]:
+    """sum_m J_m F_m(d) for all modes at once (see :class:`SteadyKernelBuilder`); J_m [1/Pa],
+    decay lengths L_m [m]."""
+    return SteadyKernelBuilder(grid, poisson_ratio, tuple(components)).history(amplitudes, lengths)
