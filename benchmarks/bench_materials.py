@@ -1,0 +1,126 @@
+"""Many-term materials: cost against the number of Prony terms. Prints a table.
+
+    .venv/bin/python benchmarks/bench_materials.py              # 128^2 steady kernels, 256^2 transient
+    .venv/bin/python benchmarks/bench_materials.py --quick      # 64^2 / 128^2
+
+Materials: M terms with relaxation times log-spaced over 1e-8 ... 1e3 s, equal moduli, G(0) =
+1.93 MPa, G(inf) = G(0)/10, nu = 0.3 (M = 1 is the seed's Zener material's moduli).
+
+Rows
+----
+kernel/per-mode  the steady effective kernel built mode by mode (``steady.history_kernels``), one speed.
+kernel/one-pass  the same kernel from ``steady_kernels.SteadyKernelBuilder`` (first speed: with its
+                 IC node values; next speeds: without), and its largest difference to the per-mode one.
+transient        gross sliding (mu_f = 0.3, coupled), linear scheme, n^2: wall time per step, M = 1
+                 and M = 30 measured alternately in one process; and the hereditary update alone
+                 (``PronyHistory.traction`` + ``advance``, one component) per step.
+"""
+from __future__ import annotations
+
+import argparse
+import platform
+import time
+import warnings
+
+import numpy as np
+
+from viscontact.grid import Grid
+from viscontact.history import PronyHistory, step_coefficients
+from viscontact.materials import Material
+from viscontact.problem import (NormalLoading, OutputSettings, PiecewiseLinear, Problem, TangentialLoading,
+                                TimeStepping)
+from viscontact.steady import history_kernels
+from viscontact.steady_kernels import SteadyKernelBuilder
+from viscontact.transient import simulate
+
+G0, NU, R = 1.93e6, 0.3, 0.01
+
+
+def material(terms: int) -> Material:
+    g_inf = G0 / 10
+    return Material.prony(g_inf, np.full(terms, (G0 - g_inf) / terms), np.geomspace(1e-8, 1e3, terms)
+                          if terms > 1 else [1e-3], NU)
+
+
+def sliding(mat: Material, n: int, steps: int) -> Problem:
+    grid = Grid(n, 1.5e-3)
+    x, y = grid.mesh()
+    speed = 0.05
+    dt = grid.spacing / speed
+    return Problem(material=mat, grid=grid, gap=(x**2 + y**2) / (2 * R),
+                   normal=NormalLoading("load", PiecewiseLinear.constant(0.15)),
+                   tangential=TangentialLoading("gross_sliding", 0.3, 0.0, speed),
+                   time=TimeStepping(steps * dt, dt, "linear"), output=OutputSettings(every=1000, fields=()),
+                   radius=R)
+
+
+def per_step(problem: Problem) -> float:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        start = time.perf_counter()
+        count = sum(1 for _ in simulate(problem))
+    return (time.perf_counter() - start) / count
+
+
+def history_update(terms: int, n: int, steps: int = 20) -> float:
+    mat = material(terms)
+    coef = step_coefficients(mat, 1e-3, "linear", False)
+    hist = PronyHistory.zeros(mat.creep.amplitudes.size, n)
+    p = np.random.default_rng(0).random((n, n))
+    start = time.perf_counter()
+    for _ in range(steps):
+        hist.traction(mat, coef)
+        hist.advance(p, coef)
+    return (time.perf_counter() - start) / steps
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--quick", action="store_true")
+    args = ap.parse_args()
+    n_steady, n_transient = (64, 128) if args.quick else (128, 256)
+    print(f"# {platform.node()} {platform.machine()} python {platform.python_version()} numpy {np.__version__}"
+          f" {time.strftime('%Y-%m-%d %H:%M')}")
+
+    grid = Grid(n_steady, 1.5e-3)
+    speed = 0.05
+    print(f"\n## steady effective kernel, {n_steady}^2, v = {speed} m/s, components zz, zx")
+    print("| terms | per-mode [s] | one-pass, first speed [s] | one-pass, next speeds [s] | max diff / max K |")
+    print("|---|---|---|---|---|")
+    for terms in (1, 10, 20, 30):
+        c = material(terms).creep
+        builder = SteadyKernelBuilder(grid, NU, ("zz", "zx"))
+        t0 = time.perf_counter()
+        fast = builder.history(c.amplitudes, speed * c.retardation_times)
+        t1 = time.perf_counter()
+        builder.history(c.amplitudes, 3 * speed * c.retardation_times)
+        t2 = time.perf_counter()
+        if terms in (1, 20):
+            slow = {k: 0.0 for k in ("zz", "zx")}
+            for amp, lam in zip(c.amplitudes, c.retardation_times):
+                one = history_kernels(grid, NU, speed * lam, ("zz", "zx"))
+                for k in slow:
+                    slow[k] = slow[k] + amp * one[k]
+            t3 = time.perf_counter()
+            diff = max(float(np.abs(fast[k] - slow[k]).max() / np.abs(slow[k]).max()) for k in slow)
+            per_mode, diff_txt = f"{t3 - t2:.2f}", f"{diff:.1e}"
+        else:
+            per_mode, diff_txt = "-", "-"
+        print(f"| {terms} | {per_mode} | {t1 - t0:.2f} | {t2 - t1:.2f} | {diff_txt} |")
+
+    print(f"\n## transient gross sliding, {n_transient}^2, linear scheme: seconds per step")
+    print("| terms | run 1 | run 2 | hereditary update alone |")
+    print("|---|---|---|---|")
+    results: dict[int, list[float]] = {1: [], 30: []}
+    for _ in range(2):
+        for terms in (1, 30):
+            results[terms].append(per_step(sliding(material(terms), n_transient, 8)))
+    for terms in (1, 30):
+        print(f"| {terms} | {results[terms][0]:.3f} | {results[terms][1]:.3f} | "
+              f"{history_update(terms, n_transient):.4f} |")
+    ratio = min(results[30]) / min(results[1])
+    print(f"\nper-step growth 1 -> 30 terms: {ratio:.2f}x (target < 1.5x)")
+
+
+if __name__ == "__main__":
+    main()
