@@ -71,6 +71,15 @@ def _add_steady(sub: Any) -> None:
     p.set_defaults(handler=_cmd_steady)
 
 
+def _add_material(sub: Any) -> None:
+    p = sub.add_parser("material", help="the case's material: moduli, retardation times, a_T (and figures)")
+    p.add_argument("case", metavar="CASE.toml", help="case file")
+    p.add_argument("--plots", metavar="DIR", help="also draw G(t), J(t), G'(omega), G''(omega), tan delta into DIR")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
+                   help="override a case-file key, e.g. --set material.temperature=40 (repeatable)")
+    p.set_defaults(handler=_cmd_material)
+
+
 def _add_plot(sub: Any) -> None:
     p = sub.add_parser("plot", help="figures of an existing result file")
     p.add_argument("result", metavar="RESULT.nc")
@@ -113,7 +122,7 @@ def _parser() -> argparse.ArgumentParser:
         prog=PROG, description="Transient frictional sliding contact on a linear viscoelastic half-space.")
     parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for add in (_add_run, _add_steady, _add_plot, _add_sweep, _add_reproduce):
+    for add in (_add_run, _add_steady, _add_material, _add_plot, _add_sweep, _add_reproduce):
         add(sub)
     for command in sub.choices.values():  # options every sub-command shares
         _add_shared_option(command, "--quiet", action="store_true", help="no progress bar, no summary, no warnings")
@@ -347,6 +356,35 @@ def _cmd_steady(args: argparse.Namespace) -> int:
     speeds = _parse_speeds(args.speeds) if args.speeds else None
     case = _prepare(args)
     _finish(api.run_steady(case, speeds), args, started)
+    return 0
+
+
+def _cmd_material(args: argparse.Namespace) -> int:
+    from .results import material_dataset
+
+    case = _load(args)
+    if args.plots:
+        from .plotting import pyplot
+
+        pyplot()
+    section = case.material
+    material = case.to_problem().material
+    c = material.creep
+    print(f"material: {section.type}, {len(material.g)} Prony terms, poisson_ratio = {material.poisson_ratio:g}")
+    print(f"G(0) = {material.shear_modulus_instantaneous:.6g} Pa, G(inf) = {material.shear_modulus_long_term:.6g} Pa, "
+          f"G(0)/G(inf) = {material.shear_modulus_instantaneous / material.shear_modulus_long_term:.6g}")
+    temperature = getattr(section, "temperature", None)
+    where = (f" at temperature = {temperature:g} degC (reference {section.reference_temperature:g} degC, "
+             f"C1 = {section.wlf_c1:g}, C2 = {section.wlf_c2:g} degC)" if temperature is not None else
+             " (reference temperature)")
+    print(f"a_T = {material.shift_factor:.6g}{where}")
+    print("relaxation times [s]: " + (" ".join(f"{x:.4g}" for x in sorted(material.tau)) or "none"))
+    print("retardation times [s]: " + (" ".join(f"{x:.4g}" for x in c.retardation_times) or "none"))
+    if args.plots:
+        from .plotting import plot_material
+
+        for path in plot_material(material_dataset(material), args.plots):
+            print(f"wrote {path}")
     return 0
 
 

@@ -22,6 +22,7 @@ import numpy as np
 import xarray as xr
 
 from .errors import ParameterError
+from .materials import Material
 from .problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP, Problem
 from .records import StepRecord
 from .reference import hertz_from_approach, hertz_from_load
@@ -32,6 +33,7 @@ __all__ = [
     "VARIABLES",
     "global_attrs",
     "hertz_scale",
+    "material_dataset",
     "open_result",
     "sweep_dataset",
     "to_dataset",
@@ -288,6 +290,37 @@ def sweep_dataset(records: Sequence[StepRecord], speeds: Sequence[float], proble
     ds.attrs.update({"solver": "steady", "complete": 1})
     ds.attrs.update(attrs or {})
     return _add_scales(ds)
+
+
+def material_dataset(material: Material, *, points: int = 200) -> xr.Dataset:
+    """The material functions of ``material`` on log-spaced times and angular frequencies.
+
+    Time t [s] from 1e-3 x the shortest to 1e3 x the longest relaxation or retardation time (1e-3
+    to 1e3 s for an elastic material), omega = 1/t [rad/s]: G(t) [Pa], J(t) [1/Pa], G'(omega),
+    G''(omega) [Pa], tan delta = G''/G' [-]. Attributes: G(0), G(inf) [Pa], nu, a_T, the
+    relaxation and retardation times [s] and ``kind = "material"``.
+    """
+    creep = material.creep
+    times = np.concatenate([np.asarray(material.tau, dtype=float), creep.retardation_times])
+    lo, hi = (float(times.min()), float(times.max())) if times.size else (1.0, 1.0)
+    t = np.geomspace(1e-3 * lo, 1e3 * hi, points)
+    omega = 1.0 / t[::-1]
+    storage, loss = material.storage_modulus(omega), material.loss_modulus(omega)
+    ds = xr.Dataset(
+        {"relaxation_modulus": ("t", material.relaxation_modulus(t), {"units": "Pa", "long_name": "G(t)"}),
+         "creep_compliance": ("t", material.creep_compliance(t), {"units": "1/Pa", "long_name": "J(t)"}),
+         "storage_modulus": ("omega", storage, {"units": "Pa", "long_name": "G'(omega)"}),
+         "loss_modulus": ("omega", loss, {"units": "Pa", "long_name": "G''(omega)"}),
+         "tan_delta": ("omega", loss / storage, {"units": "1", "long_name": "tan delta = G''/G'"})},
+        coords={"t": ("t", t, {"units": "s", "long_name": "time"}),
+                "omega": ("omega", omega, {"units": "rad/s", "long_name": "angular frequency"})})
+    ds.attrs.update({"kind": "material", "title": material.name,
+                     "shear_modulus_instantaneous": material.shear_modulus_instantaneous,
+                     "shear_modulus_long_term": material.shear_modulus_long_term,
+                     "poisson_ratio": material.poisson_ratio, "a_T": material.shift_factor,
+                     "relaxation_times": np.sort(np.asarray(material.tau, dtype=float)),
+                     "retardation_times": creep.retardation_times})
+    return ds
 
 
 def write_netcdf(ds: xr.Dataset, path: str | Path, *, force: bool = False) -> Path:

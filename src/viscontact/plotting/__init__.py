@@ -1,9 +1,9 @@
 """Figures of result Datasets (never of solver objects): ``viscontact plot`` works on any saved file.
 
 All plotting lives in this package: :mod:`.base` (the pyplot helper, scales, the profile along
-y = 0), :mod:`.result` (one run or a speed curve), :mod:`.sweep` (parameter sweeps) and :mod:`.seed`
-(the seed's figures, for :mod:`viscontact.reproduce`). Matplotlib is imported when a figure is
-drawn (Agg backend), so importing viscontact never pulls it in.
+y = 0), :mod:`.result` (one run or a speed curve), :mod:`.sweep` (parameter sweeps), :mod:`.material`
+(a material's functions) and :mod:`.seed` (the seed's figures, for :mod:`viscontact.reproduce`).
+Matplotlib is imported when a figure is drawn (Agg backend), so importing viscontact never pulls it in.
 """
 from __future__ import annotations
 
@@ -11,19 +11,22 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .base import DPI, Scales, phase_name, profile, pyplot, save_figure
+from .material import plot_material
 from .result import plot_result, plot_speed_curve
 from .sweep import plot_sweep
 
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["DPI", "Scales", "phase_name", "plot_any", "plot_result", "plot_speed_curve", "plot_sweep", "profile",
+__all__ = ["DPI", "Scales", "phase_name", "plot_any", "plot_material", "plot_result", "plot_speed_curve", "plot_sweep", "profile",
            "pyplot", "save_figure"]
 
 
 def plot_any(ds: xr.Dataset, out_dir: str | Path) -> list[Path]:
-    """:func:`plot_sweep` for a parameter sweep, :func:`plot_speed_curve` for a steady speed curve,
-    :func:`plot_result` otherwise."""
+    """:func:`plot_sweep` for a parameter sweep, :func:`plot_material` for a material,
+    :func:`plot_speed_curve` for a steady speed curve, :func:`plot_result` otherwise."""
     if ds.attrs.get("kind") == "sweep":
         return plot_sweep(ds, out_dir)
+    if ds.attrs.get("kind") == "material":
+        return plot_material(ds, out_dir)
     return plot_speed_curve(ds, out_dir) if "speed" in ds.dims else plot_result(ds, out_dir)

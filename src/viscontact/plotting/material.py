@@ -1,0 +1,41 @@
+"""Figure of a material (a :func:`viscontact.results.material_dataset`): G(t) and J(t), G'(omega)
+and G''(omega), tan delta, so that an imported Prony series can be checked before a long run."""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from .base import pyplot, save_figure
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+__all__ = ["plot_material"]
+
+
+def plot_material(ds: xr.Dataset, out_dir: str | Path) -> list[Path]:
+    """``material.png`` in ``out_dir``: relaxation modulus and creep compliance against time, storage
+    and loss moduli and tan delta against angular frequency (log axes). Returns the paths."""
+    plt = pyplot()
+    fig, axes = plt.subplots(1, 3, figsize=(16, 4.2))
+    fig.subplots_adjust(wspace=0.45)
+    t, omega = ds["t"].values, ds["omega"].values
+    ax = axes[0]
+    ax.loglog(t, ds["relaxation_modulus"].values, color="C0", label="G(t)")
+    ax.set(xlabel="t [s]", ylabel="G(t) [Pa]", title="relaxation modulus and creep compliance")
+    twin = ax.twinx()
+    twin.loglog(t, ds["creep_compliance"].values, color="C1", label="J(t)")
+    twin.set_ylabel("J(t) [1/Pa]")
+    ax.legend(handles=ax.get_lines() + twin.get_lines(), loc="center left")
+    ax = axes[1]
+    ax.loglog(omega, ds["storage_modulus"].values, label="G'")
+    ax.loglog(omega, ds["loss_modulus"].values, label="G''")
+    ax.set(xlabel="omega [rad/s]", ylabel="[Pa]", title="storage and loss moduli")
+    ax.legend()
+    ax = axes[2]
+    ax.semilogx(omega, ds["tan_delta"].values)
+    ax.set(xlabel="omega [rad/s]", ylabel="tan delta [-]", title="loss factor")
+    a_t = float(ds.attrs.get("a_T", 1.0))
+    fig.suptitle(f"{ds.attrs.get('title') or 'material'}: G(0) = {ds.attrs['shear_modulus_instantaneous']:.4g} Pa, "
+                 f"G(inf) = {ds.attrs['shear_modulus_long_term']:.4g} Pa, a_T = {a_t:.4g}")
+    return [save_figure(fig, Path(out_dir) / "material.png")]
