@@ -83,6 +83,17 @@ class _Table:
         return value
 
 
+    def add_term(self, line: int, tau_column: str, tau: float, modulus: float, times: list[float],
+                 moduli: list[float]) -> None:
+        """Append the term (tau [s], modulus [Pa]) unless its modulus is zero; tau must be > 0."""
+        if modulus == 0.0:
+            return
+        if not tau > 0:
+            self.fail(f"column {tau_column}, line {line}: relaxation time must be > 0 s, got {tau:g}")
+        times.append(tau)
+        moduli.append(modulus)
+
+
 def _is_number(cell: str) -> bool:
     try:
         float(cell)
@@ -149,12 +160,7 @@ def _parse_pyvisco(table: _Table, header: list[str]) -> PronyTable:
             table.fail(f"column {header[c_mi]}, line {line}: {mi:g} Pa is not alpha_i * {header[c_m0]} "
                        f"= {alpha * m0:g} Pa")
         alpha_sum += alpha
-        if mi == 0.0:
-            continue
-        if not tau > 0:
-            table.fail(f"column tau_i, line {line}: relaxation time must be > 0 s, got {tau:g}")
-        moduli.append(mi)
-        times.append(tau)
+        table.add_term(line, "tau_i", tau, mi, times, moduli)
     if not alpha_sum < 1.0:
         table.fail(f"column alpha_i, lines 3-{table.rows[-1][0]}: sum of alpha_i = {alpha_sum:.12g} must be < 1 "
                    f"(long-term modulus {quantity}_0 (1 - sum alpha_i) > 0)")
@@ -176,12 +182,7 @@ def _parse_plain(table: _Table, header: list[str]) -> PronyTable:
                 table.fail(f"column g, line {line}: long-term modulus (tau = inf) must be > 0 Pa, got {g:g}")
             long_term = g
             continue
-        if g == 0.0:
-            continue
-        if not tau > 0:
-            table.fail(f"column tau, line {line}: relaxation time must be > 0 s, got {tau:g}")
-        moduli.append(g)
-        times.append(tau)
+        table.add_term(line, "tau", tau, g, times, moduli)
     if long_term is None:
         table.fail("column tau: no row with tau = inf giving the long-term modulus g [Pa]")
     return PronyTable(long_term, tuple(moduli), tuple(times), "")
