@@ -57,7 +57,8 @@ def tiny_cases(tmp_path_factory) -> Path:
     folder = tmp_path_factory.mktemp("cases")
     for name in ("seed_table1_v0.8", *FIGURES["fig10"].cases):
         text = (CASES / f"{name}.toml").read_text().replace("\nn = 256", "\nn = 16")
-        (folder / f"{name}.toml").write_text(text.replace("[time]\n", '[time]\nscheme = "linear"\n'))
+        assert '\nscheme = "constant"' in text  # the seed cases state the seed's scheme
+        (folder / f"{name}.toml").write_text(text.replace('\nscheme = "constant"', '\nscheme = "linear"'))
     return folder
 
 
