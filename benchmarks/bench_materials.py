@@ -8,12 +8,14 @@ Materials: M terms with relaxation times log-spaced over 1e-8 ... 1e3 s, equal m
 
 Rows
 ----
-kernel/per-mode  the steady effective kernel built mode by mode (``steady.history_kernels``), one speed.
+kernel/per-mode  the steady effective kernel built mode by mode (``kernels.history_kernels``), one speed.
 kernel/one-pass  the same kernel from ``steady_kernels.SteadyKernelBuilder`` (first speed: with its
                  IC node values; next speeds: without), and its largest difference to the per-mode one.
+curve            mu_app against speed: 30 speeds over 8 decades, 30-term material, n^2 (steady
+                 solver, ``steady.speed_sweep``: one kernel builder, each speed warm-started).
 transient        gross sliding (mu_f = 0.3, coupled), linear scheme, n^2: wall time per step, M = 1
                  and M = 30 measured alternately in one process; and the hereditary update alone
-                 (``PronyHistory.traction`` + ``advance``, one component) per step.
+                 (``PronyHistory.known`` + ``advanced``, one component) per step.
 """
 from __future__ import annotations
 
@@ -25,11 +27,13 @@ import warnings
 import numpy as np
 
 from viscontact.grid import Grid
-from viscontact.history import PronyHistory, step_coefficients
+from viscontact.history import PronyHistory
+from viscontact.kernels import history_kernels
 from viscontact.materials import Material
 from viscontact.problem import (NormalLoading, OutputSettings, PiecewiseLinear, Problem, TangentialLoading,
                                 TimeStepping)
-from viscontact.steady import history_kernels
+from viscontact.schemes import step_coefficients
+from viscontact.steady import speed_sweep
 from viscontact.steady_kernels import SteadyKernelBuilder
 from viscontact.transient import simulate
 
@@ -42,14 +46,14 @@ def material(terms: int) -> Material:
                           if terms > 1 else [1e-3], NU)
 
 
-def sliding(mat: Material, n: int, steps: int) -> Problem:
+def sliding(mat: Material, n: int, steps: int, mode: str = "gross_sliding", friction: float = 0.3) -> Problem:
     grid = Grid(n, 1.5e-3)
     x, y = grid.mesh()
     speed = 0.05
     dt = grid.spacing / speed
     return Problem(material=mat, grid=grid, gap=(x**2 + y**2) / (2 * R),
                    normal=NormalLoading("load", PiecewiseLinear.constant(0.15)),
-                   tangential=TangentialLoading("gross_sliding", 0.3, 0.0, speed),
+                   tangential=TangentialLoading(mode, friction, 0.0, speed),
                    time=TimeStepping(steps * dt, dt, "linear"), output=OutputSettings(every=1000, fields=()),
                    radius=R)
 
@@ -64,24 +68,46 @@ def per_step(problem: Problem) -> float:
 
 def history_update(terms: int, n: int, steps: int = 20) -> float:
     mat = material(terms)
-    coef = step_coefficients(mat, 1e-3, "linear", False)
+    coef = step_coefficients(mat.creep, 1e-3, "linear", False)
     hist = PronyHistory.zeros(mat.creep.amplitudes.size, n)
     p = np.random.default_rng(0).random((n, n))
     start = time.perf_counter()
-    for _ in range(steps):
-        hist.traction(mat, coef)
-        hist.advance(p, coef)
+    for k in range(steps):
+        hist.known(coef, k * 1e-3)
+        hist = hist.advanced(p, coef, k * 1e-3)
     return (time.perf_counter() - start) / steps
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--only", choices=["kernel", "curve", "transient"], help="one row group only")
     args = ap.parse_args()
     n_steady, n_transient = (64, 128) if args.quick else (128, 256)
     print(f"# {platform.node()} {platform.machine()} python {platform.python_version()} numpy {np.__version__}"
           f" {time.strftime('%Y-%m-%d %H:%M')}")
 
+    if args.only in (None, "kernel"):
+        kernel_rows(n_steady)
+    if args.only in (None, "curve"):
+        curve_row(n_steady)
+    if args.only in (None, "transient"):
+        transient_rows(n_transient)
+
+
+def curve_row(n: int) -> None:
+    problem = sliding(material(30), n, 1, "frictionless_sliding", 0.0)
+    speeds = np.geomspace(1e-6, 1e2, 30)
+    start = time.perf_counter()
+    records = speed_sweep(problem, speeds)
+    wall = time.perf_counter() - start
+    mu = np.array([r.mu_app for r in records])
+    print(f"\n## mu_app curve: 30 speeds 1e-6 ... 1e2 m/s, 30 terms, {n}^2, frictionless")
+    print(f"wall time {wall:.1f} s ({wall / 30:.2f} s per speed); mu_app max {mu.max():.4f} at "
+          f"v = {speeds[int(np.argmax(mu))]:.2g} m/s; active-set rounds {sum(r.iterations for r in records)}")
+
+
+def kernel_rows(n_steady: int) -> None:
     grid = Grid(n_steady, 1.5e-3)
     speed = 0.05
     print(f"\n## steady effective kernel, {n_steady}^2, v = {speed} m/s, components zz, zx")
@@ -108,6 +134,9 @@ def main() -> None:
             per_mode, diff_txt = "-", "-"
         print(f"| {terms} | {per_mode} | {t1 - t0:.2f} | {t2 - t1:.2f} | {diff_txt} |")
 
+
+
+def transient_rows(n_transient: int) -> None:
     print(f"\n## transient gross sliding, {n_transient}^2, linear scheme: seconds per step")
     print("| terms | run 1 | run 2 | hereditary update alone |")
     print("|---|---|---|---|")

@@ -293,13 +293,14 @@ class TangentialSection(_Section):
 
 
 class TimeSection(_Section):
-    """End time and step [s]; ``dt`` defaults to one cell of sliding per ``steps_per_cell`` steps."""
+    """End time and step [s]; ``dt`` defaults to one cell of sliding per ``steps_per_cell`` steps.
+    ``scheme``: ``"linear"`` (default, second order) or the seed's ``"constant"`` (first order)."""
 
     t_end: float = _num(unit="s", gt=0, description="end time")
     dt: float | None = _num(None, unit="s", gt=0, description="time step, <= t_end; required without sliding")
-    scheme: Literal["constant", "linear"] = Field("constant", description="traction constant within a step "
-                                                  "(the seed's, first order) or linear (second order, "
-                                                  "stable for any dt)")
+    scheme: Literal["constant", "linear"] = Field("linear", description="traction linear within a step (the "
+                                                  "default: second order, stable for any dt) or constant "
+                                                  "(the seed's, first order)")
 
 
 _FIELD_NAMES = Literal["pressure", "shear_x", "stick", "displacement_z"]

@@ -187,12 +187,20 @@ def history_kernels(grid: Grid, poisson_ratio: float, length: float,
     for idx in range(offsets.size - 2, -1, -1):
         running = _integrate(ic(offsets[idx]), local_breaks) + decay * running
         values[:, :, idx] = running
+    return offset_columns_to_kernels(values, components)
+
+
+def offset_columns_to_kernels(values: np.ndarray, components: Sequence[str]) -> dict[str, np.ndarray]:
+    """Kernels (2n, 2n) in DC-FFT wrap order from ``values`` (components, 2n y offsets in wrap order,
+    2n - 1 x offsets -(n-1) dx ... (n-1) dx); row and column n (offset n dx) zero."""
+    n = values.shape[1] // 2
+    k = np.arange(-(n - 1), n)
+    cols = np.where(k >= 0, k, k + 2 * n)
     out = {}
-    cols = np.where(np.arange(-(n - 1), n) >= 0, np.arange(-(n - 1), n), np.arange(-(n - 1), n) + 2 * n)
     for ci, c in enumerate(components):
-        k = np.zeros((2 * n, 2 * n))
-        k[:, cols] = values[ci]
-        k[n, :] = 0.0
-        k[:, n] = 0.0
-        out[c] = k
+        kernel = np.zeros((2 * n, 2 * n))
+        kernel[:, cols] = values[ci]
+        kernel[n, :] = 0.0
+        kernel[:, n] = 0.0
+        out[c] = kernel
     return out

@@ -117,14 +117,15 @@ class TangentialLoading:
 class TimeStepping:
     """Time discretisation.
 
-    ``scheme = "constant"`` is the seed's: tractions constant within a step, increments act at the
-    start of the step (first order). ``"linear"`` treats tractions as linear within a step
-    (exact integration of the exponential compliance over the step; second order).
+    ``scheme = "linear"`` (the default) treats tractions as linear within a step (exact
+    integration of the exponential compliance over the step; second order, stable for every dt).
+    ``"constant"`` is the seed's: tractions constant within a step, increments act at the start of
+    the step (first order, with a stability limit on dt).
     """
 
     t_end: float
     dt: float
-    scheme: TimeScheme = "constant"
+    scheme: TimeScheme = "linear"
 
     @property
     def n_steps(self) -> int:

@@ -12,7 +12,8 @@ i.e. a convolution with the *effective steady kernel*
 
 F_m integrates the whole past of the material, far beyond the grid, so only the contact needs to
 be on the grid (no wake truncation). It is built once per speed by the substrate
-(:meth:`viscontact.substrate.HalfSpace.steady_convolver`, :func:`viscontact.kernels.history_kernels`).
+(:meth:`viscontact.substrate.HalfSpace.steady_convolver`, all modes in one pass by
+:mod:`viscontact.steady_kernels`).
 
 The kernel is not symmetric, so the contact problem (p >= 0, gap >= 0, complementarity, load or
 approach given) is solved by a primal-dual active-set method (Hintermueller, Ito & Kunisch 2002):
@@ -180,11 +181,13 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
 
 
 def speed_sweep(problem: Problem, speeds: Sequence[float]) -> list[StepRecord]:
-    """Steady states at each speed [m/s], in the given order, each warm-started from the previous."""
+    """Steady states at each speed [m/s], in the given order, each warm-started from the previous;
+    one substrate serves them all (its kernel builder keeps what does not depend on the speed)."""
     out: list[StepRecord] = []
     previous = None
+    substrate = substrate_for(problem, ("zz",))
     for v in speeds:
-        rec = solve_steady(problem, v, initial=previous)
+        rec = solve_steady(problem, v, initial=previous, substrate=substrate)
         previous = rec.pressure
         out.append(rec)
     return out

@@ -5,7 +5,7 @@ In the frame of an indenter sliding at speed v the steady hereditary kernel is (
 
     K(d) = J_0 IC(d) + sum_m J_m F_m(d),   F_m(d) = int_0^inf exp(-xi/L_m)/L_m IC(d + xi) dxi,
 
-with decay lengths L_m = v lambda_m. Built mode by mode (``steady.history_kernels``) every mode
+with decay lengths L_m = v lambda_m. Built mode by mode (``kernels.history_kernels``) every mode
 evaluates the influence coefficients IC at its own quadrature nodes, so the cost grows with the
 number of terms. Here the x-integral is done by *product integration*: on each interval of a fixed
 partition of xi, IC(d + xi) is replaced by its polynomial interpolant at Chebyshev-Lobatto nodes
@@ -20,7 +20,7 @@ are computed once per grid (and reused for every speed of a sweep), and each mod
 interpolation of IC, uniform in L; both limits are exact: L << dx gives c -> (1, 0, ...), i.e.
 F = IC(d) (the mode acts instantaneously), and L -> inf gives F -> 0.
 
-As in ``steady.history_kernels`` the whole past is covered by the exact backward recursion over
+As in ``kernels.history_kernels`` the whole past is covered by the exact backward recursion over
 the offsets d = -(n-1) dx ... (n-1) dx,
 
     F(d) = int_0^dx exp(-xi/L)/L IC(d + xi) dxi + exp(-dx/L) F(d + dx),
@@ -38,7 +38,7 @@ from typing import Sequence
 import numpy as np
 
 from .grid import Grid
-from .kernels import influence_coefficients, rectangle_influence
+from .kernels import influence_coefficients, offset_columns_to_kernels, rectangle_influence
 
 #: exp(-45) ~ 3e-20: beyond 45 decay lengths a mode's weight is below double precision
 _DECAY_CUTOFF = 45.0
@@ -213,7 +213,7 @@ class SteadyKernelBuilder:
         for i in range(2 * n - 3, -1, -1):
             running = weights @ local_ic[i] + decay * running
             values[i] = amps @ running
-        return self._to_wrap_order(values.T.reshape(n_comp, 2 * n, 2 * n - 1))
+        return offset_columns_to_kernels(values.T.reshape(n_comp, 2 * n, 2 * n - 1), self.components)
 
     def _tail(self, lengths: np.ndarray) -> np.ndarray:
         """F_m at the largest offset d_max = (n-1) dx, shape (M, C * 2n): int_0^inf on intervals
@@ -235,19 +235,6 @@ class SteadyKernelBuilder:
             if b >= top:
                 return out
             k += 1
-
-    def _to_wrap_order(self, values: np.ndarray) -> dict[str, np.ndarray]:
-        n = self.grid.n
-        k = np.arange(-(n - 1), n)
-        cols = np.where(k >= 0, k, k + 2 * n)
-        out = {}
-        for ci, c in enumerate(self.components):
-            arr = np.zeros((2 * n, 2 * n))
-            arr[:, cols] = values[ci]
-            arr[n, :] = 0.0
-            arr[:, n] = 0.0
-            out[c] = arr
-        return out
 
     def effective(self, instantaneous: float, amplitudes: Sequence[float], retardation_times: Sequence[float],
                   speed: float) -> dict[str, np.ndarray]:

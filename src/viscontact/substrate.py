@@ -48,9 +48,10 @@ import scipy.fft
 from .convolution import Convolver, FourierPreconditioner
 from .grid import Grid
 from .history import DirectHistory, History, PronyHistory
-from .kernels import history_kernels, influence_coefficients
+from .kernels import influence_coefficients
 from .materials import CreepSpectrum, Material
 from .schemes import StepCoefficients, TimeScheme, get_scheme
+from .steady_kernels import SteadyKernelBuilder
 
 Array = np.ndarray
 Operator = Callable[[Array], Array]
@@ -281,21 +282,20 @@ class HalfSpace(TermSubstrate):
         super().__init__(grid, terms, {t.history: creep for t in terms}, conv, precond, scheme, dt, direct)
         self.material = material
         self.workers = workers
+        self._steady_builders: dict[tuple[str, ...], SteadyKernelBuilder] = {}
 
     def steady_convolver(self, speed: float, components: Sequence[str] = ("zz",)
                          ) -> tuple[Convolver, dict[str, Array]]:
-        """K(d) = J_0 IC(d) + sum_m J_m F_m(d), F_m of :func:`~viscontact.kernels.history_kernels`
-        with L_m = v lambda_m (see :mod:`viscontact.steady`); ``apply("zz", p)`` is u_z [m] of p [Pa]."""
-        grid, nu = self.grid, self.material.poisson_ratio
-        comps = list(components)
-        base = influence_coefficients(grid, nu)
+        """K(d) = J_0 IC(d) + sum_m J_m F_m(d) with L_m = v lambda_m (see :mod:`viscontact.steady`),
+        all modes in one pass (:class:`~viscontact.steady_kernels.SteadyKernelBuilder`, kept for
+        the next speed); ``apply("zz", p)`` is u_z [m] of p [Pa]."""
+        comps = tuple(components)
+        builder = self._steady_builders.get(comps)
+        if builder is None:
+            builder = self._steady_builders[comps] = SteadyKernelBuilder(self.grid, self.material.poisson_ratio, comps)
         c = self.material.creep
-        kernels = {k: c.instantaneous * base[k] for k in comps}
-        for amp, lam in zip(c.amplitudes, c.retardation_times):
-            hist = history_kernels(grid, nu, speed * lam, comps)
-            for k in comps:
-                kernels[k] += amp * hist[k]
-        return Convolver.from_kernels(grid.n, kernels, self.workers, xp=self.xp, fft=self.fft), kernels
+        kernels = builder.effective(c.instantaneous, c.amplitudes, c.retardation_times, speed)
+        return Convolver.from_kernels(self.grid.n, kernels, self.workers, xp=self.xp, fft=self.fft), kernels
 
 
 def substrate_for(problem, components: Sequence[str] | None = None) -> TermSubstrate:

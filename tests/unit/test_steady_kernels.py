@@ -4,7 +4,7 @@
    at entries of the singular row dy = 0 next to the cell edge and elsewhere: the product
    integration is accurate to ~1e-8 of max |F| there (measured 1.5e-8 at L = 0.1..10 dx, a few
    1e-8 at L = 1e9 dx where quad itself is limited); tolerance 1e-7.
-2. The per-mode kernels of ``steady.history_kernels`` (a different quadrature: graded Gauss-Legendre
+2. The per-mode kernels of ``kernels.history_kernels`` (a different quadrature: graded Gauss-Legendre
    and its own tail), summed over the modes: they agree to the per-mode code's own error, which
    against quad is up to 5.6e-6 of max |F| in the singular row (Gauss-Legendre up to the x log x
    point at the cell edge); tolerance 2e-5 of max |K|.
@@ -17,8 +17,7 @@ import pytest
 from scipy.integrate import quad
 
 from viscontact.grid import Grid
-from viscontact.kernels import influence_coefficients, rectangle_influence
-from viscontact.steady import history_kernels
+from viscontact.kernels import history_kernels, influence_coefficients, rectangle_influence
 from viscontact.steady_kernels import SteadyKernelBuilder, product_weights
 
 GRID = Grid(12, 1e-3)
