@@ -39,15 +39,28 @@ def _version() -> str:
 
 
 # --- the parser: one ``_add_<command>`` per sub-command, each setting its ``_cmd_<command>`` handler --
+def _set_argument(p: argparse.ArgumentParser, what: str = "a case-file key") -> None:
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
+                   help=f"override {what}, e.g. --set tangential.sliding_speed=0.1 (repeatable; "
+                        "an empty VALUE removes the key)")
+
+
+def _figure_arguments(p: argparse.ArgumentParser) -> None:
+    """``--format`` and ``--dpi`` of the figures a command writes."""
+    from .plotting.base import DPI, FORMATS
+
+    p.add_argument("--format", default="png", choices=FORMATS, dest="fmt", help="file format of the figures")
+    p.add_argument("--dpi", type=int, default=None, metavar="N", help=f"resolution of the figures (default {DPI})")
+
+
 def _case_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of the commands that solve one case (``run``, ``steady``)."""
     p.add_argument("case", metavar="CASE.toml", help="case file")
     p.add_argument("--out", required=True, metavar="RESULT.nc", help="result file (netCDF-4)")
-    p.add_argument("--plots", metavar="DIR", help="also write figures (PNG) into DIR")
+    p.add_argument("--plots", metavar="DIR", help="also write figures into DIR")
+    _figure_arguments(p)
     p.add_argument("--force", action="store_true", help="overwrite an existing result file")
-    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
-                   help="override a case-file key, e.g. --set tangential.sliding_speed=0.1 (repeatable; "
-                        "an empty VALUE removes the key)")
+    _set_argument(p)
 
 
 def _add_run(sub: Any) -> None:
@@ -83,7 +96,10 @@ def _add_material(sub: Any) -> None:
 def _add_plot(sub: Any) -> None:
     p = sub.add_parser("plot", help="figures of an existing result file")
     p.add_argument("result", metavar="RESULT.nc")
-    p.add_argument("--out", required=True, metavar="DIR", help="folder for the PNG files")
+    p.add_argument("--out", required=True, metavar="DIR", help="folder for the figures")
+    p.add_argument("--times", metavar="T1,T2,...", help="times [s] of the profiles and the pressure and stick/slip "
+                   "maps (the nearest records; default: evenly spread)")
+    _figure_arguments(p)
     p.set_defaults(handler=_cmd_plot)
 
 
@@ -99,7 +115,8 @@ def _add_sweep(sub: Any) -> None:
                    "(default: a local cluster)")
     p.add_argument("--workers", type=int, metavar="N", help=f"local worker processes (default: one per core, "
                    f"{default_workers()} here)")
-    p.add_argument("--plots", metavar="DIR", help="also write the sweep figures (PNG) into DIR")
+    p.add_argument("--plots", metavar="DIR", help="also write the sweep figures into DIR")
+    _figure_arguments(p)
     p.add_argument("--quiet", action="store_true", help="no progress bar, no summary, no warnings")
     p.set_defaults(handler=_cmd_sweep)
 
@@ -111,7 +128,10 @@ def _add_reproduce(sub: Any) -> None:
     p.add_argument("figure", choices=list(FIGURES), help="seed figure to reproduce")
     p.add_argument("--out", required=True, metavar="DIR", help="folder for the figures and the results (.nc)")
     p.add_argument("--n", type=int, default=None, metavar="N",
-                   help="grid cells per side instead of the seed's 256 (quick preview; dt follows)")
+                   help="grid cells per side instead of the seed's 256 (quick preview; dt follows, and is cut "
+                        "where the seed's scheme would be near its stability limit: the cases are named)")
+    _set_argument(p, "a key of every case of the figure")
+    _figure_arguments(p)
     p.add_argument("--cases", default=None, metavar="DIR", help="folder of the seed_*.toml cases")
     p.add_argument("--quiet", action="store_true", help="no progress bar, no summary, no warnings")
     p.set_defaults(handler=_cmd_reproduce)
@@ -235,30 +255,38 @@ def _parse_value(text: str) -> Any:
         return text
 
 
-def _load(args: argparse.Namespace) -> Any:
-    from .case import load_case
-
-    case = load_case(args.case)
+def _overrides(items: Sequence[str]) -> dict[str, Any]:
+    """``--set KEY=VALUE`` arguments as dotted keys and values."""
     overrides = {}
-    for item in args.overrides:
+    for item in items:
         key, sep, value = item.partition("=")
         if not sep or not key.strip():
             raise ParameterError("--set", f"expected KEY=VALUE (e.g. tangential.sliding_speed=0.1), got {item!r}")
         overrides[key.strip()] = _parse_value(value.strip())
-    return case.with_overrides(overrides) if overrides else case
+    return overrides
+
+
+def _check_figures(args: argparse.Namespace) -> None:
+    """Before any computing: the figure options are valid and matplotlib imports."""
+    from .plotting import check_format, pyplot
+
+    check_format(args.fmt, args.dpi)
+    pyplot()
 
 
 def _prepare(args: argparse.Namespace) -> Any:
     """The case with its overrides, after checking (before any computing) that the result file may
     be written and that plotting is available."""
-    case = _load(args)
+    from .case import load_case
+
+    case = load_case(args.case)
+    overrides = _overrides(args.overrides)
+    case = case.with_overrides(overrides) if overrides else case
     _check_result_name(args.out)
     if Path(args.out).exists() and not (args.force or getattr(args, "resume", False)):
         raise FileExistsError(17, "exists; refusing to overwrite it without --force", args.out)
     if args.plots:
-        from .plotting import pyplot
-
-        pyplot()
+        _check_figures(args)
     return case
 
 
@@ -268,14 +296,15 @@ def _check_result_name(out: str) -> None:
         raise ParameterError("--out", f"must be a netCDF-4 result file named *.nc, got {out!r}")
 
 
-def _parse_speeds(text: str) -> list[float]:
+def _parse_positive(text: str, option: str, unit: str, example: str) -> list[float]:
+    """Comma-separated finite numbers > 0 (``--speeds``, ``--times``)."""
     try:
-        speeds = [float(s) for s in text.split(",") if s.strip()]
+        values = [float(s) for s in text.split(",") if s.strip()]
     except ValueError:
-        raise ParameterError("--speeds", f"expected comma-separated speeds in m/s (e.g. 0.01,0.1,1), got {text!r}") from None
-    if not speeds or any(not (v > 0 and v < float("inf")) for v in speeds):
-        raise ParameterError("--speeds", f"every speed must be a finite number > 0 m/s, got {text!r}")
-    return speeds
+        raise ParameterError(option, f"expected comma-separated numbers in {unit} (e.g. {example}), got {text!r}") from None
+    if not values or any(not (v > 0 and v < float("inf")) for v in values):
+        raise ParameterError(option, f"every value must be a finite number > 0 {unit}, got {text!r}")
+    return values
 
 
 def _finish(ds: Any, args: argparse.Namespace, started: float) -> None:
@@ -287,7 +316,7 @@ def _finish(ds: Any, args: argparse.Namespace, started: float) -> None:
     write_netcdf(ds, args.out, force=args.force)
     written = [Path(args.out)]
     if args.plots:
-        written += plot_any(ds, args.plots)
+        written += plot_any(ds, args.plots, fmt=args.fmt, dpi=args.dpi)
     if not args.quiet:
         steps = ds.sizes.get("t", ds.sizes.get("speed", 0))
         print(f"wrote {', '.join(str(p) for p in written)} ({steps} records, {time.perf_counter() - started:.1f} s)")
@@ -353,7 +382,7 @@ def _cmd_steady(args: argparse.Namespace) -> int:
     from . import api
 
     started = time.perf_counter()
-    speeds = _parse_speeds(args.speeds) if args.speeds else None
+    speeds = _parse_positive(args.speeds, "--speeds", "m/s", "0.01,0.1,1") if args.speeds else None
     case = _prepare(args)
     _finish(api.run_steady(case, speeds), args, started)
     return 0
@@ -392,7 +421,9 @@ def _cmd_plot(args: argparse.Namespace) -> int:
     from .plotting import plot_any
     from .results import open_result
 
-    for path in plot_any(open_result(args.result), args.out):
+    times = _parse_positive(args.times, "--times", "s", "0.005,0.02") if args.times else None
+    _check_figures(args)
+    for path in plot_any(open_result(args.result), args.out, times=times, fmt=args.fmt, dpi=args.dpi):
         if not args.quiet:
             print(path)
     return 0
@@ -412,9 +443,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     spec = load_sweep(args.sweep)
     plan(spec)  # every problem with the sweep file, before connecting to anything
     if args.plots:
-        from .plotting import pyplot
-
-        pyplot()
+        _check_figures(args)
     client = None
     try:
         if args.scheduler:
@@ -438,7 +467,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     if args.plots:
         from .plotting import plot_sweep
 
-        written += plot_sweep(ds, args.plots)
+        written += plot_sweep(ds, args.plots, fmt=args.fmt, dpi=args.dpi)
     if not args.quiet:
         a = ds.attrs
         total = a["runs_computed"] + a["runs_reused"]
@@ -451,9 +480,12 @@ def _cmd_reproduce(args: argparse.Namespace) -> int:
     from .reproduce import reproduce
 
     started = time.perf_counter()
+    _check_figures(args)
     with _bar(args, "step") as bar:
-        paths = reproduce(args.figure, args.out, n=args.n, cases_dir=args.cases,
-                          progress=lambda name, done, total: bar.update(done, total, desc=name))
+        paths = reproduce(args.figure, args.out, n=args.n, overrides=_overrides(args.overrides), cases_dir=args.cases,
+                          progress=lambda name, done, total: bar.update(done, total, desc=name),
+                          notify=None if args.quiet else lambda line: _say(f"{PROG}: {line}"),
+                          fmt=args.fmt, dpi=args.dpi)
     if not args.quiet:
         for path in paths:
             print(path)

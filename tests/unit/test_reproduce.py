@@ -4,13 +4,15 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from viscontact import cli
 from viscontact.case import load_case
 from viscontact.errors import ParameterError
+from viscontact.history import amplification, stable_step_limit
 from viscontact.problem import PHASE_GROSS_SLIDING
-from viscontact.reproduce import FIGURES, find_cases_dir, record_every, run_seed_cases, time_scale
+from viscontact.reproduce import FIGURES, find_cases_dir, load_seed_case, record_every, run_seed_cases, time_scale
 from viscontact.results import open_result
 
 from vc_testing import SEED_G0, SEED_GINF, SEED_NU
@@ -64,17 +66,20 @@ def tiny_cases(tmp_path_factory) -> Path:
 
 def test_reproduce_runs_saves_reuses_and_draws(tiny_cases, tmp_path, capsys):
     out = tmp_path / "fig10"
-    assert cli.main(["reproduce", "fig10", "--out", str(out), "--cases", str(tiny_cases)]) == 0
+    assert cli.main(["reproduce", "fig10", "--out", str(out), "--cases", str(tiny_cases), "--format", "svg",
+                     "--set", "tangential.friction_coefficient=0.4", "--set", "tangential.displacement_rate=0.02"]) == 0
     paths = [Path(line) for line in capsys.readouterr().out.splitlines()[:-1]]
-    assert [p.name for p in paths] == ["fig10.png", "fig10_seed_fig10_case3_stick_map.png",
+    assert [p.name for p in paths] == ["fig10.svg", "fig10_seed_fig10_case3_stick_map.svg",
                                        "seed_fig10_case1.nc", "seed_fig10_case2.nc", "seed_fig10_case3.nc"]
     assert all(p.stat().st_size > 1000 for p in paths)
     ds = open_result(out / "seed_fig10_case3.nc")
     assert ds.attrs["complete"] == 1 and ds.sizes["y"] == 16
+    assert ds.attrs["friction_coefficient"] == 0.4 and ds.attrs["displacement_rate"] == 0.02   # --set
     assert ds["phase"].values[-1] == PHASE_GROSS_SLIDING                      # the partial-slip case slides
     # running the figure's cases again reuses every saved result (computed from the same case text)
     stamps = {p: p.stat().st_mtime_ns for p in paths if p.suffix == ".nc"}
-    runs = run_seed_cases(FIGURES["fig10"].cases, out, times_tau=FIGURES["fig10"].times, cases_dir=tiny_cases)
+    runs = run_seed_cases(FIGURES["fig10"].cases, out, times_tau=FIGURES["fig10"].times, cases_dir=tiny_cases,
+                          overrides={"tangential.friction_coefficient": 0.4, "tangential.displacement_rate": 0.02})
     assert {p: p.stat().st_mtime_ns for p in stamps} == stamps
     assert float(runs["seed_fig10_case3"]["mu_app"][-1]) == float(ds["mu_app"][-1])
 
@@ -92,3 +97,41 @@ def test_cases_dir_is_found_or_named():
         find_cases_dir(CASES / "sweeps")
     assert err.value.key == "--cases"
 
+
+SEED_CASES = sorted({name for spec in FIGURES.values() for name in spec.cases})
+
+
+@pytest.mark.parametrize("n", [32, 64])
+def test_previews_keep_the_seed_scheme_well_inside_its_stability_limit(n):
+    """At --n 32 and 64 the grid's dt = dx/v is near or over the constant scheme's limit (2.23 ms
+    for G(0)/G(inf) = 10; the Table 1 cases at n = 32: 4 ms). Each such case gets more steps per
+    cell and is named. Then the scheme's factor per step on a disturbance of the seed's one-mode
+    (Zener) materials, z = A (1 + r) - r with A = exp(-dt/lambda), r = G(0)/G(inf) - 1 (seed scheme,
+    traction constant over the step), is > -0.5: an oscillation (z < 0) at least halves each step."""
+    adapted = []
+    for name in SEED_CASES:
+        case, note = load_seed_case(name, CASES, n, ())
+        material = case.material.build()
+        dt = case.default_dt()
+        assert dt <= 0.5 * stable_step_limit(material, "constant") * (1 + 1e-9), name
+        r = material.shear_modulus_instantaneous / material.shear_modulus_long_term - 1
+        z = np.exp(-dt / material.creep.retardation_times[0]) * (1 + r) - r
+        assert -0.5 < z < 1 and abs(z) == pytest.approx(amplification(material, dt, "constant"), rel=1e-9), name
+        if note:
+            adapted.append(name)
+            assert note.startswith("tangential.steps_per_cell = ") and "stability limit" in note
+            assert case.tangential.steps_per_cell > 1
+        else:
+            assert case.tangential.steps_per_cell == 1
+    assert "seed_table1_v0.4" in adapted                        # dt = 4 ms (n = 32), 2 ms (n = 64)
+    # the linear scheme is stable for any dt: left alone
+    case, note = load_seed_case("seed_table1_v0.4", CASES, 32, (), {"time.scheme": "linear"})
+    assert note == "" and case.tangential.steps_per_cell == 1
+
+
+def test_set_reaches_every_case_and_names_a_bad_key():
+    case, _ = load_seed_case("seed_fig10_case2", CASES, 32, (), {"material.shear_modulus_long_term": 0.643e6})
+    assert case.material.shear_modulus_long_term == 0.643e6
+    with pytest.raises(ParameterError) as err:
+        load_seed_case("seed_fig10_case2", CASES, 32, (), {"material.shear_modulus_long_trem": 1.0})
+    assert err.value.key == "material.shear_modulus_long_trem" and "seed_fig10_case2" in err.value.message

@@ -129,8 +129,8 @@ def test_plots(tmp_path: Path) -> None:
     problem = make_problem()
     records = fake_records(problem)
     paths = plot_result(to_dataset(records, problem), tmp_path / "figs")
-    assert {p.name for p in paths} == {"pressure_profiles.png", "contact_history.png", "friction.png",
-                                       "stick_map.png"}
+    assert {p.name for p in paths} == {"pressure_profiles.png", "pressure_maps.png", "contact_history.png",
+                                       "friction.png", "tangential_loop.png", "stick_map.png", "pressure.gif"}
     assert all(p.stat().st_size > 1000 for p in paths)
     sweep = sweep_dataset(records[:3], [0.01, 0.1, 1.0], problem)
     assert sweep["deborah"].values[1] == pytest.approx(0.1 * 0.01 / sweep.attrs["a0"])

@@ -7,10 +7,11 @@ Matplotlib is imported when a figure is drawn (Agg backend), so importing viscon
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .base import DPI, Scales, phase_name, profile, pyplot, save_figure
+from .base import DPI, FORMATS, FigureFiles, Scales, check_format, phase_name, profile, pyplot, save_figure
 from .material import plot_material
 from .result import plot_result, plot_speed_curve
 from .sweep import plot_sweep
@@ -18,15 +19,19 @@ from .sweep import plot_sweep
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["DPI", "Scales", "phase_name", "plot_any", "plot_material", "plot_result", "plot_speed_curve", "plot_sweep", "profile",
-           "pyplot", "save_figure"]
+__all__ = ["DPI", "FORMATS", "FigureFiles", "Scales", "check_format", "phase_name", "plot_any", "plot_material",
+           "plot_result", "plot_speed_curve", "plot_sweep", "profile", "pyplot", "save_figure"]
 
 
-def plot_any(ds: xr.Dataset, out_dir: str | Path) -> list[Path]:
+def plot_any(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] | None = None, fmt: str = "png",
+             dpi: int | None = None) -> list[Path]:
     """:func:`plot_sweep` for a parameter sweep, :func:`plot_material` for a material,
-    :func:`plot_speed_curve` for a steady speed curve, :func:`plot_result` otherwise."""
+    :func:`plot_speed_curve` for a steady speed curve, :func:`plot_result` (profiles and maps at
+    ``times`` [s]) otherwise; files of format ``fmt``."""
     if ds.attrs.get("kind") == "sweep":
-        return plot_sweep(ds, out_dir)
+        return plot_sweep(ds, out_dir, fmt=fmt, dpi=dpi)
     if ds.attrs.get("kind") == "material":
-        return plot_material(ds, out_dir)
-    return plot_speed_curve(ds, out_dir) if "speed" in ds.dims else plot_result(ds, out_dir)
+        return plot_material(ds, out_dir, fmt=fmt, dpi=dpi)
+    if "speed" in ds.dims:
+        return plot_speed_curve(ds, out_dir, fmt=fmt, dpi=dpi)
+    return plot_result(ds, out_dir, times=times, fmt=fmt, dpi=dpi)

@@ -5,21 +5,27 @@ Figures are drawn from result Datasets only (never from solver objects). Matplot
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..problem import PHASE_NAMES
 
 if TYPE_CHECKING:  # xarray is imported where it is used
     import xarray as xr
 
-__all__ = ["DPI", "Scales", "contact_state", "draw_contact_maps", "phase_name", "positive_attr", "profile", "pyplot",
-           "save_figure", "time_index"]
+__all__ = ["DPI", "FORMATS", "FigureFiles", "Scales", "check_format", "contact_state", "draw_contact_maps",
+           "is_steady", "phase_name", "positive_attr", "profile", "pyplot", "save_figure", "scales_line", "set_title",
+           "time_index"]
 
-#: resolution of the PNG files [dots per inch]
+#: resolution of raster figures [dots per inch] unless asked otherwise
 DPI = 150
+#: file formats a figure may be written in
+FORMATS = ("png", "pdf", "svg")
 
 
 def pyplot() -> Any:
@@ -43,6 +49,39 @@ def save_figure(fig: Any, path: str | Path, *, dpi: int = DPI) -> Path:
     fig.savefig(path, dpi=dpi, bbox_inches="tight")
     pyplot().close(fig)
     return path
+
+
+def check_format(fmt: str, dpi: int | None = None) -> None:
+    """:class:`ParameterError` (``--format``, ``--dpi``) unless ``fmt`` is one of :data:`FORMATS` and
+    ``dpi`` is None or an integer in [10, 2400]."""
+    if fmt not in FORMATS:
+        raise ParameterError("--format", f"must be one of {', '.join(FORMATS)}, got {fmt!r}")
+    if dpi is not None and not (isinstance(dpi, int) and 10 <= dpi <= 2400):
+        raise ParameterError("--dpi", f"must be an integer in [10, 2400] dots per inch, got {dpi!r}")
+
+
+@dataclass(frozen=True)
+class FigureFiles:
+    """Where and how figures are written: ``folder``, format ``fmt`` (:data:`FORMATS`) and ``dpi``."""
+
+    folder: Path
+    fmt: str = "png"
+    dpi: int | None = None
+
+    def save(self, fig: Any, stem: str) -> Path:
+        """Write ``fig`` as ``folder/stem.fmt`` and close it."""
+        return save_figure(fig, self.folder / f"{stem}.{self.fmt}", dpi=self.dpi or DPI)
+
+    def save_animation(self, fig: Any, frame: Callable[[int], Any], frames: int, stem: str, fps: int = 8) -> Path:
+        """Write the animation of ``fig`` that ``frame(i)`` draws for i < ``frames`` as ``folder/stem.gif``
+        (matplotlib's PillowWriter) and close ``fig``."""
+        from matplotlib.animation import FuncAnimation, PillowWriter
+
+        path = self.folder / f"{stem}.gif"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        FuncAnimation(fig, frame, frames=frames).save(path, writer=PillowWriter(fps=fps), dpi=min(self.dpi or DPI, 100))
+        pyplot().close(fig)
+        return path
 
 
 def positive_attr(ds: xr.Dataset, name: str) -> float | None:
@@ -74,6 +113,26 @@ class Scales:
         """``t/τ = 0.5`` (or ``t = 0.005 s`` without a time scale) for a time t [s]."""
         scale, label = self.time
         return f"t/τ = {t / scale:.3g}" if label.startswith("t /") else f"t = {t:.3g} s"
+
+
+def scales_line(ds: xr.Dataset) -> str:
+    """``a0 = 588.7 µm, p0 = 0.2067 MPa, τ = 10 ms``: the scales of a result (those it has)."""
+    a0, p0, tau = positive_attr(ds, "a0"), positive_attr(ds, "p0"), positive_attr(ds, "retardation_time")
+    parts = [f"a0 = {a0 * 1e6:.4g} µm" if a0 else "", f"p0 = {p0 * 1e-6:.4g} MPa" if p0 else "",
+             f"τ = {tau * 1e3:.4g} ms" if tau else ""]
+    return ", ".join(p for p in parts if p)
+
+
+def set_title(fig: Any, ds: xr.Dataset, what: str) -> None:
+    """The figure's title: the result's title (or case), what is drawn, and its scales."""
+    name = str(ds.attrs.get("title", "") or "")
+    fig.suptitle("\n".join(line for line in (f"{name}: {what}" if name else what, scales_line(ds)) if line),
+                 fontsize=10)
+
+
+def is_steady(ds: xr.Dataset) -> bool:
+    """A single steady state (``viscontact steady`` at one speed): one record, nothing in time."""
+    return ds.attrs.get("solver") == "steady" and ds.sizes.get("t", 1) == 1
 
 
 def profile(ds: xr.Dataset, name: str, k: int) -> tuple[np.ndarray, np.ndarray]:
@@ -108,20 +167,33 @@ def contact_state(ds: xr.Dataset, k: int) -> np.ndarray:
     return state
 
 
-def draw_contact_maps(ds: xr.Dataset, picks: list[int], sc: Scales, titles: list[str], suptitle: str) -> Any:
+def map_extent(ds: xr.Dataset, k: int, sc: Scales) -> tuple[float, float, float, float]:
+    """imshow extent of the grid at record ``k`` in the indenter frame (x - frame_offset), scaled by ``sc``."""
+    x = np.asarray(ds["x"].values, dtype=float)
+    half = 0.5 * (x[1] - x[0])
+    offset = float(ds["frame_offset"].values[k]) if "frame_offset" in ds else 0.0
+    s = sc.length[0]
+    return ((x[0] - half - offset) / s, (x[-1] + half - offset) / s, (x[0] - half) / s, (x[-1] + half) / s)
+
+
+def map_axes(n: int) -> tuple[Any, Any]:
+    """A figure with ``n`` map panels in a row sharing both axes."""
+    return pyplot().subplots(1, n, figsize=(3.2 * n + 0.8, 3.6), squeeze=False, sharex=True, sharey=True)
+
+
+def draw_contact_maps(ds: xr.Dataset, picks: list[int], titles: list[str], what: str) -> Any:
     """One map per record in ``picks`` of the contact (white: open, orange: slip, blue: stick) in the
-    grid frame, axes scaled by ``sc``; returns the Figure."""
-    plt = pyplot()
+    indenter frame; returns the Figure."""
     from matplotlib.colors import ListedColormap
 
-    x = ds["x"].values
-    half = float(x[-1] + 0.5 * (x[1] - x[0])) / sc.length[0]
-    fig, axes = plt.subplots(1, len(picks), figsize=(3.2 * len(picks), 3.4), squeeze=False)
+    sc = Scales(ds)
+    fig, axes = map_axes(len(picks))
     cmap = ListedColormap(["white", "tab:orange", "tab:blue"])
     for ax, k, title in zip(axes[0], picks, titles):
-        ax.imshow(contact_state(ds, k), origin="lower", extent=(-half, half, -half, half), cmap=cmap, vmin=0, vmax=2,
+        ax.imshow(contact_state(ds, k), origin="lower", extent=map_extent(ds, k, sc), cmap=cmap, vmin=0, vmax=2,
                   interpolation="nearest")
-        ax.set(title=title, xlabel=sc.length[1], ylabel=sc.length[1].replace("x", "y"))
-    fig.suptitle(suptitle)
+        ax.set(title=title, xlabel=sc.length[1])
+    axes[0, 0].set_ylabel(sc.length[1].replace("x", "y"))
+    set_title(fig, ds, what)
     fig.tight_layout()
     return fig

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .base import pyplot, save_figure
+from .base import FigureFiles, pyplot
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -13,8 +13,8 @@ if TYPE_CHECKING:
 __all__ = ["plot_material"]
 
 
-def plot_material(ds: xr.Dataset, out_dir: str | Path) -> list[Path]:
-    """``material.png`` in ``out_dir``: relaxation modulus and creep compliance against time, storage
+def plot_material(ds: xr.Dataset, out_dir: str | Path, *, fmt: str = "png", dpi: int | None = None) -> list[Path]:
+    """``material.<fmt>`` in ``out_dir``: relaxation modulus and creep compliance against time, storage
     and loss moduli and tan delta against angular frequency (log axes). Returns the paths."""
     plt = pyplot()
     fig, axes = plt.subplots(1, 3, figsize=(16, 4.2))
@@ -38,4 +38,4 @@ def plot_material(ds: xr.Dataset, out_dir: str | Path) -> list[Path]:
     a_t = float(ds.attrs.get("a_T", 1.0))
     fig.suptitle(f"{ds.attrs.get('title') or 'material'}: G(0) = {ds.attrs['shear_modulus_instantaneous']:.4g} Pa, "
                  f"G(inf) = {ds.attrs['shear_modulus_long_term']:.4g} Pa, a_T = {a_t:.4g}")
-    return [save_figure(fig, Path(out_dir) / "material.png")]
+    return [FigureFiles(Path(out_dir), fmt, dpi).save(fig, "material")]

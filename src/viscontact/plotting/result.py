@@ -1,35 +1,95 @@
-"""Figures of one result file: a transient run, a single steady state, or a steady speed curve."""
+"""Figures of one result file: a transient run, a single steady state, or a steady speed curve.
+
+Every figure states the result's title and its scales a0, p0, τ; quantities held by the boundary
+condition (a constant load or approach) get no panel; panels of one figure share their axes.
+"""
 from __future__ import annotations
 
+import tomllib
+from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..problem import PHASE_GROSS_SLIDING
-from .base import Scales, draw_contact_maps, positive_attr, profile, pyplot, save_figure
+from .base import (FigureFiles, Scales, check_format, draw_contact_maps, is_steady, map_axes, map_extent,
+                   positive_attr, profile, pyplot, set_title, time_index)
 
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["plot_result", "plot_speed_curve", "profiles_figure"]
+    from ..materials import Material
+
+__all__ = ["contact_history_figure", "material_of", "plot_result", "plot_speed_curve", "pressure_maps_figure",
+           "profiles_figure", "speed_curve_figure", "tangential_loop_figure"]
+
+#: frames of the pressure animation at most
+MAX_FRAMES = 60
 
 
 def _time_indices(nt: int, count: int = 6) -> np.ndarray:
     return np.unique(np.linspace(0, nt - 1, min(count, nt)).round().astype(int))
 
 
-def profiles_figure(ds: xr.Dataset) -> Any:
-    """Pressure (and shear, when nonzero) along y = 0 (:func:`~viscontact.plotting.base.profile`) at
-    about six recorded times, against the distance from the indenter centre; returns the Figure."""
-    plt = pyplot()
+def _picks(ds: xr.Dataset, times: Sequence[float] | None, count: int) -> list[int]:
+    """Records nearest to ``times`` [s], else ``count`` records evenly spread in time."""
+    if times:
+        return list(dict.fromkeys(time_index(ds, t) for t in times))
+    return list(_time_indices(ds.sizes["t"], count))
+
+
+def _held(values: np.ndarray) -> bool:
+    """A series the boundary condition holds constant (to round-off)."""
+    values = np.asarray(values, dtype=float)
+    return values.size > 0 and float(np.ptp(values)) <= 1e-9 * float(np.max(np.abs(values)) or 1.0)
+
+
+def _steady_label(ds: xr.Dataset) -> str:
+    v = float(ds.attrs.get("sliding_speed", 0.0) or 0.0)
+    tau, a0 = positive_attr(ds, "retardation_time"), positive_attr(ds, "a0")
+    deborah = f", v τ/a0 = {v * tau / a0:.3g}" if tau and a0 else ""
+    return f"steady state at v = {v:.3g} m/s{deborah}"
+
+
+def material_of(ds: xr.Dataset) -> Material | None:
+    """The material of a result, rebuilt from its case text and checked against its attributes
+    (G(0), G(inf), the retardation time); None when they disagree (e.g. a material overridden on
+    the command line in a way the text does not show)."""
+    from ..errors import ParameterError
+    from ..materials import Material
+
+    try:
+        table = tomllib.loads(str(ds.attrs.get("case", "")))["material"]
+        nu = float(ds.attrs["poisson_ratio"])
+        g0, ginf = float(ds.attrs["shear_modulus_instantaneous"]), float(ds.attrs["shear_modulus_long_term"])
+        if table["type"] == "zener":
+            material = Material.zener(g0, ginf, float(ds.attrs["retardation_time"]), nu)
+        elif table["type"] == "elastic":
+            material = Material.elastic(g0, nu)
+        else:
+            material = Material.prony(table["g_inf"], table["g"], table["tau"], nu)
+    except (KeyError, TypeError, ValueError, ParameterError, tomllib.TOMLDecodeError):
+        return None
+    same = np.isclose(material.shear_modulus_instantaneous, g0, rtol=1e-9) and \
+        np.isclose(material.shear_modulus_long_term, ginf, rtol=1e-9)
+    return material if same else None
+
+
+# --- along y = 0 ---------------------------------------------------------------------------------------
+def profiles_figure(ds: xr.Dataset, times: Sequence[float] | None = None) -> Any:
+    """Pressure (and shear, when nonzero) along y = 0 (:func:`~viscontact.plotting.base.profile`)
+    against the distance from the indenter centre, at ``times`` [s] (default: about six records;
+    a steady state: its one state); returns the Figure."""
     sc = Scales(ds)
     shear = "shear_x" in ds and bool(np.any(ds["shear_x"].values != 0))
-    fig, axes = plt.subplots(1, 2 if shear else 1, figsize=(11 if shear else 6, 4.2), squeeze=False)
+    fig, axes = pyplot().subplots(1, 2 if shear else 1, figsize=(11 if shear else 6, 4.4), squeeze=False,
+                                  sharex=True)
     ax_p = axes[0, 0]
     mu = float(ds.attrs.get("friction_coefficient", 0.0) or 0.0)
-    for k in _time_indices(ds.sizes["t"]):
-        label = sc.t_label(float(ds["t"].values[k]))
+    steady = is_steady(ds)
+    for k in ([0] if steady else _picks(ds, times, 6)):
+        label = _steady_label(ds) if steady else sc.t_label(float(ds["t"].values[k]))
         x, p = profile(ds, "pressure", k)
         line, = ax_p.plot(x / sc.length[0], p / sc.pressure[0], label=label)
         if shear:
@@ -37,32 +97,61 @@ def profiles_figure(ds: xr.Dataset) -> Any:
             axes[0, 1].plot(x / sc.length[0], q / sc.shear[0], color=line.get_color(), label=label)
             if mu > 0:
                 axes[0, 1].plot(x / sc.length[0], mu * p / sc.shear[0], color=line.get_color(), ls=":", lw=0.8)
-    ax_p.set(xlabel=sc.length[1], ylabel=sc.pressure[1], title="pressure along y = 0")
+    ax_p.set(xlabel=sc.length[1], ylabel=sc.pressure[1], title="pressure")
     ax_p.legend(fontsize=8)
     if shear:
-        title = "shear traction (dotted: μ_f p)" if mu > 0 else "shear traction"
-        axes[0, 1].set(xlabel=sc.length[1], ylabel=sc.shear[1], title=title)
-    return fig
-
-
-def _contact_history(ds: xr.Dataset, sc: Scales) -> Any:
-    fig, axes = pyplot().subplots(1, 3, figsize=(13, 3.8))
-    t = ds["t"].values / sc.time[0]
-    radius = np.sqrt(ds["contact_area"].values / np.pi) / sc.radius[0]
-    axes[0].plot(t, radius)
-    axes[0].set(xlabel=sc.time[1], ylabel=f"contact radius √(A/π), {sc.radius[1]}")
-    axes[1].plot(t, ds["load"].values)
-    axes[1].set(xlabel=sc.time[1], ylabel="load W [N]")
-    axes[2].plot(t, ds["delta_z"].values * 1e6)
-    axes[2].set(xlabel=sc.time[1], ylabel="approach δ_z [µm]")
-    for ax in axes:
+        axes[0, 1].set(xlabel=sc.length[1], ylabel=sc.shear[1],
+                       title="shear traction (dotted: μ_f p)" if mu > 0 else "shear traction")
+    for ax in axes[0]:
         ax.grid(alpha=0.3)
+    what = f"steady tractions along y = 0 (μ_app = {float(ds['mu_app'][0]):.4g})" if steady else \
+        "tractions along y = 0"
+    set_title(fig, ds, what)
     fig.tight_layout()
     return fig
 
 
-def _friction(ds: xr.Dataset, sc: Scales) -> Any:
-    fig, ax = pyplot().subplots(figsize=(6, 4))
+# --- against time ------------------------------------------------------------------------------------
+def contact_history_figure(ds: xr.Dataset) -> Any:
+    """Contact radius, load and approach against time, without the one the boundary condition holds,
+    and with Lee & Radok's solution (:mod:`viscontact.reference`) for a sphere indented without
+    sliding under a held load (creep) or approach (relaxation); returns the Figure."""
+    from ..reference import lee_radok_creep, lee_radok_relaxation
+
+    sc = Scales(ds)
+    t = ds["t"].values
+    radius = np.sqrt(ds["contact_area"].values / np.pi)
+    panels = [("contact_area", radius / sc.radius[0], f"contact radius √(A/π), {sc.radius[1]}", sc.radius[0])]
+    panels += [(name, ds[name].values * scale, label, scale) for name, scale, label in
+               (("load", 1.0, "load W [N]"), ("delta_z", 1e6, "approach δ_z [µm]")) if not _held(ds[name].values)]
+    fig, axes = pyplot().subplots(1, len(panels), figsize=(4.4 * len(panels), 3.9), squeeze=False, sharex=True)
+    curves = {}
+    sphere = positive_attr(ds, "radius")
+    material = material_of(ds)
+    if ds.attrs.get("tangential_mode") == "none" and sphere and material is not None:
+        if ds.attrs.get("normal_control") == "load" and _held(ds["load"].values):
+            ref = lee_radok_creep(float(ds["load"].values[0]), sphere, material, t)
+            curves = {"contact_area": ref.radius, "delta_z": ref.approach}
+        elif ds.attrs.get("normal_control") == "displacement" and _held(ds["delta_z"].values):
+            ref = lee_radok_relaxation(float(ds["delta_z"].values[0]), sphere, material, t)
+            curves = {"contact_area": ref.radius, "load": ref.load}
+    for ax, (name, values, label, scale) in zip(axes[0], panels):
+        ax.plot(t / sc.time[0], values, label="viscontact")
+        if name in curves:
+            ax.plot(t / sc.time[0], curves[name] * (1 / sc.radius[0] if name == "contact_area" else scale),
+                    "k--", lw=1.0, label="Lee & Radok (1960)")
+            ax.legend(fontsize=8)
+        ax.set(xlabel=sc.time[1], ylabel=label)
+        ax.grid(alpha=0.3)
+    held = [word for name, word in (("load", "load"), ("delta_z", "approach")) if _held(ds[name].values)]
+    set_title(fig, ds, "contact against time" + (f" ({' and '.join(held)} held)" if held else ""))
+    fig.tight_layout()
+    return fig
+
+
+def _friction(ds: xr.Dataset) -> Any:
+    sc = Scales(ds)
+    fig, ax = pyplot().subplots(figsize=(6.4, 4.4))
     t = ds["t"].values / sc.time[0]
     ax.plot(t, ds["mu_app"].values, label="μ_app = F_T / W (hysteresis)")
     if np.any(ds["friction_force"].values != 0):
@@ -74,57 +163,180 @@ def _friction(ds: xr.Dataset, sc: Scales) -> Any:
     ax.set(xlabel=sc.time[1], ylabel="friction coefficient [-]")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
+    set_title(fig, ds, "friction against time")
+    fig.tight_layout()
     return fig
 
 
-def _stick_map(ds: xr.Dataset, sc: Scales) -> Any:
+def tangential_loop_figure(ds: xr.Dataset) -> Any:
+    """The tangential force Q = Σ q_x ΔA against the tangential displacement δ_x of partial slip,
+    with the elastic Cattaneo-Mindlin curves (:class:`~viscontact.reference.CattaneoMindlin`) for
+    G(0) and G(∞) under the same load; returns the Figure."""
+    from ..reference import cattaneo_mindlin
+
+    mu = float(ds.attrs.get("friction_coefficient", 0.0) or 0.0)
+    load = float(np.max(ds["load"].values))
+    delta_x = ds["delta_x"].values
+    references = []
+    sphere = positive_attr(ds, "radius")
+    if sphere and ds.attrs.get("normal_control") == "load":
+        references = [(cattaneo_mindlin(load, sphere, mu, float(ds.attrs[key]), float(ds.attrs["poisson_ratio"])),
+                       name, style) for key, name, style in (("shear_modulus_instantaneous", "G(0)", "k--"),
+                                                             ("shear_modulus_long_term", "G(∞)", "k:"))]
+    # up to 1.5 times the onset of gross sliding (or the elastic G(inf) one): the loop, not the sliding
+    sliding = np.flatnonzero(ds["phase"].values == PHASE_GROSS_SLIDING)
+    onset = [float(delta_x[sliding[0]])] if sliding.size else [float(np.max(delta_x))]
+    end = 1.5 * max(onset + [cm.sliding_displacement for cm, _, _ in references[1:]])
+    keep = delta_x <= end
+    fig, ax = pyplot().subplots(figsize=(6.4, 4.6))
+    ax.plot(delta_x[keep] * 1e6, ds["friction_force"].values[keep] / (mu * load), "o-", ms=2.5, label="viscontact")
+    d = np.linspace(0.0, end, 300)
+    for cm, name, style in references:
+        ax.plot(d * 1e6, cm.force(d) / (mu * load), style, lw=1.0, label=f"Cattaneo-Mindlin, elastic {name}")
+    ax.set(xlabel="tangential displacement δ_x [µm]", ylabel="Q / (μ_f W)", ylim=(0, 1.1))
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    set_title(fig, ds, "tangential force against displacement")
+    fig.tight_layout()
+    return fig
+
+
+# --- maps ----------------------------------------------------------------------------------------------
+def pressure_maps_figure(ds: xr.Dataset, times: Sequence[float] | None = None) -> Any:
+    """Maps of p/p0 in the indenter frame at ``times`` [s] (default: four records; a steady state:
+    its one state), one colour scale; returns the Figure."""
+    sc = Scales(ds)
+    picks = [0] if is_steady(ds) else _picks(ds, times, 4)
+    pressure = ds["pressure"].values
+    top = float(max(pressure[k].max() for k in picks)) / sc.pressure[0] or 1.0
+    fig, axes = map_axes(len(picks))
+    for ax, k in zip(axes[0], picks):
+        image = ax.imshow(pressure[k] / sc.pressure[0], origin="lower", extent=map_extent(ds, k, sc), vmin=0,
+                          vmax=top, cmap="viridis", interpolation="nearest")
+        ax.set(title=_steady_label(ds) if is_steady(ds) else sc.t_label(float(ds["t"].values[k])),
+               xlabel=sc.length[1])
+    axes[0, 0].set_ylabel(sc.length[1].replace("x", "y"))
+    fig.colorbar(image, ax=list(axes[0]), label=sc.pressure[1], shrink=0.85)
+    set_title(fig, ds, "pressure")
+    return fig
+
+
+def _stick_map(ds: xr.Dataset, times: Sequence[float] | None) -> Any:
+    sc = Scales(ds)
     phase = ds["phase"].values
-    sliding = np.flatnonzero(phase == PHASE_GROSS_SLIDING)
-    before = np.flatnonzero(phase < PHASE_GROSS_SLIDING)
-    picks = before[_time_indices(before.size, 4 if sliding.size == 0 else 3)] if before.size else before
-    picks = np.concatenate([picks, sliding[:1]]) if picks.size or sliding.size else np.array([0])
+    if times:
+        picks = _picks(ds, times, 0)
+    else:
+        sliding = np.flatnonzero(phase == PHASE_GROSS_SLIDING)
+        before = np.flatnonzero(phase < PHASE_GROSS_SLIDING)
+        picks = list(before[_time_indices(before.size, 4 if sliding.size == 0 else 3)]) + list(sliding[:1])
     titles = [sc.t_label(float(ds["t"].values[k])) + (" (gross sliding)" if phase[k] == PHASE_GROSS_SLIDING else "")
               for k in picks]
-    return draw_contact_maps(ds, list(picks), sc, titles, "contact: slip (orange), stick (blue)")
+    return draw_contact_maps(ds, picks or [0], titles, "contact: slip (orange), stick (blue)")
 
 
-def plot_result(ds: xr.Dataset, out_dir: str | Path) -> list[Path]:
-    """Figures of a transient (or single steady) result, written as PNG into ``out_dir``.
+def _pressure_animation(ds: xr.Dataset, files: FigureFiles) -> Path:
+    sc = Scales(ds)
+    picks = _time_indices(ds.sizes["t"], MAX_FRAMES)
+    pressure = ds["pressure"].values
+    fig, ax = pyplot().subplots(figsize=(5.2, 4.4))
+    image = ax.imshow(pressure[picks[0]] / sc.pressure[0], origin="lower", extent=map_extent(ds, picks[0], sc),
+                      vmin=0, vmax=float(pressure.max()) / sc.pressure[0] or 1.0, cmap="viridis")
+    fig.colorbar(image, ax=ax, label=sc.pressure[1])
+    ax.set(xlabel=sc.length[1], ylabel=sc.length[1].replace("x", "y"))
+    set_title(fig, ds, "pressure")
+    fig.subplots_adjust(top=0.8)
 
-    Always: pressure (and shear, when nonzero) along y = 0 at about six times
-    (``pressure_profiles.png``) and contact radius, load and approach against time
-    (``contact_history.png``). When sliding: apparent friction against time (``friction.png``).
-    In partial slip: stick/slip maps (``stick_map.png``).
+    def frame(i: int) -> tuple[Any]:
+        k = picks[i]
+        image.set_data(pressure[k] / sc.pressure[0])
+        image.set_extent(map_extent(ds, k, sc))
+        ax.set_title(sc.t_label(float(ds["t"].values[k])))
+        return (image,)
+
+    return files.save_animation(fig, frame, len(picks), "pressure")
+
+
+def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] | None = None, fmt: str = "png",
+                dpi: int | None = None) -> list[Path]:
+    """Figures of a transient (or single steady) result, written into ``out_dir``.
+
+    ``pressure_profiles``: pressure (and shear, when nonzero) along y = 0; ``pressure_maps``: p/p0
+    maps at ``times`` [s] (default: four records). A transient adds ``contact_history`` (contact
+    radius, load and approach against time; Lee & Radok for held indentation), ``pressure.gif``
+    (an animation of the pressure field), when sliding ``friction`` (apparent friction against time)
+    and in partial slip ``tangential_loop`` (Q against δ_x, with Cattaneo-Mindlin) and
+    ``stick_map`` (stick/slip maps). A steady state is drawn as one state, with no time histories.
+
+    Parameters
+    ----------
+    ds
+        A result Dataset (:func:`viscontact.results.open_result`).
+    out_dir
+        Folder for the files (created).
+    times
+        Times [s] of the profiles and maps (the nearest records).
+    fmt, dpi
+        File format (``png``, ``pdf``, ``svg``) and resolution [dots per inch] of the figures.
 
     Returns
     -------
     list of Path
         The files written.
     """
-    out_dir = Path(out_dir)
-    sc = Scales(ds)
-    figures = {}
+    check_format(fmt, dpi)
+    files = FigureFiles(Path(out_dir), fmt, dpi)
+    mode = ds.attrs.get("tangential_mode", "none")
+    figures: dict[str, Any] = {}
     if "pressure" in ds:
-        figures["pressure_profiles.png"] = profiles_figure(ds)
-    figures["contact_history.png"] = _contact_history(ds, sc)
-    if ds.attrs.get("tangential_mode", "none") != "none":
-        figures["friction.png"] = _friction(ds, sc)
-    if ds.attrs.get("tangential_mode") == "partial_slip" and "stick" in ds and "pressure" in ds:
-        figures["stick_map.png"] = _stick_map(ds, sc)
-    return [save_figure(fig, out_dir / name) for name, fig in figures.items()]
+        figures["pressure_profiles"] = profiles_figure(ds, times)
+        figures["pressure_maps"] = pressure_maps_figure(ds, times)
+    if not is_steady(ds):
+        figures["contact_history"] = contact_history_figure(ds)
+        if mode != "none":
+            figures["friction"] = _friction(ds)
+        if mode == "partial_slip":
+            figures["tangential_loop"] = tangential_loop_figure(ds)
+            if "stick" in ds and "pressure" in ds:
+                figures["stick_map"] = _stick_map(ds, times)
+    paths = [files.save(fig, name) for name, fig in figures.items()]
+    if "pressure" in ds and not is_steady(ds) and ds.sizes["t"] > 1:
+        paths.append(_pressure_animation(ds, files))
+    return paths
 
 
-def plot_speed_curve(ds: xr.Dataset, out_dir: str | Path) -> list[Path]:
-    """μ_app against the Deborah number v τ / a0 (log axis) of a steady speed sweep (dimension
-    ``speed``), as ``speed_curve.png`` in ``out_dir``; against v [m/s] when τ or a0 is unknown."""
+# --- speed curves -------------------------------------------------------------------------------------
+def speed_curve_figure(ds: xr.Dataset) -> Any:
+    """μ_app, peak pressure, contact area and contact shift of a steady speed sweep (dimension
+    ``speed``) against the Deborah number v τ / a0 (log axis; speed in m/s on the top axis), or
+    against v [m/s] when τ or a0 is unknown; returns the Figure."""
+    sc = Scales(ds)
     order = np.argsort(ds["speed"].values)
+    speed = ds["speed"].values[order]
     tau, a0 = positive_attr(ds, "retardation_time"), positive_attr(ds, "a0")
-    if tau and a0:
-        x, label = ds["speed"].values * tau / a0, "Deborah number v τ / a0"
-    else:
-        x, label = ds["speed"].values, "sliding speed v [m/s]"
-    fig, ax = pyplot().subplots(figsize=(6, 4))
-    ax.semilogx(x[order], ds["mu_app"].values[order], "o-")
-    ax.set(xlabel=label, ylabel="μ_app = F_T / W [-]", title="steady sliding: hysteresis friction")
-    ax.grid(alpha=0.3, which="both")
-    return [save_figure(fig, Path(out_dir) / "speed_curve.png")]
+    k = tau / a0 if tau and a0 else None
+    x = speed * k if k else speed
+    area_scale, area_label = (np.pi * a0**2, "contact area A / (π a0²)") if a0 else (1e-6, "contact area [mm²]")
+    panels = (("mu_app", 1.0, "μ_app = F_T / W [-]"), ("peak_pressure", sc.pressure[0], f"peak {sc.pressure[1]}"),
+              ("contact_area", area_scale, area_label),
+              ("contact_shift", sc.length[0], f"contact shift {sc.length[1].replace('x', 'x_c')}"))
+    fig, axes = pyplot().subplots(2, 2, figsize=(10.5, 7.4), sharex=True)
+    for ax, (name, scale, label) in zip(axes.flat, panels):
+        ax.semilogx(x, ds[name].values[order] / scale, "o-", ms=4)
+        ax.set(ylabel=label)
+        ax.grid(alpha=0.3, which="both")
+    for ax in axes[1]:
+        ax.set_xlabel("Deborah number v τ / a0" if k else "sliding speed v [m/s]")
+    if k:
+        for ax in axes[0]:
+            top = ax.secondary_xaxis("top", functions=(lambda d, k=k: d / k, lambda v, k=k: v * k))
+            top.set_xlabel("sliding speed v [m/s]")
+    set_title(fig, ds, "steady sliding against speed")
+    fig.tight_layout()
+    return fig
+
+
+def plot_speed_curve(ds: xr.Dataset, out_dir: str | Path, *, fmt: str = "png", dpi: int | None = None) -> list[Path]:
+    """:func:`speed_curve_figure` as ``speed_curve.<fmt>`` in ``out_dir``."""
+    check_format(fmt, dpi)
+    return [FigureFiles(Path(out_dir), fmt, dpi).save(speed_curve_figure(ds), "speed_curve")]

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .base import Scales, draw_contact_maps, phase_name, profile, pyplot, save_figure, time_index
+from .base import FigureFiles, Scales, draw_contact_maps, phase_name, profile, pyplot, set_title, time_index
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -41,6 +41,21 @@ def _short(name: str) -> str:
     return name.replace("seed_", "").replace("_", " ")
 
 
+def _title(fig: Any, runs: Runs, title: str) -> None:
+    """The figure's title and the scales (a0, p0, τ) of its first run, which the panels share."""
+    ref = next(iter(runs.values()))
+    set_title(fig, ref.assign_attrs(title=""), title)
+
+
+def _profile_axes(n: int) -> tuple[Any, Any]:
+    """A row of ``n`` profile panels sharing both axes, and one more panel for a time curve."""
+    fig, axes = pyplot().subplots(1, n + 1, figsize=(4.7 * (n + 1), 4.4))
+    for ax in axes[1:n]:
+        ax.sharex(axes[0])
+        ax.sharey(axes[0])
+    return fig, axes
+
+
 def _profiles_panel(ax: Any, ds: xr.Dataset, times_tau: Sequence[float], title: str) -> None:
     a0, p0 = float(ds.attrs["a0"]), float(ds.attrs["p0"])
     sc = Scales(ds)
@@ -63,14 +78,14 @@ def _mu_panel(ax: Any, runs: Runs, labels: Mapping[str, str], title: str) -> Non
 
 def profiles_figure(runs: Runs, times_tau: Sequence[float], title: str) -> Any:
     """Fig. 4: p/p0 along y = 0 at ``times_tau`` for each speed, and μ_app(t/τ) of all."""
-    fig, axes = pyplot().subplots(1, len(runs) + 1, figsize=(19, 4.2))
+    fig, axes = _profile_axes(len(runs))
     labels = {}
     for i, (name, ds) in enumerate(runs.items()):
         v = float(ds.attrs["sliding_speed"]) * _tau(ds) / float(ds.attrs["a0"])
         labels[name] = f"v τ/a0 = {v:.2f}"
         _profiles_panel(axes[i], ds, times_tau, f"({'abcdefgh'[i]}) {labels[name]}")
     _mu_panel(axes[-1], runs, labels, f"({'abcdefgh'[len(runs)]}) apparent friction")
-    fig.suptitle(title)
+    _title(fig, runs, title)
     fig.tight_layout()
     return fig
 
@@ -80,7 +95,7 @@ def material_figure(runs: Runs, times_tau: Sequence[float], title: str, function
     ``"relaxation"`` (G(t)/G(0)) or ``"creep"`` (J(t) G(0)) of the (Zener) materials of the results."""
     from ..materials import Material
 
-    fig, axes = pyplot().subplots(1, len(runs) + 1, figsize=(19, 4.2))
+    fig, axes = _profile_axes(len(runs))
     t_curve = np.linspace(0.0, 4.0, 200)
     for i, (name, ds) in enumerate(runs.items()):
         ratio = _ratio(ds)
@@ -95,7 +110,7 @@ def material_figure(runs: Runs, times_tau: Sequence[float], title: str, function
     axes[-1].set(xlabel="t / τ", ylabel=ylabel, title=f"({'abcdefgh'[len(runs)]}) {panel}")
     axes[-1].grid(alpha=0.3)
     axes[-1].legend(fontsize=8)
-    fig.suptitle(title)
+    _title(fig, runs, title)
     fig.tight_layout()
     return fig
 
@@ -107,7 +122,7 @@ def apparent_friction_figure(runs: Runs, title: str) -> Any:
                                (axes[1], "load", "(b) creep (held load)")):
         sel = {k: v for k, v in runs.items() if k.endswith(control)}
         _mu_panel(ax, sel, {k: f"G(0)/G(∞) = {_ratio(v):g}" for k, v in sel.items()}, panel)
-    fig.suptitle(title)
+    _title(fig, runs, title)
     fig.tight_layout()
     return fig
 
@@ -126,7 +141,8 @@ def frictional_figure(runs: Runs, times_tau: Sequence[float], title: str, shear_
     """Figs. 9 and 10: one row per time; left q_x/p0 of ``shear_cases`` with μ_f p and the stick
     zones (shaded), labelled with the phase of the run; right p/p0 of every case."""
     plt = pyplot()
-    fig, axes = plt.subplots(len(times_tau), 2, figsize=(12, 3.0 * len(times_tau)), squeeze=False)
+    fig, axes = plt.subplots(len(times_tau), 2, figsize=(12, 3.0 * len(times_tau)), squeeze=False, sharex=True,
+                             sharey="col")
     ref = next(iter(runs.values()))
     a0, p0 = float(ref.attrs["a0"]), float(ref.attrs["p0"])
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
@@ -152,16 +168,17 @@ def frictional_figure(runs: Runs, times_tau: Sequence[float], title: str, shear_
         ax_p.set(xlabel="x / a0", ylabel="p / p0", title=f"t = {t:g}τ: pressure")
         ax_p.grid(alpha=0.3)
         ax_p.legend(fontsize=7)
-    fig.suptitle(title)
+    _title(fig, runs, title)
     fig.tight_layout()
     return fig
 
 
-def stick_slip_map(ds: xr.Dataset, times_tau: Sequence[float], path: str | Path, *,
+def stick_slip_map(ds: xr.Dataset, times_tau: Sequence[float], files: FigureFiles, stem: str, *,
                    title: str = "contact: slip (orange), stick (blue)") -> Path:
     """Maps of the contact (white: open, orange: slip, blue: stick) at the recorded times nearest to
-    ``times_tau`` [τ], one panel each, written as PNG to ``path``. Axes x/a0, y/a0 in the grid frame."""
+    ``times_tau`` [τ], one panel each, written as ``stem`` by ``files``. Axes x/a0, y/a0 in the
+    indenter frame."""
     sc = Scales(ds)
     picks = [_at(ds, t) for t in times_tau]
     titles = [sc.t_label(float(ds["t"].values[k])) for k in picks]
-    return save_figure(draw_contact_maps(ds, picks, sc, titles, title), path)
+    return files.save(draw_contact_maps(ds, picks, titles, title), stem)

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .base import positive_attr, pyplot, save_figure
+from .base import FigureFiles, check_format, positive_attr, pyplot, set_title
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -32,16 +32,17 @@ def _legend(coord: Any, i: int) -> str:
     return f"{key} = {text}{f' {unit}' if unit else ''}"
 
 
-def plot_sweep(ds: xr.Dataset, out_dir: str | Path) -> list[Path]:
-    """Figures of a sweep Dataset as PNG files in ``out_dir``.
+def plot_sweep(ds: xr.Dataset, out_dir: str | Path, *, fmt: str = "png", dpi: int | None = None) -> list[Path]:
+    """Figures of a sweep Dataset in ``out_dir`` (format ``fmt``: png, pdf or svg).
 
     ``sweep_mu_app.png``: μ_app against the sliding speed (log axis; against the first swept key
     when the speed is not swept), one line per combination of the other swept keys; the top axis
     shows v τ / a0 when τ and a0 are the same for every run. ``sweep_peak_pressure.png`` and
     ``sweep_contact_area.png`` likewise. Failed runs are gaps.
     """
+    check_format(fmt, dpi)
     plt = pyplot()
-    out_dir = Path(out_dir)
+    files = FigureFiles(Path(out_dir), fmt, dpi)
     keys = json.loads(ds.attrs.get("swept_keys", "[]")) or \
         [ds[d].attrs.get("key", d) for d in ds["mu_app"].dims if d != "t"]
     dims = [k.replace(".", "__") for k in keys]
@@ -71,8 +72,8 @@ def plot_sweep(ds: xr.Dataset, out_dir: str | Path) -> list[Path]:
             ax.set_xticks(np.arange(len(xv)), [str(v) for v in xv])
         unit = ds[xdim].attrs.get("units", "")
         xlabel = "sliding speed v [m/s]" if xdim == _SPEED_DIM else f"{xkey}{f' [{unit}]' if unit else ''}"
-        title = f"{ds.attrs.get('solver', '')} sweep: {_LABELS[name].split(' [')[0]}"
-        ax.set(xlabel=xlabel, ylabel=_LABELS[name], title=title)
+        ax.set(xlabel=xlabel, ylabel=_LABELS[name])
+        set_title(fig, ds, f"{ds.attrs.get('solver', '')} sweep: {_LABELS[name].split(' [')[0]}")
         if deborah:
             k = tau / a0
             top = ax.secondary_xaxis("top", functions=(lambda v, k=k: v * k, lambda d, k=k: d / k))
@@ -81,5 +82,5 @@ def plot_sweep(ds: xr.Dataset, out_dir: str | Path) -> list[Path]:
         if others:
             ax.legend(fontsize=7)
         fig.tight_layout()
-        paths.append(save_figure(fig, out_dir / f"sweep_{name}.png"))
+        paths.append(files.save(fig, f"sweep_{name}"))
     return paths

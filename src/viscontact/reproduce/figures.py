@@ -25,19 +25,19 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..plotting import save_figure
+from ..plotting import FigureFiles
 from ..plotting import seed as draw
 
 __all__ = ["FIGURES", "FigureSpec"]
 
 Runs = Mapping[str, Any]  # case name -> its result Dataset
-Render = Callable[[Runs, "FigureSpec", Path], list[Path]]
+Render = Callable[[Runs, "FigureSpec", FigureFiles], list[Path]]
 
 
 @dataclass(frozen=True)
 class FigureSpec:
     """One seed figure: its cases, the times [tau] its fields are drawn at, its title and how it is
-    drawn (``render(runs, spec, out_dir)`` -> the files written). ``record_times`` [tau] are the
+    drawn (``render(runs, spec, files)`` -> the files written by ``files``). ``record_times`` [tau] are the
     times the runs record fields at, when not ``times`` (fig8 shares the runs of fig6 and fig7)."""
 
     name: str
@@ -53,10 +53,10 @@ class FigureSpec:
 
 
 def _one(build: Callable[[Runs, FigureSpec], Any]) -> Render:
-    """A figure drawn by ``build(runs, spec)`` as ``<name>.png``."""
+    """A figure drawn by ``build(runs, spec)`` as ``<name>.<format>``."""
 
-    def render(runs: Runs, spec: FigureSpec, out_dir: Path) -> list[Path]:
-        return [save_figure(build(runs, spec), out_dir / f"{spec.name}.png")]
+    def render(runs: Runs, spec: FigureSpec, files: FigureFiles) -> list[Path]:
+        return [files.save(build(runs, spec), spec.name)]
 
     return render
 
@@ -64,12 +64,11 @@ def _one(build: Callable[[Runs, FigureSpec], Any]) -> Render:
 def _frictional(shear_cases: tuple[str, ...]) -> Render:
     """Figs. 9 and 10: the traction figure, then a stick/slip map per case of ``shear_cases``."""
 
-    def render(runs: Runs, spec: FigureSpec, out_dir: Path) -> list[Path]:
-        fig = draw.frictional_figure(runs, spec.times, spec.title, shear_cases)
-        paths = [save_figure(fig, out_dir / f"{spec.name}.png")]
+    def render(runs: Runs, spec: FigureSpec, files: FigureFiles) -> list[Path]:
+        paths = [files.save(draw.frictional_figure(runs, spec.times, spec.title, shear_cases), spec.name)]
         for name in shear_cases:
             title = f"{name.replace('seed_', '').replace('_', ' ')}: slip (orange), stick (blue)"
-            paths.append(draw.stick_slip_map(runs[name], spec.times, out_dir / f"{spec.name}_{name}_stick_map.png",
+            paths.append(draw.stick_slip_map(runs[name], spec.times, files, f"{spec.name}_{name}_stick_map",
                                              title=title))
         return paths
 

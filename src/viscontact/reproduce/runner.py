@@ -9,7 +9,7 @@ being computed again, so ``fig8`` after ``fig6`` and ``fig7`` costs nothing.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -21,13 +21,16 @@ if TYPE_CHECKING:
 
     from ..case import Case
 
-__all__ = ["draw", "find_cases_dir", "load_seed_case", "record_every", "reproduce", "run_seed_cases", "time_scale"]
+__all__ = ["draw", "find_cases_dir", "load_seed_case", "record_every", "reproduce", "run_seed_cases", "stable_steps",
+           "time_scale"]
 
 #: progress(case_name, steps_done, steps_total)
 Progress = Callable[[str, int, int], None]
 
 #: fewest points wanted on a time curve (mu_app) when fields are recorded sparsely
 MIN_CURVE_POINTS = 40
+#: largest step of the seed's constant scheme, as a fraction of its stability limit (see stable_steps)
+STABLE_FRACTION = 0.5
 
 
 def find_cases_dir(cases_dir: str | Path | None = None) -> Path:
@@ -79,16 +82,51 @@ def record_every(case: Case, times_tau: Sequence[float]) -> int:
     return every
 
 
-def load_seed_case(name: str, cases_dir: Path, n: int | None, times_tau: Sequence[float]) -> Case:
-    """The shipped case ``name`` with ``grid.n = n`` (when given; ``time.dt`` follows the grid) and
-    the ``output.every`` of :func:`record_every`."""
+def stable_steps(case: Case) -> tuple[Case, str]:
+    """The case with its time step cut so that the seed's piecewise-constant scheme runs at no more
+    than half its stability limit, and a note naming the change ("" when none was needed).
+
+    Past the limit that scheme amplifies any disturbance step by step; close below it the disturbance
+    alternates in sign and decays slowly, which draws an oscillating curve (``--n 64`` previews).
+    At half the limit it decays by a factor 0.03 (G(0)/G(inf) = 10) to 0.3 (= 3) per step. A case
+    whose ``time.dt`` follows the grid gets ``tangential.steps_per_cell`` k times larger, one that
+    gives ``time.dt`` a k times smaller one. The linear scheme is stable for every step: unchanged.
+    """
+    from ..history import stable_step_limit
+
+    if case.time.scheme != "constant":
+        return case, ""
+    limit = stable_step_limit(case.material.build(), "constant")
+    dt = case.default_dt()
+    k = math.ceil(dt / (STABLE_FRACTION * limit) - 1e-9) if math.isfinite(limit) else 1
+    if k <= 1:
+        return case, ""
+    if case.time.dt is None:
+        key, value = "tangential.steps_per_cell", case.tangential.steps_per_cell * k
+    else:
+        key, value = "time.dt", case.time.dt / k
+    note = (f"{key} = {value:g}: dt = {dt * 1e3:.3g} ms is over {STABLE_FRACTION:g} of the stability limit "
+            f"{limit * 1e3:.3g} ms of time.scheme = 'constant' (now dt = {dt / k * 1e3:.3g} ms)")
+    return case.with_overrides({key: value}), note
+
+
+def load_seed_case(name: str, cases_dir: Path, n: int | None, times_tau: Sequence[float],
+                   overrides: Mapping[str, Any] | None = None) -> tuple[Case, str]:
+    """The shipped case ``name`` with ``overrides`` (dotted keys), ``grid.n = n`` (when given;
+    ``time.dt`` follows the grid), a stable step (:func:`stable_steps`) and the ``output.every`` of
+    :func:`record_every`; and the note of :func:`stable_steps`."""
     from ..case import load_case
 
     case = load_case(cases_dir / f"{name}.toml")
-    if n is not None:
-        case = case.with_overrides({"grid.n": int(n)})
+    given = {**(overrides or {}), **({"grid.n": int(n)} if n is not None else {})}
+    if given:
+        try:
+            case = case.with_overrides(given)
+        except ParameterError as exc:
+            raise ParameterError(exc.key, f"{exc.message} (in case {name})") from None
+    case, note = stable_steps(case)
     every = record_every(case, times_tau)
-    return case.with_overrides({"output.every": every}) if every != case.output.every else case
+    return (case.with_overrides({"output.every": every}) if every != case.output.every else case), note
 
 
 def _cached(path: Path, case_text: str) -> xr.Dataset | None:
@@ -107,8 +145,9 @@ def _cached(path: Path, case_text: str) -> xr.Dataset | None:
 
 
 def run_seed_cases(names: Sequence[str], out_dir: str | Path, *, n: int | None = None,
-                   times_tau: Sequence[float] = (), cases_dir: str | Path | None = None,
-                   progress: Progress | None = None, reuse: bool = True) -> dict[str, xr.Dataset]:
+                   overrides: Mapping[str, Any] | None = None, times_tau: Sequence[float] = (),
+                   cases_dir: str | Path | None = None, progress: Progress | None = None,
+                   notify: Callable[[str], None] | None = None, reuse: bool = True) -> dict[str, xr.Dataset]:
     """Run (or reuse) the shipped cases ``names`` and save each as ``out_dir/<name>.nc``.
 
     Parameters
@@ -119,12 +158,16 @@ def run_seed_cases(names: Sequence[str], out_dir: str | Path, *, n: int | None =
         Folder for the result files (created).
     n
         Override ``grid.n`` (``time.dt`` follows: one cell of sliding per step).
+    overrides
+        Dotted case keys set in every case (``{"tangential.friction_coefficient": 0.5}``).
     times_tau
         Times [tau] at which fields must be recorded (sets ``output.every``).
     cases_dir
         Folder of the case files (see :func:`find_cases_dir`).
     progress
         Called as ``progress(name, steps_done, steps_total)``.
+    notify
+        Called with a line naming each case whose time step was cut (:func:`stable_steps`).
     reuse
         Reuse a complete saved result computed from the same case text.
     """
@@ -134,9 +177,12 @@ def run_seed_cases(names: Sequence[str], out_dir: str | Path, *, n: int | None =
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     folder = find_cases_dir(cases_dir)
-    cases = {name: load_seed_case(name, folder, n, times_tau) for name in names}  # every error first
+    cases = {name: load_seed_case(name, folder, n, times_tau, overrides) for name in names}  # errors first
+    for name, (_, note) in cases.items():
+        if note and notify is not None:
+            notify(f"{name}: {note}")
     results: dict[str, xr.Dataset] = {}
-    for name, case in cases.items():
+    for name, (case, _) in cases.items():
         path = out_dir / f"{name}.nc"
         ds = _cached(path, case.text) if reuse else None
         if ds is None:
@@ -147,8 +193,9 @@ def run_seed_cases(names: Sequence[str], out_dir: str | Path, *, n: int | None =
     return results
 
 
-def reproduce(figure: str, out_dir: str | Path, *, n: int | None = None, progress: Progress | None = None,
-              cases_dir: str | Path | None = None) -> list[Path]:
+def reproduce(figure: str, out_dir: str | Path, *, n: int | None = None, overrides: Mapping[str, Any] | None = None,
+              progress: Progress | None = None, notify: Callable[[str], None] | None = None,
+              cases_dir: str | Path | None = None, fmt: str = "png", dpi: int | None = None) -> list[Path]:
     """Run the cases of a seed figure and draw it.
 
     Parameters
@@ -158,18 +205,25 @@ def reproduce(figure: str, out_dir: str | Path, *, n: int | None = None, progres
     out_dir
         Folder for the figure(s) (PNG) and the results (``<case>.nc``).
     n
-        Override ``grid.n`` for a quick preview (the seed uses 256; ``time.dt`` follows).
+        Override ``grid.n`` for a quick preview (the seed uses 256; ``time.dt`` follows, cut where the
+        seed's scheme would be near its stability limit: :func:`stable_steps`).
+    overrides
+        Dotted case keys set in every case of the figure.
     progress
         Called as ``progress(case_name, steps_done, steps_total)`` after each time step.
+    notify
+        Called with a line naming each case whose time step was cut.
     cases_dir
         Folder of the ``seed_*.toml`` cases (default: ``./cases`` or the repository's).
+    fmt, dpi
+        File format (``png``, ``pdf``, ``svg``) and resolution of the figures.
 
     Returns
     -------
     list of Path
         The figure files, then the result files.
     """
-    from ..plotting import pyplot
+    from ..plotting import check_format, pyplot
 
     if figure not in FIGURES:
         raise ParameterError("figure", f"must be one of {', '.join(FIGURES)}, got {figure!r}")
@@ -177,12 +231,16 @@ def reproduce(figure: str, out_dir: str | Path, *, n: int | None = None, progres
         raise ParameterError("--n", f"must be an integer >= 8 (grid cells per side), got {n!r}")
     pyplot()  # fail before computing when matplotlib is missing
     spec = FIGURES[figure]
-    runs = run_seed_cases(spec.cases, out_dir, n=n, times_tau=spec.times_recorded, cases_dir=cases_dir,
-                          progress=progress)
-    return draw(figure, runs, out_dir) + [Path(out_dir) / f"{name}.nc" for name in spec.cases]
+    check_format(fmt, dpi)
+    runs = run_seed_cases(spec.cases, out_dir, n=n, overrides=overrides, times_tau=spec.times_recorded,
+                          cases_dir=cases_dir, progress=progress, notify=notify)
+    return draw(figure, runs, out_dir, fmt=fmt, dpi=dpi) + [Path(out_dir) / f"{name}.nc" for name in spec.cases]
 
 
-def draw(figure: str, runs: dict[str, Any], out_dir: str | Path) -> list[Path]:
+def draw(figure: str, runs: Mapping[str, Any], out_dir: str | Path, *, fmt: str = "png",
+         dpi: int | None = None) -> list[Path]:
     """Draw ``figure`` from saved results ``runs`` (keyed by case name) into ``out_dir``."""
+    from ..plotting import FigureFiles
+
     spec = FIGURES[figure]
-    return spec.render({name: runs[name] for name in spec.cases}, spec, Path(out_dir))
+    return spec.render({name: runs[name] for name in spec.cases}, spec, FigureFiles(Path(out_dir), fmt, dpi))
