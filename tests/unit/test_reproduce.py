@@ -10,10 +10,10 @@ import pytest
 from viscontact import cli
 from viscontact.case import load_case
 from viscontact.errors import ParameterError
-from viscontact.history import amplification, stable_step_limit
 from viscontact.problem import PHASE_GROSS_SLIDING
 from viscontact.reproduce import FIGURES, find_cases_dir, load_seed_case, record_every, run_seed_cases, time_scale
 from viscontact.results import open_result
+from viscontact.schemes import amplification, stable_step_limit
 
 from vc_testing import SEED_G0, SEED_GINF, SEED_NU
 
@@ -113,10 +113,10 @@ def test_previews_keep_the_seed_scheme_well_inside_its_stability_limit(n):
         case, note = load_seed_case(name, CASES, n, ())
         material = case.material.build()
         dt = case.default_dt()
-        assert dt <= 0.5 * stable_step_limit(material, "constant") * (1 + 1e-9), name
+        assert dt <= 0.5 * stable_step_limit(material.creep, "constant") * (1 + 1e-9), name
         r = material.shear_modulus_instantaneous / material.shear_modulus_long_term - 1
         z = np.exp(-dt / material.creep.retardation_times[0]) * (1 + r) - r
-        assert -0.5 < z < 1 and abs(z) == pytest.approx(amplification(material, dt, "constant"), rel=1e-9), name
+        assert -0.5 < z < 1 and abs(z) == pytest.approx(amplification(material.creep, dt, "constant"), rel=1e-9), name
         if note:
             adapted.append(name)
             assert note.startswith("tangential.steps_per_cell = ") and "stability limit" in note

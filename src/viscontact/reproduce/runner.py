@@ -92,11 +92,11 @@ def stable_steps(case: Case) -> tuple[Case, str]:
     whose ``time.dt`` follows the grid gets ``tangential.steps_per_cell`` k times larger, one that
     gives ``time.dt`` a k times smaller one. The linear scheme is stable for every step: unchanged.
     """
-    from ..history import stable_step_limit
+    from ..schemes import stable_step_limit
 
     if case.time.scheme != "constant":
         return case, ""
-    limit = stable_step_limit(case.material.build(), "constant")
+    limit = stable_step_limit(case.material.build().creep, "constant")
     dt = case.default_dt()
     k = math.ceil(dt / (STABLE_FRACTION * limit) - 1e-9) if math.isfinite(limit) else 1
     if k <= 1:
