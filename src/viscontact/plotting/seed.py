@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .base import FigureFiles, Scales, draw_contact_maps, phase_name, profile, pyplot, set_title, time_index
+from .result import material_of
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -92,7 +93,8 @@ def profiles_figure(runs: Runs, times_tau: Sequence[float], title: str) -> Any:
 
 def material_figure(runs: Runs, times_tau: Sequence[float], title: str, function: str) -> Any:
     """Figs. 6 and 7: p/p0 along y = 0 at ``times_tau`` for each material, and the material function
-    ``"relaxation"`` (G(t)/G(0)) or ``"creep"`` (J(t) G(0)) of the (Zener) materials of the results."""
+    ``"relaxation"`` (G(t)/G(0)) or ``"creep"`` (J(t) G(0)) of the materials of the results
+    (:func:`~viscontact.plotting.result.material_of`; a Zener from the attributes otherwise)."""
     from ..materials import Material
 
     fig, axes = _profile_axes(len(runs))
@@ -101,7 +103,7 @@ def material_figure(runs: Runs, times_tau: Sequence[float], title: str, function
         ratio = _ratio(ds)
         _profiles_panel(axes[i], ds, times_tau, f"({'abcdefgh'[i]}) G(0)/G(∞) = {ratio:g}")
         g0, ginf = float(ds.attrs["shear_modulus_instantaneous"]), float(ds.attrs["shear_modulus_long_term"])
-        mat = Material.zener(g0, ginf, _tau(ds), float(ds.attrs["poisson_ratio"]))
+        mat = material_of(ds) or Material.zener(g0, ginf, _tau(ds), float(ds.attrs["poisson_ratio"]))
         t = t_curve * _tau(ds)
         curve = mat.relaxation_modulus(t) / g0 if function == "relaxation" else mat.creep_compliance(t) * g0
         axes[-1].plot(t_curve, curve, label=f"G(0)/G(∞) = {ratio:g}")
