@@ -274,14 +274,19 @@ def _check_figures(args: argparse.Namespace) -> None:
     pyplot()
 
 
-def _prepare(args: argparse.Namespace) -> Any:
-    """The case with its overrides, after checking (before any computing) that the result file may
-    be written and that plotting is available."""
+def _load(args: argparse.Namespace) -> Any:
+    """The case file ``args.case`` with the ``--set`` overrides applied."""
     from .case import load_case
 
     case = load_case(args.case)
     overrides = _overrides(args.overrides)
-    case = case.with_overrides(overrides) if overrides else case
+    return case.with_overrides(overrides) if overrides else case
+
+
+def _prepare(args: argparse.Namespace) -> Any:
+    """The case with its overrides, after checking (before any computing) that the result file may
+    be written and that plotting is available."""
+    case = _load(args)
     _check_result_name(args.out)
     if Path(args.out).exists() and not (args.force or getattr(args, "resume", False)):
         raise FileExistsError(17, "exists; refusing to overwrite it without --force", args.out)
