@@ -1,0 +1,143 @@
+"""Topographies through SurfaceTopography (viscontact.topography).
+
+Truths: surfaces written by SurfaceTopography's own writers from arrays we index ourselves ([x, y]
+there, [y, x] here) and read back, units converted (um -> m); the generated surface's rms (exact by
+construction) and its power-spectrum exponent -2 - 2H measured with our own FFT; cubic resampling
+of a sinusoid against the sinusoid (error bound of cubic spline interpolation, 5/384 (k s)^4 times
+the amplitude).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from viscontact.errors import ParameterError
+from viscontact.grid import Grid
+from viscontact.topography import (gap_from_heights, read_heights, self_affine_heights, sphere_heights)
+
+ST = pytest.importorskip("SurfaceTopography")
+
+GRID = Grid(16, 0.5e-3)  # period 1 mm
+
+
+def _ridge_topography(nx: int, ny: int, size: tuple[float, float], unit: str = "um", periodic: bool = False):
+    """A surface that varies along x only, heights[x, y] = 2 + sin(2 pi x / Lx) in ``unit``."""
+    x = np.arange(nx) * size[0] / nx
+    heights_xy = np.repeat((2.0 + np.sin(2 * np.pi * x / size[0]))[:, None], ny, axis=1)
+    return ST.Topography(heights_xy, size, unit=unit, periodic=periodic), x
+
+
+@pytest.mark.parametrize("writer", ["to_netcdf", "to_matrix"])
+def test_read_orientation_and_units(tmp_path, writer):
+    topo, x = _ridge_topography(16, 16, (1000.0, 1000.0), unit="um")  # 1 mm in um
+    path = tmp_path / ("surface.nc" if writer == "to_netcdf" else "surface.txt")
+    getattr(topo, writer)(str(path))
+    h = read_heights(path, GRID)
+    assert h.shape == (16, 16)
+    expected = (2.0 + np.sin(2 * np.pi * x / 1000.0)) * 1e-6  # m, along x = our axis 1
+    np.testing.assert_allclose(h, np.broadcast_to(expected[None, :], (16, 16)), rtol=1e-12, atol=1e-18)
+
+
+def test_mismatch_is_one_line_naming_both(tmp_path):
+    topo, _ = _ridge_topography(12, 16, (1000.0, 1000.0))
+    path = tmp_path / "s.nc"
+    topo.to_netcdf(str(path))
+    with pytest.raises(ParameterError) as err:
+        read_heights(path, GRID)
+    msg = str(err.value)
+    assert err.value.key == "indenter.file" and "\n" not in msg
+    assert "12 x 16 points" in msg and "16 x 16 points" in msg and "resample = true" in msg
+    topo, _ = _ridge_topography(16, 16, (900.0, 1000.0))
+    topo.to_netcdf(str(path))
+    with pytest.raises(ParameterError, match="0.0009 m x 0.001 m"):
+        read_heights(path, GRID)
+
+
+def test_unreadable_and_missing_files(tmp_path):
+    with pytest.raises(ParameterError, match="no such file"):
+        read_heights(tmp_path / "absent.nc", GRID)
+    bad = tmp_path / "bad.txt"
+    bad.write_text("this is not a topography\n")
+    with pytest.raises(ParameterError) as err:
+        read_heights(bad, GRID)
+    assert "cannot read" in str(err.value) and "\n" not in str(err.value)
+    plain = tmp_path / "plain.txt"  # a bare matrix: no physical size in it
+    np.savetxt(plain, np.ones((16, 16)))
+    with pytest.raises(ParameterError, match="cannot read"):
+        read_heights(plain, GRID)
+    h = read_heights(plain, GRID, physical_sizes=(1e-3, 1e-3), unit="m")
+    np.testing.assert_allclose(h, 1.0)
+
+
+def test_resample_periodic_sinusoid(tmp_path):
+    period = 1e-3
+    grid = Grid(64, period / 2)
+    topo, x = _ridge_topography(40, 40, (period, period), unit="m", periodic=True)
+    path = tmp_path / "s.nc"
+    topo.to_netcdf(str(path))
+    # the file's periodic flag is not kept by every format: resample what read_topography gives
+    h = read_heights(path, grid, resample=True)
+    s = period / 40
+    # file sample i sits at i s; the grid cell centres are put on the same centre (module doc)
+    x_file = grid.x + (period - s) / 2
+    exact = 2.0 + np.sin(2 * np.pi * x_file / period)
+    bound = 5 / 384 * (2 * np.pi * s / period) ** 4
+    assert np.abs(h - exact[None, :]).max() <= bound
+
+
+def test_resample_needs_coverage_when_not_periodic(tmp_path):
+    topo, _ = _ridge_topography(40, 40, (0.8e-3, 0.8e-3), unit="m", periodic=False)
+    path = tmp_path / "small.nc"
+    topo.to_netcdf(str(path))
+    with pytest.raises(ParameterError, match="does not cover the grid"):
+        read_heights(path, GRID, resample=True)
+    big, _ = _ridge_topography(80, 80, (2e-3, 2e-3), unit="m", periodic=False)
+    big.to_netcdf(str(path))
+    h = read_heights(path, GRID, resample=True)
+    assert h.shape == (16, 16) and np.all(np.isfinite(h))
+
+
+def test_self_affine_rms_and_spectrum():
+    grid = Grid(256, 0.5e-3)
+    hurst = 0.7
+    h = self_affine_heights(grid, hurst=hurst, rms_height=1e-6, seed=3)
+    assert np.sqrt(np.mean((h - h.mean()) ** 2)) == pytest.approx(1e-6, rel=1e-9)
+    assert np.array_equal(h, self_affine_heights(grid, hurst=hurst, rms_height=1e-6, seed=3))
+    assert not np.allclose(h, self_affine_heights(grid, hurst=hurst, rms_height=1e-6, seed=4))
+    # radially averaged PSD ~ q^(-2 - 2H) between the largest and the smallest wavelengths
+    spectrum = np.abs(np.fft.fft2(h)) ** 2
+    q = np.hypot(*np.meshgrid(np.fft.fftfreq(256), np.fft.fftfreq(256)))
+    bins = np.geomspace(4 / 256, 0.3, 12)
+    idx = np.digitize(q, bins)
+    centres = [q[idx == b].mean() for b in range(1, len(bins))]
+    power = [spectrum[idx == b].mean() for b in range(1, len(bins))]
+    slope = np.polyfit(np.log(centres), np.log(power), 1)[0]
+    assert slope == pytest.approx(-2 - 2 * hurst, abs=0.15)
+
+
+def test_self_affine_rms_slope_and_errors():
+    grid = Grid(64, 0.5e-3)
+    h = self_affine_heights(grid, hurst=0.8, rms_slope=0.1, short_cutoff=8 * grid.spacing, seed=1)
+    gx = (np.roll(h, -1, axis=1) - h) / grid.spacing  # forward differences, periodic
+    gy = (np.roll(h, -1, axis=0) - h) / grid.spacing
+    assert np.sqrt(np.mean(gx**2 + gy**2)) == pytest.approx(0.1, rel=1e-6)
+    for kwargs, key in (({"hurst": 1.5, "rms_height": 1e-6}, "indenter.hurst"),
+                        ({"hurst": 0.8}, "indenter.rms_height"),
+                        ({"hurst": 0.8, "rms_height": 1e-6, "rms_slope": 0.1}, "indenter.rms_height"),
+                        ({"hurst": 0.8, "rms_slope": -0.1}, "indenter.rms_slope"),
+                        ({"hurst": 0.8, "rms_slope": 0.1, "short_cutoff": grid.spacing}, "indenter.short_cutoff"),
+                        ({"hurst": 0.8, "rms_slope": 0.1, "long_cutoff": grid.spacing}, "indenter.long_cutoff")):
+        with pytest.raises(ParameterError) as err:
+            self_affine_heights(grid, **kwargs)
+        assert err.value.key == key
+
+
+def test_rough_sphere_gap():
+    grid = Grid(32, 0.5e-3)
+    sphere = sphere_heights(grid, 0.01)
+    rough = self_affine_heights(grid, hurst=0.8, rms_height=0.2e-6, seed=0)
+    gap = gap_from_heights(sphere + rough)
+    assert gap.min() == 0.0
+    smooth = gap_from_heights(sphere)
+    x, y = grid.mesh()
+    np.testing.assert_allclose(smooth, (x**2 + y**2) / 0.02 - ((x**2 + y**2) / 0.02).min(), atol=1e-20)
