@@ -57,3 +57,18 @@ def observed_order(hs, errors) -> float:
     import numpy as np
 
     return float(np.polyfit(np.log(hs), np.log(errors), 1)[0])
+
+
+def periodic_elastic_contact(grid: Grid, gap, shear_modulus: float, poisson_ratio: float, load: float):
+    """Elastic frictionless contact on a periodic domain under ``load`` [N] on one period:
+    PeriodicConvolver + Polonsky-Keer. Returns (pressure [Pa], approach [m], u_z [m], iterations)."""
+    import numpy as np
+
+    from viscontact.constrained import constrained_cg
+    from viscontact.periodic import PeriodicConvolver
+
+    conv = PeriodicConvolver.for_grid(grid, poisson_ratio, components=("zz",))
+    sol = constrained_cg(lambda p: conv.apply("zz", p) / shear_modulus, -gap, np.zeros_like(gap), 0.0, np.inf,
+                         total=load, cell_area=grid.cell_area, tolerance=1e-12,
+                         preconditioner=conv.preconditioner("zz", 1.0 / shear_modulus))
+    return sol.x, sol.multiplier, conv.apply("zz", sol.x) / shear_modulus, sol.iterations

@@ -16,10 +16,14 @@ from .grid import Grid
 from .materials import CreepSpectrum
 
 
-def hysteresis_force(pressure: np.ndarray, displacement_z: np.ndarray, grid: Grid) -> float:
+def hysteresis_force(pressure: np.ndarray, displacement_z: np.ndarray, grid: Grid, periodic: bool = False) -> float:
     """F_T = -sum p du_z/dx dA [N] (seed Eq. 15 with the sign that makes it positive when it resists
-    sliding in +x); central finite differences, rectangle rule."""
-    slope = np.gradient(displacement_z, grid.spacing, axis=1)
+    sliding in +x); central finite differences (wrapping around on a ``periodic`` domain, one-sided
+    at the edges otherwise), rectangle rule."""
+    if periodic:
+        slope = (np.roll(displacement_z, -1, axis=1) - np.roll(displacement_z, 1, axis=1)) / (2 * grid.spacing)
+    else:
+        slope = np.gradient(displacement_z, grid.spacing, axis=1)
     return float(-np.sum(pressure * slope) * grid.cell_area)
 
 
