@@ -17,7 +17,9 @@ whose optimality conditions are the contact conditions: with g = K x - b,
 The iteration is Polonsky & Keer's: conjugate directions restricted to the free set, a projection on
 the bounds, release of the bound points whose gradient points inwards, and a restart of conjugacy
 whenever the free set changes. Convergence is measured as the relative change of x between
-iterations; the solve raises :class:`~viscontact.errors.ConvergenceError` at the iteration cap.
+iterations, or reached when the gradient on the free set is at round-off (an exact preconditioner,
+e.g. that of a periodic operator, converges in one iteration); the solve raises
+:class:`~viscontact.errors.ConvergenceError` at the iteration cap.
 """
 from __future__ import annotations
 
@@ -29,6 +31,8 @@ import numpy as np
 from .errors import ConvergenceError
 
 Operator = Callable[[np.ndarray], np.ndarray]
+#: a gradient below this times the size of K x and b is round-off: the solve has converged
+ROUNDOFF = 1e-14
 
 
 @dataclass(frozen=True)
@@ -110,13 +114,16 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         if total is not None:
             multiplier = float(g[free].mean()) if free.any() else float(g.min())
             g = g - multiplier
-        if not free.any():
-            # nothing free: release the bound points whose gradient points inwards
+        if not free.any() or np.max(np.abs(g[free])) <= ROUNDOFF * max(np.max(np.abs(kx)), np.max(np.abs(b))):
+            # nothing free, or converged on the free set to round-off (an exact preconditioner does it
+            # in one iteration: another step would divide round-off by round-off): release the bound
+            # points whose gradient points inwards, or stop
             inward = ((x <= lower) & (g < 0)) | ((x >= upper) & (g > 0))
-            inward &= ~fixed
+            inward &= ~fixed & ~free
             if not inward.any():
                 return ConstrainedSolution(x, g, multiplier, it, 0.0)
-            free = inward
+            free = free | inward
+            conjugate = False
         if preconditioner is not None:
             z = preconditioner(np.where(free, g, 0.0))
             if total is not None:
@@ -133,7 +140,7 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         k_direction = apply_k(direction)
         r = k_direction - k_direction[free].mean() if total is not None else k_direction
         denom = float(np.sum(r[free] * direction[free]))
-        if denom <= 0 or g_norm == 0:
+        if denom <= 0 or g_norm <= 0:
             return ConstrainedSolution(x, g, multiplier, it, 0.0)
         step = float(np.sum(g[free] * direction[free])) / denom
         x_old = x.copy()

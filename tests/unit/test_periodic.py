@@ -159,3 +159,60 @@ def test_preconditioner_inverts_the_operator_on_zero_mean_fields():
     p -= p.mean()
     back = conv.preconditioner("zz", 3.0)(3.0 * conv.apply("zz", p))
     assert np.abs(back - p).max() <= 1e-10 * np.abs(p).max()
+
+
+def test_full_contact_by_constrained_cg_with_the_exact_preconditioner():
+    """In full contact the periodic load-controlled problem is linear: p = p_mean + K^-1 (delta - h0)
+    mode by mode (exact). With its exact Fourier preconditioner Polonsky-Keer converges in one
+    iteration; the next one must not divide round-off by round-off (it used to return p = 0 for a
+    few of these surfaces and warm starts)."""
+    from viscontact.constrained import constrained_cg
+
+    grid = Grid(16, 0.5e-3)
+    x, y = grid.mesh()
+    k = 2 * np.pi / (2 * grid.half_width)
+    conv = PeriodicConvolver.for_grid(grid, NU, workers=1, components=("zz",))
+    compliance = 1.0 / 1e6  # 1/G [1/Pa]
+    p_mean = 2e5
+    spec = compliance * conv.spectra["zz"].copy()
+    spec[0, 0] = 1.0
+    for seed in range(20):
+        rng = np.random.default_rng(seed)
+        gap = 1e-6 * (1 - np.cos(k * x)) + 0.3e-6 * (1 - np.cos(2 * k * y)) + 1e-8 * rng.random((16, 16))
+        exact = p_mean + conv.inverse(-conv.spectrum(gap - gap.mean()) / spec)
+        assert exact.min() > 0  # full contact
+        for x0 in (np.zeros_like(gap), exact, exact * (1 + 1e-3 * np.cos(3 * k * x)),
+                   exact * (1 + 1e-6 * rng.random((16, 16)))):
+            sol = constrained_cg(lambda p: compliance * conv.apply("zz", p), -gap, x0, 0.0, np.inf,
+                                 total=p_mean * (2 * grid.half_width) ** 2, cell_area=grid.cell_area,
+                                 tolerance=1e-8, preconditioner=conv.preconditioner("zz", compliance))
+            assert np.abs(sol.x - exact).max() <= 1e-9 * p_mean, seed
+            assert sol.multiplier == pytest.approx(gap.mean(), rel=1e-9)
+
+
+def test_partial_contact_grows_from_a_warm_start_with_the_exact_preconditioner():
+    """Warm-started from the contact of a smaller load, the free set converges at once (exact
+    preconditioner) and the points outside it whose gap would be negative must still be released:
+    the result is the cold-started one, with no interpenetration."""
+    from viscontact.constrained import constrained_cg
+
+    grid = Grid(16, 0.5e-3)
+    _, y = grid.mesh()
+    gap = 1e-6 * (1 - np.cos(2 * np.pi * y / (2 * grid.half_width)))
+    conv = PeriodicConvolver.for_grid(grid, NU, workers=1, components=("zz",))
+    compliance = 1.0 / 1e6
+    area = (2 * grid.half_width) ** 2
+
+    def solve(load, x0):
+        return constrained_cg(lambda p: compliance * conv.apply("zz", p), -gap, x0, 0.0, np.inf, total=load,
+                              cell_area=grid.cell_area, tolerance=1e-12,
+                              preconditioner=conv.preconditioner("zz", compliance))
+
+    small = solve(0.5e3 * area, np.zeros_like(gap))
+    for load in (2e3 * area, 6e3 * area):
+        cold = solve(load, np.zeros_like(gap))
+        warm = solve(load, small.x)
+        assert (cold.x > 0).sum() > (small.x > 0).sum()
+        assert np.abs(warm.x - cold.x).max() <= 1e-8 * cold.x.max()
+        deformed = gap + compliance * conv.apply("zz", warm.x) - warm.multiplier
+        assert deformed.min() >= -1e-12 * gap.max()
