@@ -201,36 +201,97 @@ MaterialSection = Annotated[ZenerMaterial | PronyMaterial | ElasticMaterial, Fie
 
 
 # --- the other sections --------------------------------------------------------------------------
-class IndenterSection(_Section):
-    """``shape = "sphere"`` with ``radius`` [m], or ``shape = "surface"`` with ``file``: a .npy of
-    heights h0 [m] on the grid (n x n, indexed [y, x]), relative to the case file's folder."""
+_SELF_AFFINE_KEYS = ("hurst", "rms_height", "rms_slope", "long_cutoff", "short_cutoff", "seed")
 
-    shape: Literal["sphere", "surface"] = Field("sphere", description="a sphere (paraboloid gap "
-                                               "(x^2 + y^2)/(2 radius)) or a gap read from file")
-    radius: float | None = _num(None, unit="m", gt=0, description="sphere radius R; required with shape = 'sphere'")
-    file: str | None = Field(None, description="with shape = 'surface': .npy of heights h0 [m], (grid.n, grid.n), "
-                             "indexed [y, x], relative to the case file's folder")
+
+class _SelfAffineKeys(_Section):
+    """Keys of a self-affine surface (:func:`~viscontact.topography.self_affine_heights`)."""
+
+    hurst: float | None = _num(None, unit="", gt=0, le=1, description="Hurst exponent H of a self-affine surface")
+    rms_height: float | None = _num(None, unit="m", gt=0, description="rms height (give rms_height or rms_slope)")
+    rms_slope: float | None = _num(None, unit="", gt=0, description="rms gradient (give rms_height or rms_slope)")
+    long_cutoff: float | None = _num(None, unit="m", gt=0, description="roll-off wavelength (default: the period)")
+    short_cutoff: float | None = _num(None, unit="m", gt=0, description="shortest wavelength (default: two cells)")
+    seed: int | None = _int(None, ge=0, description="seed of the random phases and amplitudes (default 0)")
+
+    def _check_self_affine(self, table: str) -> None:
+        if self.hurst is None:
+            raise ParameterError(f"{table}.hurst", "required for a self-affine surface (0 < hurst <= 1)")
+        if (self.rms_height is None) == (self.rms_slope is None):
+            raise ParameterError(f"{table}.rms_height", "give exactly one of rms_height (m) or rms_slope (-)")
+
+    def self_affine_heights(self, grid: Grid, table: str) -> np.ndarray:
+        """Heights [m] of the self-affine surface these keys describe, on ``grid``."""
+        from .topography import self_affine_heights
+
+        return self_affine_heights(grid, hurst=self.hurst, rms_height=self.rms_height, rms_slope=self.rms_slope,
+                                   long_cutoff=self.long_cutoff, short_cutoff=self.short_cutoff,
+                                   seed=self.seed or 0, key=table)
+
+
+class RoughnessSection(_SelfAffineKeys):
+    """``[indenter.roughness]``: self-affine roughness added to a sphere."""
 
     @model_validator(mode="after")
-    def _consistent(self) -> IndenterSection:
-        if self.shape == "sphere":
-            if self.radius is None:
-                raise ParameterError("indenter.radius", "required for shape = 'sphere' (> 0 m)")
-            if self.file is not None:
-                raise ParameterError("indenter.file", "only with shape = 'surface'")
-        else:
-            if self.file is None:
-                raise ParameterError("indenter.file", "required for shape = 'surface' (a .npy of heights in m)")
-            if self.radius is not None:
-                raise ParameterError("indenter.radius", "only with shape = 'sphere'")
+    def _complete(self) -> RoughnessSection:
+        self._check_self_affine("indenter.roughness")
         return self
 
 
+class IndenterSection(_SelfAffineKeys):
+    """The rigid surface:
+
+    * ``shape = "sphere"`` with ``radius`` [m] (and optionally ``[indenter.roughness]``);
+    * ``shape = "surface"`` with ``file``: a .npy of heights h0 [m] on the grid (n x n, indexed [y, x]);
+    * ``shape = "self_affine"`` with ``hurst``, ``rms_height`` or ``rms_slope``, ``long_cutoff``,
+      ``short_cutoff`` [m] and ``seed``: a periodic surface by Fourier synthesis;
+    * ``shape = "topography"`` with ``file``: anything SurfaceTopography reads (x3p, opd, sur, di,
+      NetCDF, plain text, ...), heights of the rigid surface z up, in the file's physical size and
+      units; ``resample = true`` interpolates it onto the grid.
+
+    Files are relative to the case file's folder.
+    """
+
+    shape: Literal["sphere", "surface", "self_affine", "topography"] = Field(
+        "sphere", description="a sphere (paraboloid gap (x^2 + y^2)/(2 radius)), a gap read from a .npy file, "
+        "a generated self-affine surface, or a measured topography file")
+    radius: float | None = _num(None, unit="m", gt=0, description="sphere radius R; required with shape = 'sphere'")
+    file: str | None = Field(None, description="with shape = 'surface': .npy of heights h0 [m], (grid.n, grid.n), "
+                             "indexed [y, x]; with shape = 'topography': any file SurfaceTopography reads; "
+                             "relative to the case file's folder")
+    resample: bool | None = Field(None, description="with shape = 'topography': interpolate the file onto the grid")
+    roughness: RoughnessSection | None = Field(None, description="with shape = 'sphere': self-affine roughness "
+                                               "([indenter.roughness], the self-affine keys)")
+
+    @model_validator(mode="after")
+    def _consistent(self) -> IndenterSection:
+        shape = self.shape
+        for key in _REQUIRED[shape]:
+            if getattr(self, key) is None:
+                what = "> 0 m" if key == "radius" else "a file name"
+                raise ParameterError(f"indenter.{key}", f"required for shape = '{shape}' ({what})")
+        for key in ("radius", "file", "resample", "roughness", *_SELF_AFFINE_KEYS):
+            if getattr(self, key) is not None and key not in _ALLOWED[shape]:
+                owners = " or ".join(repr(s) for s, keys in _ALLOWED.items() if key in keys)
+                raise ParameterError(f"indenter.{key}", f"only with shape = {owners}")
+        if shape == "self_affine":
+            self._check_self_affine("indenter")
+        return self
+
+
+#: keys each indenter shape requires, and all the keys it accepts
+_REQUIRED = {"sphere": ("radius",), "surface": ("file",), "self_affine": (), "topography": ("file",)}
+_ALLOWED = {"sphere": {"radius", "roughness"}, "surface": {"file"}, "self_affine": set(_SELF_AFFINE_KEYS),
+            "topography": {"file", "resample"}}
+
+
 class GridSection(_Section):
-    """n x n cells on [-half_width, half_width]^2 [m]."""
+    """n x n cells on [-half_width, half_width]^2 [m]; ``periodic``: one period of a repeated surface."""
 
     n: int = _int(ge=MIN_GRID_N, le=MAX_GRID_N, description="cells per side")
     half_width: float = _num(unit="m", gt=0, description="the domain is [-half_width, half_width]^2")
+    periodic: bool = Field(False, description="the domain is one period of an infinitely repeated surface "
+                           "(periodic kernels, the moving frame wrapping around)")
 
 
 class NormalSection(_Section):
@@ -437,13 +498,23 @@ class Case(_Section):
         return (2.0 * self.grid.half_width / self.grid.n) / tan.sliding_speed / tan.steps_per_cell
 
     def gap(self, grid: Grid) -> np.ndarray:
-        """Undeformed gap h0(x, y) [m] on ``grid``: (x^2 + y^2)/(2R) for a sphere, else the height
-        file shifted so that its lowest point is 0 (first touch at delta_z = 0)."""
+        """Undeformed gap h0(x, y) [m] on ``grid``: (x^2 + y^2)/(2R) for a smooth sphere, else the
+        heights (z up) shifted so that the highest point touches first at delta_z = 0; a .npy
+        ``surface`` file holds the gap itself, shifted so that its lowest point is 0."""
+        from .topography import gap_from_heights, read_heights, sphere_heights
+
         ind = self.indenter
         if ind.shape == "sphere":
-            x, y = grid.mesh()
-            return (x**2 + y**2) / (2.0 * ind.radius)
+            if ind.roughness is None:
+                x, y = grid.mesh()
+                return (x**2 + y**2) / (2.0 * ind.radius)
+            rough = ind.roughness.self_affine_heights(grid, "indenter.roughness")
+            return gap_from_heights(sphere_heights(grid, ind.radius) + rough)
+        if ind.shape == "self_affine":
+            return gap_from_heights(ind.self_affine_heights(grid, "indenter"))
         path = self._base_dir / ind.file
+        if ind.shape == "topography":
+            return gap_from_heights(read_heights(path, grid, resample=bool(ind.resample)))
         try:
             h0 = np.load(path, allow_pickle=False)
         except FileNotFoundError:
@@ -460,7 +531,7 @@ class Case(_Section):
 
     def to_problem(self) -> Problem:
         """The :class:`~viscontact.problem.Problem` the solvers consume."""
-        grid = Grid(self.grid.n, self.grid.half_width)
+        grid = Grid(self.grid.n, self.grid.half_width, self.grid.periodic)
         fields = tuple(f for f in StepRecord.FIELDS if f in self.output.fields)
         return Problem(
             material=self.material.build(self._base_dir),

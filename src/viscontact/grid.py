@@ -21,10 +21,14 @@ class Grid:
         Cells per side.
     half_width
         Half the side of the square domain [m].
+    periodic
+        Whether the domain is one period of an infinitely repeated surface (periodic influence
+        coefficients, unpadded FFTs, the moving frame wrapping around: :mod:`viscontact.periodic`).
     """
 
     n: int
     half_width: float
+    periodic: bool = False
 
     def __post_init__(self) -> None:
         if self.n < 2:
@@ -57,7 +61,7 @@ class Grid:
 
     def refined(self, factor: int = 2) -> "Grid":
         """A grid on the same domain with ``factor`` times more cells per side."""
-        return Grid(self.n * factor, self.half_width)
+        return Grid(self.n * factor, self.half_width, self.periodic)
 
     def offsets(self) -> np.ndarray:
         """Offsets between cell centres used by the DC-FFT kernel, shape (2n,) [m].

@@ -56,6 +56,7 @@ import scipy.fft
 from scipy.special import erfc, gammainc
 
 from .convolution import Convolver, FourierPreconditioner
+from .errors import ParameterError
 from .grid import Grid
 from .kernels import COMPONENTS, rectangle_influence
 
@@ -169,6 +170,17 @@ def periodic_influence_coefficients(grid: Grid, poisson_ratio: float, components
         np.add.at(kernels[c], (iy % n, ix % n), short)
         kernels[c] -= kernels[c].mean()  # drop the Q = 0 term of the short part (zero-mean convention)
     return kernels
+
+
+def check_approach(approach: float, gap: np.ndarray, key: str = "normal.value") -> None:
+    """Raise :class:`~viscontact.errors.ParameterError` unless the approach [m] is below the mean of
+    the undeformed gap [m]: with zero-mean displacements, mean(g) = mean(h0) - delta_z > 0 (module
+    docstring); at the mean gap the contact is complete and its load undetermined."""
+    mean = float(gap.mean())
+    if not approach < mean:
+        raise ParameterError(key, f"approach {approach:.6g} m must be < the mean gap {mean:.6g} m on a periodic "
+                             "domain (displacements have zero mean over the period: at the mean gap the contact is "
+                             "complete and its load undetermined); use normal.control = 'load'")
 
 
 @dataclass(frozen=True)

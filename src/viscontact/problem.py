@@ -208,7 +208,8 @@ class Problem:
         The one place that moves the indenter within a cell (``tangential.steps_per_cell`` > 1):
         a sphere's paraboloid ((x - offset)^2 + y^2) / 2R is rebuilt exactly; any other gap is
         interpolated linearly along x between neighbouring cells (error f (1 - f) dx^2 max|h''| / 2 at
-        offset f dx), its first column extrapolated linearly (error f (1 + f) dx^2 max|h''| / 2).
+        offset f dx), its first column extrapolated linearly (error f (1 + f) dx^2 max|h''| / 2), or
+        on a periodic grid interpolated from the last column (the period wraps around).
         """
         if offset == 0.0:
             return self.gap
@@ -218,5 +219,5 @@ class Problem:
         frac = offset / self.grid.spacing
         behind = np.empty_like(self.gap)  # the gap one cell towards -x, h(x - dx)
         behind[:, 1:] = self.gap[:, :-1]
-        behind[:, 0] = 2.0 * self.gap[:, 0] - self.gap[:, 1]
+        behind[:, 0] = self.gap[:, -1] if self.grid.periodic else 2.0 * self.gap[:, 0] - self.gap[:, 1]
         return (1.0 - frac) * self.gap + frac * behind

@@ -43,6 +43,10 @@ class StepRecord:
         by the history dropped at the trailing edge of the moving frame (:mod:`viscontact.sliding`).
     iterations, coupling_iterations
         Constrained-CG iterations (all solves of the step) and normal/tangential alternations.
+    contact_fraction, contact_patches, mean_gap, mean_contact_pressure
+        Rough-contact outputs (:mod:`viscontact.roughness`): real contact area / domain area [-],
+        number of contact patches (periodic-aware), mean deformed gap over the domain [m], load /
+        real contact area [Pa].
     """
 
     step: int
@@ -62,6 +66,10 @@ class StepRecord:
     wake_loss: float = 0.0
     iterations: int = 0
     coupling_iterations: int = 0
+    contact_fraction: float = 0.0
+    contact_patches: int = 0
+    mean_gap: float = 0.0
+    mean_contact_pressure: float = 0.0
     pressure: np.ndarray | None = field(default=None, repr=False)
     shear_x: np.ndarray | None = field(default=None, repr=False)
     stick: np.ndarray | None = field(default=None, repr=False)
@@ -69,7 +77,8 @@ class StepRecord:
 
     SCALARS = ("load", "delta_z", "delta_x", "sliding_distance", "contact_area", "stick_ratio",
                "phase", "friction_force", "hysteresis_force", "mu_app", "contact_shift",
-               "frame_offset", "wake_loss", "iterations", "coupling_iterations")
+               "frame_offset", "wake_loss", "iterations", "coupling_iterations", "contact_fraction",
+               "contact_patches", "mean_gap", "mean_contact_pressure")
     FIELDS = ("pressure", "shear_x", "stick", "displacement_z")
 
 
@@ -95,7 +104,8 @@ def records_from_arrays(arrays: dict[str, np.ndarray]) -> list[StepRecord]:
         for f in fields(StepRecord):
             if f.name in StepRecord.FIELDS:
                 kwargs[f.name] = arrays[f.name][i].copy() if f.name in arrays else None
-            else:
+            elif f.name in arrays:
                 kwargs[f.name] = arrays[f.name][i].item()
+            # else: a field added after the arrays were written keeps its default
         out.append(StepRecord(**kwargs))
     return out

@@ -62,6 +62,10 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "iterations": ("1", "constrained-CG iterations of the step"),
     "coupling_iterations": ("1", "normal/tangential alternations of the step"),
     "peak_pressure": ("Pa", "largest contact pressure"),
+    "contact_fraction": ("1", "real contact area / domain area"),
+    "contact_patches": ("1", "number of contact patches (4-connected; merged across the edges of a periodic domain)"),
+    "mean_gap": ("m", "mean deformed gap over the domain (mean separation)"),
+    "mean_contact_pressure": ("Pa", "load / real contact area"),
 }
 
 #: scales of a result: scalar variables with units (``a0`` and ``p0`` are also global attributes)
@@ -101,8 +105,11 @@ def hertz_scale(problem: Problem) -> tuple[float, float]:
 
     Load control: Hertz for the load. Displacement control: a0 = sqrt(R delta), p0 from the Hertz
     load of that approach. Without a sphere radius, R is the equivalent radius 2/laplacian(h0) at the
-    lowest point of the gap (NaN when the gap is not curved there, e.g. a flat punch).
+    lowest point of the gap (NaN when the gap is not curved there, e.g. a flat punch); NaN on a
+    periodic domain without a sphere.
     """
+    if problem.grid.periodic and problem.radius is None:
+        return float("nan"), float("nan")  # a periodic surface of many asperities has no Hertz scale
     radius = problem.radius if problem.radius is not None else equivalent_radius(problem)
     if not np.isfinite(radius):
         return float("nan"), float("nan")
@@ -157,6 +164,7 @@ def global_attrs(problem: Problem, case_text: str = "") -> dict[str, Any]:
         "time_scheme": problem.time.scheme,
         "grid_n": problem.grid.n,
         "grid_half_width": problem.grid.half_width,
+        "grid_periodic": int(problem.grid.periodic),
         "case": case_text,
         "version": __version__,
         "Conventions": "CF-1.8",
@@ -237,7 +245,7 @@ def to_dataset(records: Sequence[StepRecord], problem: Problem, *, case_text: st
         if name in problem.output.fields:
             variables[name] = _variable(name, ("t", "y", "x"), _field_stack(records, name, n), mode)
     for name in StepRecord.SCALARS:
-        dtype = int if name in ("phase", "iterations", "coupling_iterations") else float
+        dtype = int if name in ("phase", "iterations", "coupling_iterations", "contact_patches") else float
         data = np.array([getattr(r, name) for r in records], dtype=dtype)
         variables[name] = _variable(name, ("t",), data, mode)
 
@@ -266,8 +274,9 @@ def sweep_dataset(records: Sequence[StepRecord], speeds: Sequence[float], proble
     """Dataset of steady states along dimension ``speed`` [m/s].
 
     Holds ``mu_app``, ``peak_pressure``, ``contact_area``, ``contact_shift``, ``delta_z``,
-    ``load``, ``hysteresis_force``, ``friction_force``, ``pressure(speed, y, x)`` and the
-    coordinate ``deborah`` = v tau / a0 [-].
+    ``load``, ``hysteresis_force``, ``friction_force``, the rough-contact outputs
+    (``contact_fraction``, ``contact_patches``, ``mean_gap``, ``mean_contact_pressure``),
+    ``pressure(speed, y, x)`` and the coordinate ``deborah`` = v tau / a0 [-].
     """
     records = list(records)
     mode = problem.tangential.mode
@@ -275,7 +284,7 @@ def sweep_dataset(records: Sequence[StepRecord], speeds: Sequence[float], proble
     variables = {
         name: _variable(name, ("speed",), np.array([getattr(r, name) for r in records], dtype=float), mode)
         for name in ("mu_app", "contact_area", "contact_shift", "delta_z", "load", "hysteresis_force",
-                     "friction_force")
+                     "friction_force", "contact_fraction", "contact_patches", "mean_gap", "mean_contact_pressure")
     }
     pressure = _field_stack(records, "pressure", problem.grid.n)
     variables["peak_pressure"] = _variable("peak_pressure", ("speed",), pressure.max(axis=(1, 2)), mode)

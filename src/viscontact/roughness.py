@@ -44,13 +44,13 @@ def contact_patches(contact: np.ndarray, periodic: bool = False) -> tuple[np.nda
 
 @dataclass(frozen=True)
 class RoughContactMetrics:
-    """Summary of a rough contact.
+    """Summary of a rough contact (field names as in :class:`~viscontact.records.StepRecord`).
 
     Attributes
     ----------
     contact_fraction
         Real contact area / nominal area [-].
-    patches
+    contact_patches
         Number of contact patches.
     mean_gap
         Mean of the deformed gap over the domain [m] (the mean separation).
@@ -59,7 +59,7 @@ class RoughContactMetrics:
     """
 
     contact_fraction: float
-    patches: int
+    contact_patches: int
     mean_gap: float
     mean_contact_pressure: float
 

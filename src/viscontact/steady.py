@@ -25,6 +25,7 @@ For gross sliding (q_x = mu_f p) the operator is K_zz + mu_f K_zx.
 """
 from __future__ import annotations
 
+from dataclasses import asdict
 from typing import Sequence
 
 import numpy as np
@@ -34,6 +35,7 @@ from .convolution import Convolver, FourierPreconditioner
 from .errors import ConvergenceError, ParameterError
 from .problem import PHASE_GROSS_SLIDING, Problem
 from .records import StepRecord
+from .roughness import roughness_metrics
 from .sliding import hysteresis_force, pressure_centroid
 from .substrate import TermSubstrate, substrate_for
 
@@ -42,10 +44,16 @@ def steady_convolver(problem: Problem, speed: float, substrate: TermSubstrate | 
                      ) -> tuple[Convolver, dict[str, np.ndarray]]:
     """The substrate's effective steady kernels at ``speed`` [m/s] (``zz``, and ``zx`` when sliding with
     friction and coupling): ``apply("zz", p)`` is u_z [m] of the pressure p [Pa]."""
+    substrate = substrate or substrate_for(problem, ("zz",))
+    return substrate.steady_convolver(speed, steady_components(problem))
+
+
+def steady_components(problem: Problem) -> list[str]:
+    """Kernels of the steady operator: ``zz``, and ``zx`` when sliding with friction and coupling
+    (nu < 0.5, ``solver.coupling``)."""
     mat = problem.material
     coupled = problem.tangential.effective_friction > 0 and mat.poisson_ratio < 0.5 and problem.solver.coupling
-    substrate = substrate or substrate_for(problem, ("zz",))
-    return substrate.steady_convolver(speed, ["zz"] + (["zx"] if coupled else []))
+    return ["zz"] + (["zx"] if coupled else [])
 
 
 def _restricted(fun, idx: np.ndarray, shape: tuple[int, int]) -> LinearOperator:
@@ -146,38 +154,51 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
 
     Frictionless (``frictionless_sliding``) or with q_x = mu_f p (``gross_sliding``,
     ``partial_slip`` once sliding). The normal condition is the history's final value. The record's
-    ``iterations`` counts the GMRES (Krylov) iterations of all active-set rounds.
+    ``iterations`` counts the GMRES (Krylov) iterations of all active-set rounds. On a periodic grid
+    the steady state is exact in Fourier space (:mod:`viscontact.steady_periodic`).
     """
     v = problem.tangential.sliding_speed if speed is None else speed
     if not v > 0:
         raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s for a steady state, got {v}")
     grid = problem.grid
     mu = problem.tangential.effective_friction if problem.tangential.mode != "none" else 0.0
-    conv, kernels = steady_convolver(problem, v, substrate)
-    coupled = "zx" in conv.spectra
-    precondition = FourierPreconditioner.for_kernel(kernels["zz"], 1.0, problem.solver.workers)
-
-    def apply_k(p: np.ndarray) -> np.ndarray:
-        return conv.combine([("zz", 1.0, p)] + ([("zx", mu, p)] if coupled else []))
-
     value = problem.normal.history(problem.time.t_end)
-    if initial is None:
-        initial = _symmetric_guess(conv, problem, value, coupled, mu)
-    p, delta, krylov, _ = solve_contact_active_set(apply_k, problem.gap, control=problem.normal.control,
-                                              value=value, cell_area=grid.cell_area, initial=initial,
-                                              tolerance=min(problem.solver.tolerance, 1e-10),
-                                              max_iterations=problem.solver.max_iterations,
-                                              preconditioner=precondition)
-    u_z = apply_k(p)
+    tolerance = min(problem.solver.tolerance, 1e-10)
+    if grid.periodic:
+        from .steady_periodic import solve_periodic_steady
+
+        conv = substrate_for(problem, steady_components(problem)).convolver
+        state = solve_periodic_steady(conv, problem.material, grid, problem.gap,
+                                      speed=v, control=problem.normal.control, value=value, friction=mu,
+                                      initial=initial, tolerance=tolerance,
+                                      max_iterations=problem.solver.max_iterations)
+        p, delta, krylov, u_z = state.pressure, state.delta_z, state.iterations, state.displacement_z
+    else:
+        conv, kernels = steady_convolver(problem, v, substrate)
+        coupled = "zx" in conv.spectra
+        precondition = FourierPreconditioner.for_kernel(kernels["zz"], 1.0, problem.solver.workers)
+
+        def apply_k(p: np.ndarray) -> np.ndarray:
+            return conv.combine([("zz", 1.0, p)] + ([("zx", mu, p)] if coupled else []))
+
+        if initial is None:
+            initial = _symmetric_guess(conv, problem, value, coupled, mu)
+        p, delta, krylov, _ = solve_contact_active_set(apply_k, problem.gap, control=problem.normal.control,
+                                                       value=value, cell_area=grid.cell_area, initial=initial,
+                                                       tolerance=tolerance,
+                                                       max_iterations=problem.solver.max_iterations,
+                                                       preconditioner=precondition)
+        u_z = apply_k(p)
     load = float(p.sum() * grid.cell_area)
-    f_t = hysteresis_force(p, u_z, grid)
+    f_t = hysteresis_force(p, u_z, grid, grid.periodic)
     q = mu * p
     return StepRecord(step=0, t=problem.time.t_end, phase=PHASE_GROSS_SLIDING, load=load, delta_z=delta,
                       delta_x=0.0, sliding_distance=float("inf"), contact_area=float((p > 0).sum() * grid.cell_area),
                       stick_ratio=0.0, friction_force=float(q.sum() * grid.cell_area), hysteresis_force=f_t,
                       mu_app=f_t / load if load > 0 else 0.0, contact_shift=pressure_centroid(p, grid),
-                      iterations=krylov, coupling_iterations=1, pressure=p, shear_x=q,
-                      stick=np.zeros(p.shape, dtype=bool), displacement_z=u_z)
+                      iterations=krylov, coupling_iterations=1,
+                      **asdict(roughness_metrics(p, problem.gap + u_z - delta, grid.periodic)),
+                      pressure=p, shear_x=q, stick=np.zeros(p.shape, dtype=bool), displacement_z=u_z)
 
 
 def speed_sweep(problem: Problem, speeds: Sequence[float]) -> list[StepRecord]:

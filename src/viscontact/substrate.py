@@ -50,6 +50,7 @@ from .grid import Grid
 from .history import DirectHistory, History, PronyHistory
 from .kernels import influence_coefficients
 from .materials import CreepSpectrum, Material
+from .periodic import PeriodicConvolver
 from .schemes import StepCoefficients, TimeScheme, get_scheme
 from .steady_kernels import SteadyKernelBuilder
 
@@ -253,8 +254,10 @@ class HalfSpace(TermSubstrate):
     """Homogeneous viscoelastic half-space with constant Poisson ratio (kernels x J(t)).
 
     Terms ``zz``, ``zx`` (u_z of p, q_x) and ``xz``, ``xx`` (u_x), the kernels of
-    :func:`~viscontact.kernels.influence_coefficients` at G = 1; every term's time response is the
-    material's shear creep compliance, so the histories are ``"z"`` (of p) and ``"x"`` (of q_x).
+    :func:`~viscontact.kernels.influence_coefficients` at G = 1 (on a periodic grid those of
+    :func:`~viscontact.periodic.periodic_influence_coefficients`, with unpadded FFTs); every term's
+    time response is the material's shear creep compliance, so the histories are ``"z"`` (of p) and
+    ``"x"`` (of q_x).
 
     Parameters
     ----------
@@ -273,13 +276,18 @@ class HalfSpace(TermSubstrate):
     def __init__(self, grid: Grid, material: Material, components: Sequence[str], scheme: str | TimeScheme,
                  dt: float, *, workers: int = -1, direct: bool = False) -> None:
         comps = [c for c in self.ORDER if c in set(components) | {"zz"}]
-        ics = influence_coefficients(grid, material.poisson_ratio)
-        conv = Convolver.from_kernels(grid.n, {c: ics[c] for c in comps}, workers, xp=np, fft=scipy.fft)
-        precond = {c: FourierPreconditioner.for_kernel(ics[c], 1.0, workers, fft=scipy.fft)
-                   for c in ("zz", "xx") if c in comps}
+        if grid.periodic:
+            conv = PeriodicConvolver.for_grid(grid, material.poisson_ratio, workers, comps)
+            precond = {c: conv.preconditioner(c) for c in ("zz", "xx") if c in comps}
+        else:
+            ics = influence_coefficients(grid, material.poisson_ratio)
+            conv = Convolver.from_kernels(grid.n, {c: ics[c] for c in comps}, workers, xp=np, fft=scipy.fft)
+            precond = {c: FourierPreconditioner.for_kernel(ics[c], 1.0, workers, fft=scipy.fft)
+                       for c in ("zz", "xx") if c in comps}
         terms = [Term(c[0], c[1], c, c[1]) for c in comps]
         creep = material.creep
-        super().__init__(grid, terms, {t.history: creep for t in terms}, conv, precond, scheme, dt, direct)
+        super().__init__(grid, terms, {t.history: creep for t in terms}, conv, precond, scheme, dt, direct,
+                         periodic=grid.periodic)
         self.material = material
         self.workers = workers
         self._steady_builders: dict[tuple[str, ...], SteadyKernelBuilder] = {}
@@ -289,6 +297,8 @@ class HalfSpace(TermSubstrate):
         """K(d) = J_0 IC(d) + sum_m J_m F_m(d) with L_m = v lambda_m (see :mod:`viscontact.steady`),
         all modes in one pass (:class:`~viscontact.steady_kernels.SteadyKernelBuilder`, kept for
         the next speed); ``apply("zz", p)`` is u_z [m] of p [Pa]."""
+        if self.periodic:
+            raise NotImplementedError("a periodic steady state is exact in Fourier space: viscontact.steady_periodic")
         comps = tuple(components)
         builder = self._steady_builders.get(comps)
         if builder is None:

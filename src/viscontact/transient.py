@@ -19,7 +19,7 @@ the output settings ask for.
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field, replace
+from dataclasses import asdict, dataclass, field, replace
 from typing import Callable, Iterator, Protocol
 
 import numpy as np
@@ -27,8 +27,10 @@ import numpy as np
 from .constrained import constrained_cg
 from .errors import ConvergenceError, NumericalGuardError, ParameterError, ViscontactWarning
 from .history import History
+from .periodic import check_approach
 from .problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP, Problem
 from .records import StepRecord
+from .roughness import roughness_metrics
 from .schemes import stable_step_limit
 from .sliding import Wake, hysteresis_force, pressure_centroid
 from .substrate import TermSubstrate, substrate_for
@@ -102,6 +104,9 @@ def validate(problem: Problem) -> None:
             raise ParameterError(
                 "time.dt", f"must equal (2*half_width/n)/sliding_speed/steps_per_cell = {cell_dt:.6g} s "
                 f"so that the frame moves by whole cells, got {problem.time.dt:.6g}")
+    if problem.grid.periodic and problem.normal.control == "displacement":
+        check_approach(problem.normal.history.reference, problem.gap,
+                       "normal.value" if len(problem.normal.history.values) == 1 else "normal.history")
     if tan.mode == "partial_slip" and not tan.displacement_rate > 0:
         raise ParameterError("tangential.displacement_rate", f"must be > 0 m/s for partial_slip, got {tan.displacement_rate}")
     limit = stable_step_limit(problem.material.creep, problem.time.scheme)
@@ -333,7 +338,7 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
     # -- record
     load = float(p.sum() * grid.cell_area)
     _guard(problem, p, load, ctx.value)
-    f_t = hysteresis_force(p, sol.displacement_z, grid) if tan.slides else 0.0
+    f_t = hysteresis_force(p, sol.displacement_z, grid, grid.periodic) if tan.slides else 0.0
     wake = _wake_loss(problem, substrate, state, p, f_t / load if load > 0 else 0.0, sol.delta_z)
     record = StepRecord(
         step=k, t=t, phase=phase, load=load, delta_z=sol.delta_z, delta_x=state.delta_x,
@@ -342,6 +347,7 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
         hysteresis_force=f_t, mu_app=f_t / load if load > 0 else 0.0,
         contact_shift=pressure_centroid(p, grid) - offset, frame_offset=offset, wake_loss=wake,
         iterations=sol.iterations, coupling_iterations=sol.coupling_iterations,
+        **asdict(roughness_metrics(p, ctx.gap + sol.displacement_z - sol.delta_z, grid.periodic)),
         pressure=p, shear_x=q, stick=stick, displacement_z=sol.displacement_z,
     )
     return state, record
@@ -364,12 +370,13 @@ def _wake_loss(problem: Problem, substrate: TermSubstrate, state: State, pressur
 
 
 def _guard(problem: Problem, pressure: np.ndarray, load: float, value: float) -> None:
-    """Errors for results that cannot be trusted: NaN, contact at the domain edge, load imbalance."""
+    """Errors for results that cannot be trusted: NaN, contact at the domain edge (not an edge on a
+    periodic domain), load imbalance."""
     if not np.all(np.isfinite(pressure)):
         raise NumericalGuardError("pressure has NaN or Inf values; check the inputs (material, load, grid)")
     edge = np.concatenate([pressure[0], pressure[-1], pressure[:, 0], pressure[:, -1]])
     peak = pressure.max()
-    if peak > 0 and edge.max() > 1e-6 * peak:
+    if peak > 0 and edge.max() > 1e-6 * peak and not problem.grid.periodic:
         grid = problem.grid
         x, y = grid.mesh()
         r = np.sqrt(x**2 + y**2)[pressure > 1e-6 * peak].max()

@@ -72,8 +72,8 @@ def test_metrics():
     gap = np.where(p > 0, 0.0, 1.5e-6)
     m = roughness_metrics(p, gap, periodic=False)
     assert m.contact_fraction == 3 / 16
-    assert m.patches == 2
+    assert m.contact_patches == 2
     assert m.mean_gap == pytest.approx(13 / 16 * 1.5e-6)
     assert m.mean_contact_pressure == pytest.approx(4.0)
     none = roughness_metrics(np.zeros((4, 4)), np.ones((4, 4)), periodic=True)
-    assert (none.contact_fraction, none.patches, none.mean_contact_pressure) == (0.0, 0, 0.0)
+    assert (none.contact_fraction, none.contact_patches, none.mean_contact_pressure) == (0.0, 0, 0.0)
