@@ -8,28 +8,39 @@ Public API::
     ds = vc.run(case)                       # xarray.Dataset (see the result-file docs)
     vc.write_netcdf(ds, "creep.nc")
 """
-from importlib.metadata import version as _v
+from importlib import import_module as _import_module
 
-from . import steady  # the steady-state solver module (viscontact.steady.solve_steady, speed_sweep)
-from .api import run, run_steady
-from .case import Case, load_case
-from .errors import ConvergenceError, NumericalGuardError, ParameterError, ViscontactError, ViscontactWarning
-from .grid import Grid
-from .materials import Material
-from .problem import (
-    NormalLoading,
-    OutputSettings,
-    PiecewiseLinear,
-    Problem,
-    SolverSettings,
-    TangentialLoading,
-    TimeStepping,
-)
-from .records import StepRecord
-from .results import open_result, to_dataset, write_netcdf
-from .shipped import shipped_case
+#: public name -> module defining it; imported on first use, so that ``viscontact.cli`` starts at once
+#: (and handles SIGINT from its first moment) without loading xarray and the solvers
+_EXPORTS = {
+    "run": "api", "run_steady": "api", "Case": "case", "load_case": "case", "ConvergenceError": "errors",
+    "NumericalGuardError": "errors", "ParameterError": "errors", "ViscontactError": "errors",
+    "ViscontactWarning": "errors", "Grid": "grid", "Material": "materials", "NormalLoading": "problem",
+    "OutputSettings": "problem", "PiecewiseLinear": "problem", "Problem": "problem", "SolverSettings": "problem",
+    "TangentialLoading": "problem", "TimeStepping": "problem", "StepRecord": "records", "open_result": "results",
+    "to_dataset": "results", "write_netcdf": "results", "shipped_case": "shipped",
+}
 
-__version__ = _v("viscontact")
+
+def __getattr__(name: str):
+    """The public names, imported lazily (PEP 562); ``steady`` is the steady-state solver module."""
+    if name == "steady":
+        return _import_module(".steady", __name__)
+    if name == "__version__":
+        from importlib.metadata import version
+
+        globals()[name] = version("viscontact")
+        return globals()[name]
+    if name in _EXPORTS:
+        value = getattr(_import_module(f".{_EXPORTS[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)
+
 
 __all__ = [
     "Case",

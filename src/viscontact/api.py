@@ -33,15 +33,21 @@ __all__ = ["checkpoint_path", "prepare", "run", "run_steady", "steady"]
 CaseLike = Case | Problem | str | Path
 
 
-def prepare(case: CaseLike) -> tuple[Problem, str]:
-    """The problem and the case text of a case file path, a :class:`Case` or a :class:`Problem`."""
+def prepare(case: CaseLike, *, transient: bool = True) -> tuple[Problem, str]:
+    """The problem and the case text of a case file path, a :class:`Case` or a :class:`Problem`,
+    after the checks of :func:`viscontact.guards.check_problem` (``transient``: the time step too)."""
+    from .guards import check_problem
+
     if isinstance(case, (str, Path)):
         case = load_case(case)
     if isinstance(case, Case):
-        return case.to_problem(), case.text
-    if isinstance(case, Problem):
-        return case, ""
-    raise TypeError(f"expected a case file path, a Case or a Problem, got {type(case).__name__}")
+        problem, text = case.to_problem(), case.text
+    elif isinstance(case, Problem):
+        problem, text = case, ""
+    else:
+        raise TypeError(f"expected a case file path, a Case or a Problem, got {type(case).__name__}")
+    check_problem(problem, transient=transient)
+    return problem, text
 
 
 def checkpoint_path(out: str | Path) -> Path:
@@ -131,7 +137,7 @@ def run_steady(case: CaseLike, speeds: Sequence[float] | None = None) -> xr.Data
     """
     from .steady import solve_steady, speed_sweep
 
-    problem, text = prepare(case)
+    problem, text = prepare(case, transient=False)
     if speeds is None:
         record = solve_steady(problem)
         return to_dataset([record], problem, case_text=text, attrs={"solver": "steady", "complete": 1})

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import copy
 import difflib
+import stat
 import typing
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -426,6 +427,9 @@ class Case(_Section):
 
     @model_validator(mode="after")
     def _cross_checks(self) -> Case:
+        if any(ord(c) < 32 and c not in "\t\n" for c in self.title):
+            raise ParameterError("title", "must not contain control characters such as NUL (\\0): they cannot be "
+                                 "stored in the result file")
         if self.time.dt is None and self.tangential.mode not in _SLIDING_MODES:
             raise ParameterError("time.dt", "required (> 0 s) when tangential.mode = 'none'")
         if self.time.dt is not None and self.time.dt > self.time.t_end:
@@ -437,9 +441,11 @@ class Case(_Section):
     def from_toml_text(cls, text: str, base_dir: str | Path = ".", *, source: str = "case file") -> Case:
         """Parse and validate TOML ``text``; relative paths in it are taken from ``base_dir``."""
         try:
-            data = tomllib.loads(text)
+            data = tomllib.loads(text.removeprefix("\ufeff"))
         except tomllib.TOMLDecodeError as exc:
             raise ParameterError("case file", f"{source} is not valid TOML: {exc}") from None
+        except RecursionError:
+            raise ParameterError("case file", f"{source} nests arrays or tables too deeply to be a case file") from None
         return cls._from_data(data, text, Path(base_dir))
 
     @classmethod
@@ -448,6 +454,8 @@ class Case(_Section):
             case = cls.model_validate(data)
         except ValidationError as exc:
             raise _parameter_error(exc) from None
+        except RecursionError:
+            raise ParameterError("case file", "nests arrays or tables too deeply to be a case file") from None
         case._text, case._base_dir, case._data = text, base_dir, data
         case.material.build(base_dir)  # a Prony table file is read (and checked) now
         return case
@@ -515,18 +523,7 @@ class Case(_Section):
         path = self._base_dir / ind.file
         if ind.shape == "topography":
             return gap_from_heights(read_heights(path, grid, resample=bool(ind.resample)))
-        try:
-            h0 = np.load(path, allow_pickle=False)
-        except FileNotFoundError:
-            raise ParameterError("indenter.file", f"no such file: {path}") from None
-        except (OSError, ValueError) as exc:
-            raise ParameterError("indenter.file", f"cannot read {path} as a .npy array: {exc}") from None
-        if h0.shape != (grid.n, grid.n):
-            raise ParameterError("indenter.file", f"{path} holds an array of shape {h0.shape}; it must be "
-                                 f"(grid.n, grid.n) = ({grid.n}, {grid.n}), heights in m indexed [y, x]")
-        if not np.issubdtype(h0.dtype, np.number) or not np.all(np.isfinite(h0)):
-            raise ParameterError("indenter.file", f"{path} must hold finite numbers (heights in m)")
-        h0 = np.asarray(h0, dtype=float)
+        h0 = read_height_file(path, (grid.n, grid.n))
         return h0 - h0.min()
 
     def to_problem(self) -> Problem:
@@ -547,12 +544,48 @@ class Case(_Section):
         )
 
 
+def read_height_file(path: Path, shape: tuple[int, int]) -> np.ndarray:
+    """Heights [m] of a .npy file of ``shape`` (real numbers, finite). The header is read first, so
+    that a file that is not a regular file (a FIFO would block), is empty, claims another shape or
+    size, or holds complex or non-numeric data is refused (key ``indenter.file``) before any data is
+    read."""
+    key = "indenter.file"
+    try:
+        mode = path.stat().st_mode
+    except FileNotFoundError:
+        raise ParameterError(key, f"no such file: {path}") from None
+    except OSError as exc:
+        raise ParameterError(key, f"cannot read {path}: {exc.strerror}") from None
+    if not stat.S_ISREG(mode):
+        raise ParameterError(key, f"{path} is not a regular file (a folder, FIFO or device): give a .npy file")
+    expected = f"it must be (grid.n, grid.n) = {shape}, real heights in m indexed [y, x]"
+    try:
+        with open(path, "rb") as fh:
+            version = np.lib.format.read_magic(fh)
+            header = np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
+            found, _, dtype = header(fh)
+            if tuple(found) != shape:
+                raise ParameterError(key, f"{path} holds an array of shape {tuple(found)}; {expected}")
+            if not (np.issubdtype(dtype, np.floating) or np.issubdtype(dtype, np.integer)):
+                raise ParameterError(key, f"{path} holds {dtype} data; {expected}")
+            if path.stat().st_size < fh.tell() + dtype.itemsize * shape[0] * shape[1]:
+                raise ParameterError(key, f"{path} is shorter than its header says (truncated)")
+        h0 = np.load(path, allow_pickle=False)
+    except ParameterError:
+        raise
+    except (OSError, ValueError, EOFError) as exc:
+        raise ParameterError(key, f"cannot read {path} as a .npy array: {str(exc) or type(exc).__name__}") from None
+    if not np.all(np.isfinite(h0)):
+        raise ParameterError(key, f"{path} must hold finite numbers (heights in m)")
+    return np.asarray(h0, dtype=float)
+
+
 def read_input_file(path: str | Path, what: str) -> str:
-    """The UTF-8 text of an input file; :class:`ParameterError` (key ``what``, e.g. ``"case file"``)
-    when it is missing or unreadable."""
+    """The UTF-8 text of an input file (a byte-order mark is skipped); :class:`ParameterError` (key
+    ``what``, e.g. ``"case file"``) when it is missing or unreadable."""
     path = Path(path)
     try:
-        return path.read_text(encoding="utf-8")
+        return path.read_text(encoding="utf-8-sig")
     except FileNotFoundError:
         raise ParameterError(what, f"no such file: {path}") from None
     except (OSError, UnicodeDecodeError) as exc:

@@ -12,14 +12,14 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import importlib
-import os
-import tempfile
+import zipfile
 from pathlib import Path
 from typing import Any, Mapping
 
 import numpy as np
 
 from .errors import ParameterError
+from .output_files import write_atomically
 from .problem import Problem
 from .transient import State
 
@@ -28,10 +28,11 @@ _ROOT = "state"
 
 
 def problem_fingerprint(problem: Problem) -> str:
-    """A hash of everything that determines the solution (not the output settings)."""
+    """A hash of everything that shapes the result: the solution and the output settings (which
+    steps and fields the records hold)."""
     h = hashlib.sha256()
     h.update(repr((problem.material, problem.grid, problem.normal, problem.tangential, problem.time,
-                   problem.solver, problem.radius)).encode())
+                   problem.solver, problem.radius, problem.output)).encode())
     h.update(np.ascontiguousarray(problem.gap).tobytes())
     return h.hexdigest()
 
@@ -111,17 +112,9 @@ def save_checkpoint(path: str | Path, problem: Problem, state: State,
     arrays["fingerprint"] = np.array(problem_fingerprint(problem))
     for k, v in (extra or {}).items():
         arrays[f"extra__{k}"] = np.asarray(v)
-    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent or ".")
-    try:
-        with os.fdopen(fd, "wb") as f:
-            np.savez(f, **arrays)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    size = sum(np.asarray(a).nbytes + 512 for a in arrays.values())
+    write_atomically(path, lambda f: np.savez(f, **arrays), size=size,
+                     hint="free some space, checkpoint less often (--checkpoint-every) or write elsewhere (--out)")
 
 
 def load_checkpoint(path: str | Path, problem: Problem) -> tuple[State, dict[str, np.ndarray]]:
@@ -129,13 +122,21 @@ def load_checkpoint(path: str | Path, problem: Problem) -> tuple[State, dict[str
     path = Path(path)
     if not path.exists():
         raise ParameterError("--resume", f"no checkpoint at {path}")
-    with np.load(path, allow_pickle=False) as data:
-        if int(data["format_version"]) != FORMAT_VERSION:
-            raise ParameterError("--resume", f"checkpoint {path} has format {int(data['format_version'])}, "
-                                 f"this viscontact reads {FORMAT_VERSION}")
-        if str(data["fingerprint"]) != problem_fingerprint(problem):
-            raise ParameterError("--resume", f"checkpoint {path} was written for a different case; "
-                                 "run without --resume (or with the original case file)")
-        state = state_from_arrays(data)
-        extra = {k[len("extra__"):]: data[k].copy() for k in data.files if k.startswith("extra__")}
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            version = int(data["format_version"])
+            if version != FORMAT_VERSION:
+                raise ParameterError("--resume", f"checkpoint {path} has format {version}, "
+                                     f"this viscontact reads {FORMAT_VERSION}")
+            if str(data["fingerprint"]) != problem_fingerprint(problem):
+                raise ParameterError("--resume", f"checkpoint {path} was written for a different case or output "
+                                     "settings; run without --resume (or with the original case file and --set)")
+            state = state_from_arrays(data)
+            extra = {k[len("extra__"):]: data[k].copy() for k in data.files if k.startswith("extra__")}
+    except ParameterError:
+        raise
+    except (OSError, ValueError, KeyError, TypeError, EOFError, zipfile.BadZipFile) as exc:
+        what = f"has no {exc}" if isinstance(exc, KeyError) else f"is unreadable ({exc})"
+        raise ParameterError("--resume", f"checkpoint {path} {what}: it is truncated or not a viscontact "
+                             "checkpoint; delete it and run without --resume") from None
     return state, extra

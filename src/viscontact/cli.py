@@ -22,8 +22,6 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-import tomllib
-
 from .errors import ConvergenceError, NumericalGuardError, ParameterError, RunInterrupted, ViscontactWarning
 
 PROG = "viscontact"
@@ -247,6 +245,8 @@ def _bar(args: argparse.Namespace, unit: str) -> _Bar:
 def _parse_value(text: str) -> Any:
     """A ``--set`` value as TOML (number, boolean, array, quoted string), else the bare string;
     an empty value removes the key (``--set time.dt=``: its default applies)."""
+    import tomllib
+
     if not text:
         return None
     try:
@@ -286,10 +286,11 @@ def _load(args: argparse.Namespace) -> Any:
 def _prepare(args: argparse.Namespace) -> Any:
     """The case with its overrides, after checking (before any computing) that the result file may
     be written and that plotting is available."""
+    from .output_files import check_output_path
+
     case = _load(args)
     _check_result_name(args.out)
-    if Path(args.out).exists() and not (args.force or getattr(args, "resume", False)):
-        raise FileExistsError(17, "exists; refusing to overwrite it without --force", args.out)
+    check_output_path(args.out, force=args.force or getattr(args, "resume", False), inputs=[args.case])
     if args.plots:
         _check_figures(args)
     return case
@@ -337,7 +338,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
         raise ParameterError("--checkpoint-every", f"must be >= 0 steps, got {args.checkpoint_every}")
     case = _prepare(args)
     problem, _ = api.prepare(case)
-    estimate = check_resources(problem, args.out)
+    estimate = check_resources(problem, args.out, force=args.force, checkpoints=bool(args.checkpoint_every))
     if args.dry_run:
         from .transient import validate
 
@@ -346,38 +347,59 @@ def _cmd_run(args: argparse.Namespace) -> int:
         return 0
     checkpoint = api.checkpoint_path(args.out) if (args.checkpoint_every or args.resume) else None
     force = args.force or args.resume
-    with _bar(args, "step") as bar, _stop_on_signals() as should_stop:
+    with _bar(args, "step") as bar, _stop_on_signals() as signals:
         try:
             ds = api.run(case, progress=bar.update, checkpoint=checkpoint, checkpoint_every=args.checkpoint_every,
-                         resume=args.resume, should_stop=should_stop)
-        except (ConvergenceError, NumericalGuardError, RunInterrupted, KeyboardInterrupt) as exc:
+                         resume=args.resume, should_stop=signals.should_stop)
+        except (ConvergenceError, NumericalGuardError, RunInterrupted, KeyboardInterrupt, OSError) as exc:
+            signals.finishing = True
             partial = getattr(exc, "partial", None)
             if partial is not None:
-                write_netcdf(partial, args.out, force=force)
-                exc.saved = (args.out, partial.sizes["t"])  # type: ignore[attr-defined]
+                try:
+                    write_netcdf(partial, args.out, force=force)
+                    exc.saved = (args.out, partial.sizes["t"])  # type: ignore[attr-defined]
+                except OSError:
+                    if not isinstance(exc, OSError):
+                        raise
             raise
-    args.force = force
-    _finish(ds, args, started)
-    if checkpoint is not None and checkpoint.exists():
-        checkpoint.unlink()
+        signals.finishing = True
+        args.force = force
+        _finish(ds, args, started)
+        if checkpoint is not None and checkpoint.exists():
+            checkpoint.unlink()
+    if signals.received:
+        reason = signals.received[0]
+        return _error(f"{reason} received while the result was written: the complete result is in {args.out} "
+                      "(complete = 1)", EXIT_TERMINATED if reason == "SIGTERM" else EXIT_INTERRUPTED)
     return 0
 
 
-@contextmanager
-def _stop_on_signals():
-    """SIGINT and SIGTERM ask the run to stop after its current step (a second SIGINT interrupts at
-    once). Yields the ``should_stop`` callable for :func:`viscontact.api.run`."""
-    received: list[str] = []
+class _StopSignals:
+    """SIGINT / SIGTERM during ``viscontact run``: while computing, the first asks the run to stop after
+    its current step and a second SIGINT interrupts at once; once ``finishing`` (the result is being
+    written) they are only recorded, so that the write completes."""
 
-    def handler(signum, frame):  # noqa: ARG001
-        name = signal.Signals(signum).name
-        if received and signum == signal.SIGINT:
+    def __init__(self) -> None:
+        self.received: list[str] = []
+        self.finishing = False
+
+    def should_stop(self) -> str | None:
+        """The ``should_stop`` callable of :func:`viscontact.api.run`."""
+        return self.received[0] if self.received else None
+
+    def handle(self, signum: int, frame: Any) -> None:  # noqa: ARG002
+        if self.received and signum == signal.SIGINT and not self.finishing:
             raise KeyboardInterrupt
-        received.append(name)
+        self.received.append(signal.Signals(signum).name)
 
-    previous = {sig: signal.signal(sig, handler) for sig in (signal.SIGINT, signal.SIGTERM)}
+
+@contextmanager
+def _stop_on_signals() -> Iterator[_StopSignals]:
+    """Handle SIGINT and SIGTERM with a :class:`_StopSignals` while the body runs."""
+    signals = _StopSignals()
+    previous = {sig: signal.signal(sig, signals.handle) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
-        yield lambda: received[0] if received else None
+        yield signals
     finally:
         for sig, old in previous.items():
             signal.signal(sig, old)
@@ -506,18 +528,19 @@ def main(argv: Sequence[str] | None = None) -> int:
     bad input (:class:`ParameterError`, a missing or existing file) exits 2, a failed solve 1, a
     stop by SIGINT 130 and by SIGTERM 143.
     """
-    args = _parser().parse_args(argv)
-    args.argv = list(sys.argv[1:] if argv is None else argv)
-    _configure_logging(args.log_level, args.quiet)
-    log.debug("%s %s: %s", PROG, _version(), shlex.join(args.argv))
     try:
+        args = _parser().parse_args(argv)
+        args.argv = list(sys.argv[1:] if argv is None else argv)
+        _configure_logging(args.log_level, args.quiet)
+        log.debug("%s %s: %s", PROG, _version(), shlex.join(args.argv))
         with _warnings_as_lines(args.quiet):
             return args.handler(args)
     except ParameterError as exc:
         return _error(f"{exc.key}: {exc.message}", EXIT_USAGE)
     except OSError as exc:  # missing file, existing result, permissions
         where = exc.filename if exc.filename is not None else "file"
-        return _error(f"{where}: {exc.strerror or exc}", EXIT_USAGE)
+        saved = _saved_note(exc) if getattr(exc, "saved", None) else ""
+        return _error(f"{where}: {exc.strerror or exc}{saved}", EXIT_USAGE)
     except (ConvergenceError, NumericalGuardError) as exc:
         return _error(f"{type(exc).__name__}: {exc}{_saved_note(exc)}", EXIT_FAILED)
     except RunInterrupted as exc:

@@ -11,9 +11,8 @@ moving with the indenter, origin under its centre), fields ``pressure``, ``shear
 from __future__ import annotations
 
 import errno
-import os
-import tempfile
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from datetime import datetime, timezone
 from pathlib import Path
 from typing import Any
@@ -335,42 +334,45 @@ def material_dataset(material: Material, *, points: int = 200) -> xr.Dataset:
 def write_netcdf(ds: xr.Dataset, path: str | Path, *, force: bool = False) -> Path:
     """Write ``ds`` to ``path`` as netCDF-4 (h5netcdf), atomically.
 
-    The file is written under a temporary name in the same folder, flushed to disk and renamed over
-    ``path``: readers see the old file, or the complete new one, never a partial one. 3-D fields are
-    zlib-compressed in chunks of one time step; coordinates have no ``_FillValue``.
+    The file is encoded in memory, then written under a temporary name in the same folder with its
+    size claimed first, flushed to disk and renamed over ``path``
+    (:func:`viscontact.output_files.write_atomically`): readers see the old file, or the complete
+    new one, never a partial one; a full disk is one error naming the size needed; SIGINT / SIGTERM
+    arriving meanwhile are delivered once the file is complete. 3-D fields are zlib-compressed in
+    chunks of one time step; coordinates have no ``_FillValue``.
 
     Raises
     ------
     FileExistsError
-        ``path`` exists and ``force`` is false (``--force`` on the command line).
+        ``path`` exists and ``force`` is false (``--force`` on the command line), or it is not a
+        regular netCDF file (never replaced).
+    OSError
+        The file cannot be written (no space left, read-only folder, ...); nothing is left behind.
     """
-    path = Path(path)
-    if path.exists() and not force:
-        raise FileExistsError(errno.EEXIST, "exists; refusing to overwrite it without --force (force=True)",
-                              str(path))
-    path.parent.mkdir(parents=True, exist_ok=True)
+    from .output_files import check_output_path, signals_deferred, write_atomically
+
+    check_output_path(path, force=force)
     encoding: dict[str, dict[str, Any]] = {name: {"_FillValue": None} for name in ds.coords}
     for name, var in ds.data_vars.items():
         if var.ndim == 3:
             encoding[name] = {**_COMPRESSION, "chunksizes": (1,) + var.shape[1:]} if var.shape[0] else dict(_COMPRESSION)
-    fd, tmp = tempfile.mkstemp(prefix=f"{path.name}.tmp", dir=path.parent)
-    os.close(fd)
+    with signals_deferred(), _local_scheduler():
+        data = ds.to_netcdf(engine="h5netcdf", encoding=encoding)
+        write_atomically(path, data, hint="free some space or write elsewhere (--out)")
+    return Path(path)
+
+
+@contextmanager
+def _local_scheduler() -> Iterator[None]:
+    """Encode in this process even inside a dask worker: xarray would otherwise ask the distributed
+    scheduler for a lock named after the in-memory buffer, which it does not know."""
     try:
-        ds.to_netcdf(tmp, engine="h5netcdf", encoding=encoding)
-        with open(tmp, "rb+") as fh:
-            os.fsync(fh.fileno())
-        os.chmod(tmp, 0o644 & ~_umask())
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
+        import dask
+    except ImportError:  # pragma: no cover - dask is a dependency
+        yield
+        return
+    with dask.config.set(scheduler="synchronous"):
+        yield
 
 
 def open_result(path: str | Path) -> xr.Dataset:

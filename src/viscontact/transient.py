@@ -115,11 +115,7 @@ def validate(problem: Problem) -> None:
             "time.dt", f"{problem.time.dt:.4g} s exceeds the stability limit {limit:.4g} s of the piecewise-constant "
             "(seed) scheme for this material: the result would oscillate and grow. Use time.scheme = \"linear\" "
             "(stable for any dt) or a smaller dt (with sliding: a larger grid.n or tangential.steps_per_cell)")
-    ratio = problem.time.dt / problem.material.shortest_time
-    if ratio > 1.0:
-        warnings.warn(f"time.dt = {problem.time.dt:.3g} s is {ratio:.1f} x the shortest material time "
-                      f"{problem.material.shortest_time:.3g} s: the transient is resolved coarsely "
-                      "(reduce time.dt or raise grid.n when sliding)", ViscontactWarning, stacklevel=3)
+    # the accuracy of dt (against the material times and the loading) is checked by viscontact.guards
 
 
 # --- one step: frame -> known displacement -> phase solver -> commit -> record -------------------

@@ -20,7 +20,7 @@ def test_steady_is_the_solver_module_and_run_steady_the_api() -> None:
 
 
 def test_run_accepts_a_path(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
-    text = (ROOT / "cases" / "creep_indentation.toml").read_text().replace("\nn = 128", "\nn = 16")
+    text = (ROOT / "cases" / "creep_indentation.toml").read_text().replace("\nn = 128", "\nn = 32")
     (tmp_path / "case.toml").write_text(text)
     seen = []
 
@@ -34,7 +34,7 @@ def test_run_accepts_a_path(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> 
     monkeypatch.setattr(transient, "steps", fake)
     calls = []
     ds = vc.run(tmp_path / "case.toml", progress=lambda d, t: calls.append((d, t)))
-    assert seen == [16] and calls == [(1, 2), (2, 2)]
+    assert seen == [32] and calls == [(1, 2), (2, 2)]
     assert ds.attrs["case"] == text
     assert ds.attrs["complete"] == 0            # 2 of 161 steps
 

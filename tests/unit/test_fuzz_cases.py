@@ -1,8 +1,13 @@
 """Config fuzzing: random and mutated case files either load (and validate) or fail with one
 ParameterError line naming a key — never a traceback or another exception type.
 
+Mutations change values and structure: keys set, deleted, invented; sections dropped, turned into
+arrays or scalars, nested into each other; values wrapped in arrays (up to 300 deep), keys moved
+between sections, the text cut or salted with garbage, NULs and byte-order marks.
+
 Bounded for CI: 80 examples against the loader, 40 against the command line (``--dry-run``: full
-validation and the resource estimate, no solve), each example milliseconds.
+validation, the guards and the resource estimate, no solve), each example milliseconds; the slow
+test runs 600 structural examples through the command line.
 """
 from __future__ import annotations
 
@@ -38,6 +43,8 @@ def _toml_value(v) -> str:
         return str(v)
     if isinstance(v, str):
         return '"' + v.encode("unicode_escape").decode("ascii").replace('"', '\\"') + '"'
+    if isinstance(v, dict):  # an inline table
+        return "{" + ", ".join(f"{k} = {_toml_value(x)}" for k, x in v.items()) + "}"
     return "[" + ", ".join(_toml_value(x) for x in v) + "]"
 
 
@@ -50,14 +57,60 @@ def _dump(data: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+STRUCTURAL = ["wrap", "deep", "table_to_array", "table_to_scalar", "nest_section", "move_key", "array_of_tables",
+              "duplicate_key", "nul", "bom", "truncate"]
+
+
+def _mutate_structure(draw, data: dict, kind: str) -> dict:
+    """``data`` after one structural mutation ``kind``."""
+    sections = sorted(k for k, v in data.items() if isinstance(v, dict)) or ["grid"]
+    section = draw(st.sampled_from(sections))
+    body = data.get(section)
+    keys = sorted(body) if isinstance(body, dict) else []
+    if kind == "wrap" and keys:
+        key = draw(st.sampled_from(keys))
+        body[key] = [body[key]] * draw(st.integers(1, 3))
+    elif kind == "deep" and keys:
+        key = draw(st.sampled_from(keys))
+        value = body[key]
+        for _ in range(draw(st.sampled_from([2, 10, 100, 300]))):  # 5000 deep: test_hostile_inputs
+            value = [value]
+        body[key] = value
+    elif kind == "table_to_array" and isinstance(body, dict):
+        data[section] = [body.get(k) for k in keys if not isinstance(body.get(k), (dict, list))]
+    elif kind == "table_to_scalar":
+        data[section] = draw(scalars)
+    elif kind == "nest_section" and isinstance(body, dict):
+        other = draw(st.sampled_from(sections))
+        if other != section and isinstance(data.get(other), dict):
+            body[other] = dict(data[other])
+    elif kind == "move_key" and keys:
+        key = draw(st.sampled_from(keys))
+        target = draw(st.sampled_from(sections))
+        if isinstance(data.get(target), dict):
+            data[target][key] = body.pop(key)
+        else:
+            data[key] = body.pop(key)
+    elif kind == "array_of_tables" and isinstance(body, dict):
+        data[section] = [dict(body), dict(body)]
+    return data
+
+
 @st.composite
-def mutated_cases(draw) -> str:
+def mutated_cases(draw, structural: bool = False) -> str:
     data = {k: (dict(v) if isinstance(v, dict) else v) for k, v in BASE.items()}
+    text_edits = []
     for _ in range(draw(st.integers(1, 4))):
-        kind = draw(st.sampled_from(["set", "delete", "unknown", "drop_section"]))
+        kinds = ["set", "delete", "unknown", "drop_section"] + (STRUCTURAL if structural else [])
+        kind = draw(st.sampled_from(kinds))
         section = draw(st.sampled_from(sorted(k for k, v in data.items() if isinstance(v, dict)) or ["grid"]))
         body = data.setdefault(section, {})
-        if kind == "set" and body:
+        if kind in STRUCTURAL:
+            if kind in ("nul", "bom", "truncate", "duplicate_key"):
+                text_edits.append(kind)
+            else:
+                data = _mutate_structure(draw, data, kind)
+        elif kind == "set" and body:
             body[draw(st.sampled_from(sorted(body)))] = draw(values)
         elif kind == "set":
             data["grid"] = {"n": draw(values), "half_width": 2e-3}
@@ -68,6 +121,18 @@ def mutated_cases(draw) -> str:
         elif kind == "drop_section":
             data.pop(section, None)
     text = _dump(data)
+    for edit in text_edits:
+        if edit == "nul":
+            at = draw(st.integers(0, len(text)))
+            text = text[:at] + draw(st.sampled_from(["\\u0000", "\x00", "\\u001b"])) + text[at:]
+        elif edit == "bom":
+            text = "\ufeff" + text
+        elif edit == "truncate":
+            text = text[: draw(st.integers(0, len(text)))]
+        elif edit == "duplicate_key":
+            lines = text.splitlines()
+            at = draw(st.integers(0, max(len(lines) - 1, 0)))
+            text = "\n".join(lines[: at + 1] + lines[at:at + 1] + lines[at + 1:]) + "\n"
     if draw(st.booleans()):  # garbage in the text itself
         at = draw(st.integers(0, len(text)))
         text = text[:at] + draw(st.text(max_size=8)) + text[at:]
@@ -97,10 +162,7 @@ def test_loader_on_random_text(text):
     _load(text)
 
 
-@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow,
-                                                                HealthCheck.function_scoped_fixture])
-@given(mutated_cases())
-def test_cli_exits_0_or_2_with_one_line(tmp_path, capsys, text):
+def _cli_exits_0_or_2_with_one_line(tmp_path, capsys, text) -> None:
     case = tmp_path / "case.toml"
     case.write_text(text, encoding="utf-8", errors="surrogatepass")
     code = cli.main(["run", str(case), "--out", str(tmp_path / "r.nc"), "--dry-run", "--force"])
@@ -112,6 +174,27 @@ def test_cli_exits_0_or_2_with_one_line(tmp_path, capsys, text):
         assert len(errors) == 1 and errors[0].startswith("viscontact: error:")
     else:
         assert not errors
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow,
+                                                                HealthCheck.function_scoped_fixture])
+@given(mutated_cases())
+def test_cli_exits_0_or_2_with_one_line(tmp_path, capsys, text):
+    _cli_exits_0_or_2_with_one_line(tmp_path, capsys, text)
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(mutated_cases(structural=True))
+def test_loader_survives_structural_mutations(text):
+    _load(text)
+
+
+@pytest.mark.slow
+@settings(max_examples=600, deadline=None, suppress_health_check=[HealthCheck.too_slow,
+                                                                 HealthCheck.function_scoped_fixture])
+@given(mutated_cases(structural=True))
+def test_cli_survives_structural_mutations(tmp_path, capsys, text):
+    _cli_exits_0_or_2_with_one_line(tmp_path, capsys, text)
 
 
 @pytest.mark.parametrize("n", [10**6, 2**40, 16385])

@@ -156,9 +156,22 @@ def _guard_run(tmp_path, capsys, half_width=1.5e-3, mode="none", speed=0.05, t_e
     return code, err
 
 
-def test_guard_contact_at_the_domain_edge_suggests_a_half_width(tmp_path, capsys):
+def test_guard_contact_beyond_the_domain_suggests_a_half_width(tmp_path, capsys):
+    # refused before the run (viscontact.guards), no longer at the first step (exit 1)
     code, err = _guard_run(tmp_path, capsys, half_width=3e-4)
-    assert code == 1 and len(err) == 1 and "edge" in err[0] and "half_width" in err[0]
+    assert code == 2 and len(err) == 1 and err[0].startswith("viscontact: error: grid.half_width:")
+    assert "use grid.half_width = " in err[0]
+
+
+def test_guard_contact_at_the_domain_edge_during_the_run():
+    """What the estimate cannot see (a height file without curvature, a history it misjudges) is
+    still caught at the step: pressure on the edge of the domain."""
+    pb = sphere_problem(seed_material(), 8, 1e-3)
+    p = np.zeros((8, 8))
+    p[3:5, 3:5] = 1.0
+    p[0, 4] = 0.5
+    with pytest.raises(NumericalGuardError, match="edge of the domain.*half_width"):
+        _guard(pb, p, float(p.sum() * pb.grid.cell_area), float(p.sum() * pb.grid.cell_area))
 
 
 def test_guard_non_convergence_gives_the_residual(tmp_path, capsys):
@@ -172,8 +185,16 @@ def test_guard_unstable_time_step_is_bad_input(tmp_path, capsys):
 
 
 def test_warning_coarse_time_step_is_one_line(tmp_path, capsys):
-    code, err = _guard_run(tmp_path, capsys, dt="dt = 5e-3", t_end=0.02, scheme="linear")
+    # the linear scheme at dt = 2.5 ms (a quarter of the retardation time) misses the creep by ~10 %
+    code, err = _guard_run(tmp_path, capsys, dt="dt = 2.5e-3", t_end=0.02, scheme="linear")
     assert code == 0 and len(err) == 1 and err[0].startswith("viscontact: warning:") and "time.dt" in err[0]
+    assert "%" in err[0]
+
+
+def test_too_coarse_time_step_is_refused(tmp_path, capsys):
+    # dt = 5 ms used to run with a warning only: the estimate is 33 % (viscontact.guards)
+    code, err = _guard_run(tmp_path, capsys, dt="dt = 5e-3", t_end=0.02, scheme="linear")
+    assert code == 2 and len(err) == 1 and err[0].startswith("viscontact: error: time.dt:")
 
 
 def test_warning_wake_dropped_at_the_trailing_edge(tmp_path, capsys):

@@ -17,11 +17,12 @@ from viscontact.results import open_result, sweep_dataset, to_dataset, write_net
 
 CONTRACT_VARIABLES = ("pressure", "shear_x", "stick", "load", "delta_z", "delta_x", "sliding_distance",
                       "contact_area", "stick_ratio", "phase", "friction_force", "hysteresis_force", "mu_app")
-N = 16
+N = 32
 
 
 def make_problem(mode: str = "partial_slip", fields: tuple[str, ...] = ("pressure", "shear_x", "stick")) -> Problem:
-    return sphere_problem(seed_material(), N, 1e-3, mode=mode, friction=0.3, rate=0.01, speed=0.05, t_end=0.004,
+    return sphere_problem(seed_material(), N, 2e-3,  # holds and resolves the contact (viscontact.guards)
+                          mode=mode, friction=0.3, rate=0.01, speed=0.05, t_end=0.004,
                           dt=1e-3, fields=fields, title="fake")
 
 
@@ -105,13 +106,18 @@ def test_refuses_overwrite(tmp_path: Path) -> None:
     problem = make_problem()
     ds = to_dataset(fake_records(problem), problem)
     path = tmp_path / "r.nc"
-    path.write_bytes(b"keep me")
+    write_netcdf(ds.isel(t=[0]), path)
+    kept = path.read_bytes()
     with pytest.raises(FileExistsError, match="--force"):
         write_netcdf(ds, path)
-    assert path.read_bytes() == b"keep me"
+    assert path.read_bytes() == kept
     write_netcdf(ds, path, force=True)
     assert open_result(path).sizes["t"] == 5
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r.nc"]
+    path.write_bytes(b"keep me")  # not a result file: never replaced, even with force
+    with pytest.raises(FileExistsError, match="not a netCDF result file"):
+        write_netcdf(ds, path, force=True)
+    assert path.read_bytes() == b"keep me"
 
 
 def test_failed_write_leaves_nothing(tmp_path: Path) -> None:

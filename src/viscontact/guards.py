@@ -1,0 +1,330 @@
+"""Physical validity of a problem, checked before it is solved: can its answer be trusted?
+
+Every check compares the discretisation with an estimate of the solution it must resolve, from
+closed-form contact mechanics and from the time scheme applied to one point:
+
+* **contact size** -- Hertz (Johnson, *Contact Mechanics*, Sec. 4.2) with the instantaneous and the
+  long-term shear modulus: under load control the contact radius of a viscoelastic sphere creeps
+  from a(G(0)) towards a(G(inf)) = a(G(0)) (G(0)/G(inf))^(1/3) as a^3 ~ int J(t - s) dW(s) (Lee &
+  Radok 1960), for as long as the run lasts or, when sliding, a material point stays under the
+  contact; under displacement control it is a = sqrt(R delta) whatever the modulus (a coarse grid
+  there used to give zero load and zero contact). R is the sphere radius, or for a height file the
+  equivalent radius of the gap at its lowest point (no estimate when it is not curved there).
+* **resolution** -- cells across the smallest contact radius: on the cell-centred grid the node
+  nearest the centre of the contact may lie dx/sqrt(2) from it, where the Hertz pressure is
+  sqrt(1 - dx^2/(2 a^2)) of its peak (:func:`peak_pressure_error`; measured peak errors of the
+  elastic Hertz case: 3.9 %, 2.6 %, 1.5 %, 0.6 % at a/dx = 2, 3, 4, 6 against 6.5 %, 2.8 %, 1.6 %,
+  0.7 % estimated).
+* **domain** -- the largest contact must fit in the domain with :data:`EDGE_CELLS` cells to spare.
+* **small strain** -- the half-space and the paraboloidal gap are small-strain, small-slope
+  approximations; the largest strain is about p0/E* = 2a/(pi R) (Hertz), so a/R above
+  :data:`RADIUS_RATIO_ERROR` cannot be trusted and above :data:`RADIUS_RATIO_WARNING` is marginal.
+* **time step** -- the time scheme (:mod:`viscontact.history`) is run on one point of a contact
+  whose area does not change: under displacement control the traction responds to the approach
+  history delta(t) through the relaxation modulus G(t); under load control the displacement
+  responds to the load history W(t) through the creep compliance J(t). Both are compared with the
+  exact hereditary integrals of the piecewise-linear history (seed Eq. 5 with dt -> 0). This
+  compares dt with the relaxation and retardation times and with the time scale of the loading.
+
+An estimated error above the error limit raises :class:`~viscontact.errors.ParameterError` (the
+answer cannot be trusted); above the warning limit a :class:`~viscontact.errors.ViscontactWarning`
+gives the estimate. The limits are module constants.
+"""
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import ParameterError, ViscontactWarning
+from .history import PronyHistory, stable_step_limit, step_coefficients
+from .materials import Material
+from .problem import Problem
+
+__all__ = ["ContactEstimate", "check_problem", "contact_estimate", "grid_suggestion", "peak_pressure_error",
+           "time_step_error"]
+
+#: estimated relative errors of the peak pressure above which a run is refused / warned about
+ERROR_LIMIT, WARNING_LIMIT = 0.10, 0.05
+#: the same for the one-point estimate of the time discretisation (:func:`time_step_error`). It
+#: bounds the local pressure error of the transient (measured on the creep case at n = 64: estimate
+#: 13.8 %, 3.1 %, 1.6 % against 16 %, 1 %, 1 % for constant dt = 1 ms, 0.25 ms and linear dt = 1 ms);
+#: integral quantities (load, approach) are far more accurate (2e-4 under a held load).
+TIME_ERROR_LIMIT, TIME_WARNING_LIMIT = 0.20, 0.07
+#: cells kept between the largest contact (an upper bound: creep under a held load) and the edge
+EDGE_CELLS = 1
+#: contact radius / sphere radius: refused above, warned about above (strain ~ 2a/(pi R))
+RADIUS_RATIO_ERROR, RADIUS_RATIO_WARNING = 0.5, 0.2
+#: largest G(0)/G(inf) [-]: J_inst = J(inf) - sum_m J_m beta_m (viscontact.history) loses
+#: log10(G(0)/G(inf)) of the 16 digits of float64; above 1e8 it is not known to the solver tolerance
+MAX_MODULUS_RATIO = 1e8
+#: the time-step check runs the scheme over at most this many steps (the response has settled by then
+#: or the estimate is taken over the first part of the run)
+MAX_CHECKED_STEPS = 4000
+
+
+@dataclass(frozen=True)
+class ContactEstimate:
+    """Contact radii of a problem [m]: ``smallest`` (load control: Hertz with G(0)), ``largest``
+    (after creeping, at most Hertz with G(inf)); ``sphere_radius`` R [m] of the (equivalent) sphere."""
+
+    smallest: float
+    largest: float
+    sphere_radius: float
+
+
+def contact_estimate(problem: Problem, *, transient: bool = True) -> ContactEstimate | None:
+    """Hertz estimate of the contact radius at the largest load (or approach) of the run; None when
+    the indenter has no curvature to estimate it from (e.g. a flat punch).
+
+    Under load control the radius creeps (Lee & Radok: a^3 ~ int J(t - s) dW(s)) for as long as a
+    material point stays loaded: the run's duration, or when sliding at most 2 a(G(inf)) / v (the
+    time to cross the widest contact; the steady state: that time). ``largest`` is the radius after
+    that time, at most the Hertz radius with G(inf).
+    """
+    from .results import equivalent_radius
+
+    radius = problem.radius if problem.radius is not None else equivalent_radius(problem)
+    reference = problem.normal.history.reference
+    if not (np.isfinite(radius) and radius > 0 and reference > 0):
+        return None
+    mat = problem.material
+    if problem.normal.control == "displacement":
+        a = math.sqrt(radius * reference)
+        return ContactEstimate(a, a, radius)
+    e_star = 2.0 * mat.shear_modulus_instantaneous / (1.0 - mat.poisson_ratio)
+    smallest = (3.0 * reference * radius / (4.0 * e_star)) ** (1.0 / 3.0)
+    long_term = smallest * (mat.shear_modulus_instantaneous / mat.shear_modulus_long_term) ** (1.0 / 3.0)
+    tan = problem.tangential
+    duration = problem.time.t_end if transient else math.inf
+    if tan.mode in ("frictionless_sliding", "gross_sliding") or (not transient and tan.sliding_speed > 0):
+        duration = min(duration, 2.0 * long_term / tan.sliding_speed)
+    return ContactEstimate(smallest, smallest * _creep_ratio(problem, duration) ** (1.0 / 3.0), radius)
+
+
+def _creep_ratio(problem: Problem, duration: float) -> float:
+    """max over 0 <= t <= duration of int J(t - s) dW(s) / (J(0) max W) [-] (1 for an elastic
+    material, G(0)/G(inf) for a held load after a long time)."""
+    mat = problem.material
+    if mat.is_elastic or not math.isfinite(duration):
+        return mat.shear_modulus_instantaneous / mat.shear_modulus_long_term
+    creep = mat.creep
+    t = np.linspace(0.0, duration, 1001)
+    load = np.array([problem.normal.history(x) for x in t])
+    compliance = hereditary_integral(creep.long_term, -creep.amplitudes, creep.retardation_times, load, t[1] - t[0])
+    return float(np.max(compliance) / (creep.instantaneous * problem.normal.history.reference))
+
+
+def peak_pressure_error(cells_per_radius: float) -> float:
+    """Estimated relative error [-] of the peak pressure with ``a / dx`` cells across the contact
+    radius: 1 - sqrt(1 - 1/(2 (a/dx)^2)), the Hertz pressure dx/sqrt(2) from the centre."""
+    return 1.0 - math.sqrt(max(1.0 - 0.5 / max(cells_per_radius, 1e-12) ** 2, 0.0))
+
+
+def _grid_problems(est: ContactEstimate, n: int, half_width: float) -> list[tuple[str, str]]:
+    """(key, message) for every way an n x n grid on +-half_width fails to resolve or hold ``est``."""
+    dx = 2.0 * half_width / n
+    found = []
+    cells = est.smallest / dx
+    if peak_pressure_error(cells) > ERROR_LIMIT:
+        found.append(("grid.n", f"{n} cells of {dx:.3g} m resolve the contact radius {est.smallest:.3g} m "
+                      f"with {cells:.2g} cells: the peak pressure would be off by about "
+                      f"{100 * peak_pressure_error(cells):.0f} %"))
+    if est.largest > half_width - EDGE_CELLS * dx:
+        found.append(("grid.half_width", f"the contact radius reaches about {est.largest:.3g} m (Hertz, "
+                      f"Lee & Radok creep): half_width = {half_width:.4g} m does not hold it with "
+                      f"{EDGE_CELLS} cell{'s' if EDGE_CELLS > 1 else ''} to spare"))
+    return found
+
+
+def grid_suggestion(est: ContactEstimate, n: int, half_width: float) -> tuple[int, float]:
+    """The smallest change of (n, half_width) that holds and resolves ``est`` (checked to pass)."""
+    from .case import MAX_GRID_N
+
+    if est.largest > half_width - EDGE_CELLS * 2.0 * half_width / n:
+        half_width = float(f"{1.5 * est.largest:.2g}") if 1.5 * est.largest > half_width else half_width
+        while est.largest > 0.75 * half_width and math.isfinite(half_width):  # rounding to 2 digits
+            half_width *= 1.1
+    cells_needed = 1.05 * math.sqrt(0.5 / (1.0 - (1.0 - WARNING_LIMIT) ** 2))  # 5 % margin under the warning
+    n_needed = max(n, math.ceil(min(2.0 * half_width * cells_needed / est.smallest, 2.0 * MAX_GRID_N)))
+    n = min(2 ** math.ceil(math.log2(n_needed)), MAX_GRID_N) if n_needed > n else n
+    while _grid_problems(est, n, half_width) and n < MAX_GRID_N:
+        n = min(2 * n, MAX_GRID_N)
+    return n, half_width
+
+
+def _normal_key(problem: Problem) -> str:
+    return "normal.value" if len(problem.normal.history.times) == 1 else "normal.history"
+
+
+def _check_space(problem: Problem, transient: bool) -> None:
+    grid = problem.grid
+    est = contact_estimate(problem, transient=transient)
+    if est is not None:
+        ratio = est.largest / est.sphere_radius
+        if ratio > RADIUS_RATIO_ERROR:
+            raise ParameterError(_normal_key(problem), f"the contact radius reaches about {ratio:.2g} x the indenter radius "
+                                 f"({est.largest:.3g} m against {est.sphere_radius:.3g} m): beyond the small-strain "
+                                 f"half-space theory (a/R <= {RADIUS_RATIO_ERROR:g}); check the units "
+                                 "(N, m) of the load and of indenter.radius")
+        if ratio > RADIUS_RATIO_WARNING:
+            warnings.warn(f"the contact radius reaches about {ratio:.2g} x the indenter radius: strains of about "
+                          f"{100 * 2 * ratio / math.pi:.0f} % exceed the small-strain theory's comfort "
+                          f"(a/R <= {RADIUS_RATIO_WARNING:g})", ViscontactWarning, stacklevel=3)
+        found = _grid_problems(est, grid.n, grid.half_width)
+        if found:
+            from .case import MAX_GRID_N
+
+            n, half_width = grid_suggestion(est, grid.n, grid.half_width)
+            key, message = found[0]
+            if _grid_problems(est, n, half_width):
+                raise ParameterError(key, f"{message}; no grid of up to {MAX_GRID_N}^2 cells can hold and resolve "
+                                     f"a contact of radius {est.smallest:.3g} to {est.largest:.3g} m: check the "
+                                     "units of the moduli (Pa), the load (N) and indenter.radius (m)")
+            raise ParameterError(key, f"{message}; use grid.half_width = {half_width:.3g} m and grid.n = {n}")
+        cells = est.smallest / grid.spacing
+        if peak_pressure_error(cells) > WARNING_LIMIT:
+            n, _ = grid_suggestion(est, grid.n, grid.half_width)
+            warnings.warn(f"grid.n = {grid.n}: {cells:.2g} cells across the contact radius {est.smallest:.3g} m, "
+                          f"the peak pressure may be off by about {100 * peak_pressure_error(cells):.0f} % "
+                          f"(grid.n = {n} would give less than {100 * WARNING_LIMIT:.0f} %)",
+                          ViscontactWarning, stacklevel=3)
+
+
+# --- the time step -------------------------------------------------------------------------------
+#: sub-steps per time step of the reference hereditary integrals
+REFERENCE_REFINEMENT = 16
+
+
+def hereditary_integral(kernel_inf: float, amplitudes: np.ndarray, times: np.ndarray, f: np.ndarray,
+                        h: float) -> np.ndarray:
+    """y(t_j) = int_0^t_j K(t_j - s) df(s) [units of K x f] on the uniform times t_j = j h, for
+    K(t) = kernel_inf + sum_i amplitudes_i exp(-t / times_i) and f linear between its samples ``f``
+    with a step of f[0] at t = 0. Exact for that f (recursion over the exponentials, seed Eq. 6)."""
+    from scipy.signal import lfilter
+
+    y = kernel_inf * f
+    slope = np.diff(f, prepend=f[0]) / h
+    for amplitude, time in zip(np.atleast_1d(amplitudes), np.atleast_1d(times)):
+        decay = math.exp(-h / time)
+        drive = slope * time * -math.expm1(-h / time)
+        drive[0] = f[0]
+        y = y + amplitude * lfilter([1.0], [1.0, -decay], drive)
+    return y
+
+
+def _scheme_response(problem: Problem, driving: np.ndarray) -> np.ndarray:
+    """The time scheme of :mod:`viscontact.transient` on one point: the traction under the
+    displacements ``driving`` (displacement control) or the displacement under the tractions
+    ``driving`` (load control), at the steps t_k = k dt."""
+    mat, dt, scheme = problem.material, problem.time.dt, problem.time.scheme
+    first, regular = (step_coefficients(mat, dt, scheme, f) for f in (True, False))
+    hist = PronyHistory.zeros(mat.creep.retardation_times.size, 1)
+    out = np.empty(driving.size)
+    for k, value in enumerate(driving):
+        coef = first if k == 0 else regular
+        r = float(hist.traction(mat, coef)[0, 0])
+        if problem.normal.control == "displacement":
+            p = out[k] = (value - r) / coef.instantaneous
+        else:
+            p, out[k] = value, coef.instantaneous * value + r
+        hist.advance(np.full((1, 1), p), coef)
+    return out
+
+
+def time_step_error(problem: Problem) -> float:
+    """Estimated relative error [-] of the transient from the time discretisation alone.
+
+    The scheme runs on one point of the Lee & Radok (1960) solution for a sphere, whose exact values
+    are hereditary integrals of the normal history computed on a grid :data:`REFERENCE_REFINEMENT`
+    times finer (:func:`hereditary_integral`):
+
+    * displacement control: the contact radius is held by the approach, the traction at a point
+      follows int G(t - s) d delta(s); the scheme is driven by delta(t_k) and returns the traction;
+    * load control: a(t)^3 ~ int J(t - s) dW(s) grows, the centre pressure is ~ int G(t - s) da(s)
+      and the centre displacement ~ a(t); the scheme is driven by the centre pressure and returns
+      the displacement.
+
+    Returns the largest difference over the run (at most :data:`MAX_CHECKED_STEPS` steps) relative
+    to the largest exact value; 0 for an elastic material.
+    """
+    mat = problem.material
+    if mat.is_elastic:
+        return 0.0
+    n_steps = min(problem.time.n_steps, MAX_CHECKED_STEPS)
+    h = problem.time.dt / REFERENCE_REFINEMENT
+    fine = np.arange((n_steps - 1) * REFERENCE_REFINEMENT + 1) * h
+    history = np.array([problem.normal.history(t) for t in fine]) if len(problem.normal.history.times) > 1 \
+        else np.full(fine.size, problem.normal.history.reference)
+    relaxation = (mat.g_inf, np.array(mat.g), np.array(mat.tau))
+    creep = mat.creep
+    if problem.normal.control == "displacement":
+        driving = history
+        exact = hereditary_integral(*relaxation, history, h)
+    else:
+        compliance = hereditary_integral(creep.long_term, -creep.amplitudes, creep.retardation_times, history, h)
+        exact = np.cbrt(np.maximum(compliance, 0.0))
+        driving = hereditary_integral(*relaxation, exact, h)
+    driving, exact = driving[::REFERENCE_REFINEMENT], exact[::REFERENCE_REFINEMENT]
+    scale = float(np.max(np.abs(exact)))
+    if not scale > 0:
+        return 0.0
+    return float(np.max(np.abs(_scheme_response(problem, driving) - exact)) / scale)
+
+
+def _check_time(problem: Problem) -> None:
+    dt = problem.time.dt
+    if dt > stable_step_limit(problem.material, problem.time.scheme):
+        return  # unstable: refused with its own message by viscontact.transient.validate
+    err = time_step_error(problem)
+    what = "relaxation" if problem.normal.control == "displacement" else "creep"
+    if err > TIME_ERROR_LIMIT:
+        raise ParameterError("time.dt", f"{dt:.4g} s with the {problem.time.scheme} scheme misses the {what} of this "
+                             f"material and loading by about {100 * err:.0f} % (one-point estimate against the "
+                             f"exact hereditary integral); use a smaller time.dt{_linear_hint(problem)}")
+    if err > TIME_WARNING_LIMIT:
+        warnings.warn(f"time.dt = {dt:.4g} s: the {problem.time.scheme} scheme misses the {what} by about "
+                      f"{100 * err:.1f} % (one-point estimate); a smaller time.dt{_linear_hint(problem)} reduces it",
+                      ViscontactWarning, stacklevel=3)
+
+
+def _linear_hint(problem: Problem) -> str:
+    return " or time.scheme = \"linear\"" if problem.time.scheme == "constant" else ""
+
+
+def _check_material(material: Material) -> None:
+    """G(0)/G(inf) at most :data:`MAX_MODULUS_RATIO` and a finite creep spectrum."""
+    ratio = material.shear_modulus_instantaneous / material.shear_modulus_long_term
+    key = {"zener": "material.shear_modulus_long_term", "prony": "material.g_inf"}.get(material.name, "material")
+    if not ratio <= MAX_MODULUS_RATIO:
+        raise ParameterError(key, f"G(0)/G(inf) = {ratio:.3g} exceeds {MAX_MODULUS_RATIO:g}: the step compliance "
+                             "J(inf) - sum J_m beta_m would lose every digit to cancellation; check the moduli (Pa)")
+    with np.errstate(all="ignore"):
+        c = material.creep
+        values = np.concatenate([[c.instantaneous, c.long_term], c.amplitudes, c.retardation_times])
+    if not np.all(np.isfinite(values)) or not np.all(values > 0):
+        raise ParameterError(key, "the moduli and times give no finite creep compliance; check the moduli (Pa) "
+                             "and times (s)")
+
+
+def check_problem(problem: Problem, *, transient: bool = True) -> None:
+    """Refuse a problem whose answer cannot be trusted, warn about a marginal one.
+
+    Parameters
+    ----------
+    problem
+        What is about to be solved.
+    transient
+        Also check the time step (not for the steady solver).
+
+    Raises
+    ------
+    ParameterError
+        Naming the key to change and a value that will work.
+    """
+    _check_material(problem.material)
+    _check_space(problem, transient)
+    if transient:
+        _check_time(problem)

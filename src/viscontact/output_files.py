@@ -1,0 +1,242 @@
+"""Writing result and checkpoint files without ever losing one.
+
+Three guarantees, used by :func:`viscontact.results.write_netcdf`, the checkpoints and the command
+line:
+
+* :func:`check_output_path` refuses, before anything is computed, an output path that could not be
+  written at the end (read-only folder or mount, immutable file, a path under a regular file) or
+  that must not be replaced: an existing file without ``force``, and even with ``force`` anything
+  but a regular result file (never an input file of the run, never a device, FIFO or folder).
+* :func:`write_atomically` writes under a temporary name in the destination folder, claims the
+  whole size on disk first (``posix_fallocate``), fsyncs and renames over the destination: readers
+  see the old file or the complete new one. A full disk is one :class:`OSError` (``ENOSPC``) that
+  names the file, the size needed and the space free; no temporary file is left behind.
+* :func:`signals_deferred`: SIGINT and SIGTERM arriving while a file is written are held and
+  delivered once it is complete, so a finished run is never discarded half-written.
+
+Symbolic links: an ``--out`` that is a symbolic link is followed; the new file replaces the link's
+target (the link itself is kept), and the checks apply to the target.
+"""
+from __future__ import annotations
+
+import errno
+import fcntl
+import os
+import shutil
+import signal
+import stat
+import tempfile
+import threading
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from typing import BinaryIO
+
+from .resources import format_size
+
+__all__ = ["check_output_path", "disk_full_error", "signals_deferred", "write_atomically"]
+
+#: first bytes of the files a result may be: netCDF-4 (HDF5) and classic netCDF
+RESULT_SIGNATURES = (b"\x89HDF\r\n\x1a\n", b"CDF\x01", b"CDF\x02")
+#: ``FS_IOC_GETFLAGS`` and the inode flags that forbid replacing a file (Linux ``chattr +i / +a``)
+_FS_IOC_GETFLAGS, _FS_IMMUTABLE_FL, _FS_APPEND_FL = 0x80086601, 0x10, 0x20
+_DISK_FULL = (errno.ENOSPC, errno.EDQUOT)
+
+
+def _target(path: Path) -> Path:
+    """``path`` with symbolic links followed (the file a write replaces)."""
+    return Path(os.path.realpath(path)) if path.is_symlink() else path
+
+
+def _existing_folder(path: Path) -> Path:
+    """The deepest existing ancestor of ``path``; NotADirectoryError when it is not a folder."""
+    folder = path.parent
+    while not os.path.lexists(folder) and folder != folder.parent:
+        folder = folder.parent
+    if not folder.is_dir():
+        raise NotADirectoryError(errno.ENOTDIR, f"{folder} is a file, not a folder: this path cannot be created",
+                                 str(path))
+    return folder
+
+
+def _protected_flags(path: Path) -> str:
+    """'immutable' / 'append-only' when the file carries that inode flag, else ''."""
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    except OSError:
+        return ""
+    try:
+        buf = bytearray(8)
+        fcntl.ioctl(fd, _FS_IOC_GETFLAGS, buf)
+        flags = int.from_bytes(buf[:4], "little")
+    except OSError:  # the filesystem has no such flags
+        return ""
+    finally:
+        os.close(fd)
+    return "immutable" if flags & _FS_IMMUTABLE_FL else ("append-only" if flags & _FS_APPEND_FL else "")
+
+
+def _is_result_file(path: Path) -> bool:
+    """Empty, or starts like a netCDF file."""
+    with open(path, "rb") as fh:
+        head = fh.read(8)
+    return not head or any(head.startswith(sig) for sig in RESULT_SIGNATURES)
+
+
+def _probe_writable(folder: Path, path: Path) -> None:
+    """Create and remove a file in ``folder``: the only check a read-only mount, an immutable
+    folder or missing permissions cannot fool."""
+    try:
+        fd, probe = tempfile.mkstemp(prefix=".viscontact-probe-", dir=folder)
+    except OSError as exc:
+        raise OSError(exc.errno, f"cannot write in {folder}: {exc.strerror}; choose another folder (--out)",
+                      str(path)) from None
+    os.close(fd)
+    os.unlink(probe)
+
+
+def check_output_path(out: str | Path, *, force: bool = False, inputs: Iterable[str | Path] = (),
+                      replace: bool = True) -> Path:
+    """Refuse (before any computing) an output path the run could not write or must not replace.
+
+    Parameters
+    ----------
+    out
+        The file to be written.
+    force
+        Replace an existing result file (``--force``). Even then only a regular file that is empty or
+        a netCDF file is replaced.
+    inputs
+        Files the run reads (case file, sweep file, height files): never replaced.
+    replace
+        False: an existing file is refused whatever ``force`` says.
+
+    Returns
+    -------
+    Path
+        The file a write replaces (``out`` with symbolic links followed).
+
+    Raises
+    ------
+    OSError
+        (``FileExistsError``, ``NotADirectoryError``, ``IsADirectoryError`` ...) naming ``out`` and
+        saying why and what to do.
+    """
+    path = Path(out)
+    if path.is_symlink() and not path.exists():
+        raise FileNotFoundError(errno.ENOENT, f"is a symbolic link to the missing {os.readlink(path)}; "
+                                "remove it or choose another --out", str(path))
+    target = _target(path)
+    for name in inputs:
+        if os.path.lexists(name) and os.path.exists(target) and os.path.samefile(name, target):
+            raise FileExistsError(errno.EEXIST, f"is the input file {name}; refusing to overwrite it, "
+                                  "choose another --out", str(path))
+    if os.path.lexists(target):
+        mode = os.stat(target).st_mode
+        if stat.S_ISDIR(mode):
+            raise IsADirectoryError(errno.EISDIR, "is a folder; give a file name (e.g. result.nc)", str(path))
+        if not stat.S_ISREG(mode):
+            raise FileExistsError(errno.EEXIST, "is not a regular file (a device, FIFO or socket); it is never "
+                                  "replaced: choose another --out", str(path))
+        if not (force and replace):
+            raise FileExistsError(errno.EEXIST, "exists; refusing to overwrite it without --force", str(path))
+        if not _is_result_file(target):
+            raise FileExistsError(errno.EEXIST, "exists and is not a netCDF result file; refusing to replace it "
+                                  "even with --force: choose another --out", str(path))
+        flag = _protected_flags(target)
+        if flag:
+            raise PermissionError(errno.EPERM, f"is {flag} (chattr); it cannot be replaced: choose another --out",
+                                  str(path))
+    _probe_writable(_existing_folder(target), path)
+    return target
+
+
+def disk_full_error(path: Path, needed: int, what: str = "") -> OSError:
+    """The one-line error of a full disk: which file, how much it needs, how much is free, what to do."""
+    try:
+        free = format_size(shutil.disk_usage(path.parent).free)
+    except OSError:
+        free = "unknown"
+    hint = what or "free some space or write elsewhere (--out)"
+    return OSError(errno.ENOSPC, f"no space left on device: the file needs about {format_size(needed)}, "
+                   f"{free} free in {path.parent}; {hint}", str(path))
+
+
+@contextmanager
+def signals_deferred(signals: Iterable[int] = (signal.SIGINT, signal.SIGTERM)) -> Iterator[list[int]]:
+    """Hold ``signals`` while the body runs and deliver them (to the handlers in place before) once
+    it is done, normally or not. Yields the list of signals received. Outside the main thread (where
+    handlers cannot be set) it does nothing."""
+    received: list[int] = []
+    if threading.current_thread() is not threading.main_thread():
+        yield received
+        return
+
+    def hold(signum: int, frame: object) -> None:  # noqa: ARG001
+        received.append(signum)
+
+    previous = {sig: signal.signal(sig, hold) for sig in signals}
+    try:
+        yield received
+    finally:
+        for sig, old in previous.items():
+            signal.signal(sig, old)
+        for sig in dict.fromkeys(received):
+            signal.raise_signal(sig)
+
+
+def write_atomically(path: str | Path, content: bytes | memoryview | Callable[[BinaryIO], None], *,
+                     size: int | None = None, hint: str = "") -> Path:
+    """Write ``content`` (bytes, or a function writing into a binary file) to ``path`` atomically.
+
+    The bytes go to a temporary file in the destination folder whose size (``len(content)`` or
+    ``size``, when known) is claimed first; it is then flushed, fsynced and renamed over ``path``
+    (over its target when ``path`` is a symbolic link). SIGINT / SIGTERM are held until the rename
+    is done. Nothing but ``path`` is left on disk, whatever happens.
+
+    Raises
+    ------
+    OSError
+        ``ENOSPC`` with the size needed and the space free (``hint``: what to do), or any other
+        error of the filesystem, always naming ``path``.
+    """
+    path = Path(path)
+    target = _target(path)
+    if isinstance(content, (bytes, bytearray, memoryview)):
+        size = memoryview(content).nbytes
+    with signals_deferred():
+        target.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+        try:
+            with os.fdopen(fd, "wb") as fh:
+                if size:
+                    try:
+                        os.posix_fallocate(fh.fileno(), 0, size)
+                    except OSError as exc:
+                        if exc.errno in _DISK_FULL:
+                            raise
+                if callable(content):
+                    content(fh)
+                else:
+                    fh.write(content)
+                fh.flush()
+                os.fsync(fh.fileno())
+                os.fchmod(fh.fileno(), 0o644 & ~_umask())
+            os.replace(tmp, target)
+        except OSError as exc:
+            Path(tmp).unlink(missing_ok=True)
+            if exc.errno in _DISK_FULL:
+                raise disk_full_error(target, size or 0, hint) from None
+            if exc.filename is None:
+                raise OSError(exc.errno, exc.strerror or str(exc), str(path)) from None
+            raise
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
+    return target
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask

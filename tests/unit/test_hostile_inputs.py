@@ -1,0 +1,160 @@
+"""Hostile input files (issue 14 items 4 and 6): one line and exit 2, never a traceback or a hang,
+and resume refuses a checkpoint that does not match what the result would be."""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from viscontact import cli
+
+ROOT = Path(__file__).resolve().parents[2]
+CREEP_TEXT = (ROOT / "cases" / "creep_indentation.toml").read_text()
+SMALL = ["--set", "grid.n=32", "--set", "time.t_end=0.005"]
+
+
+def _main(capsys, *args) -> tuple[int, list[str]]:
+    code = cli.main(list(map(str, args)))
+    return code, [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+
+
+def _one_line(code: int, err: list[str], key: str) -> None:
+    assert code == 2 and len(err) == 1, err
+    assert err[0].startswith(f"viscontact: error: {key}"), err[0]
+
+
+def _surface_case(tmp_path: Path, heights: str = "h.npy") -> Path:
+    text = CREEP_TEXT.replace('shape = "sphere"\nradius = 0.01                         # m',
+                              f'shape = "surface"\nfile = "{heights}"')
+    assert text != CREEP_TEXT
+    case = tmp_path / "case.toml"
+    case.write_text(text.replace("n = 128", "n = 32"))
+    return case
+
+
+def _sphere_heights(n: int = 32, half_width: float = 2e-3) -> np.ndarray:
+    x = -half_width + (np.arange(n) + 0.5) * 2 * half_width / n
+    xx, yy = np.meshgrid(x, x)
+    return (xx**2 + yy**2) / (2 * 0.01)
+
+
+def test_a_sphere_height_file_runs_as_a_dry_run(tmp_path, capsys):
+    np.save(tmp_path / "h.npy", _sphere_heights())
+    code, err = _main(capsys, "run", _surface_case(tmp_path), "--out", tmp_path / "r.nc", "--dry-run")
+    assert code == 0, err
+
+
+@pytest.mark.parametrize("content", ["empty", "huge_header", "complex", "truncated", "object"])
+def test_bad_height_files_are_one_line(tmp_path, capsys, content):
+    path = tmp_path / "h.npy"
+    if content == "empty":
+        path.write_bytes(b"")
+    elif content == "huge_header":  # claims 10^10 elements: must not try to allocate 80 GB
+        with open(path, "wb") as fh:
+            np.lib.format.write_array_header_1_0(fh, {"descr": "<f8", "fortran_order": False, "shape": (100000, 100000)})
+    elif content == "complex":  # used to drop the imaginary part silently
+        np.save(path, _sphere_heights() * (1 + 1j))
+    elif content == "truncated":
+        np.save(path, _sphere_heights())
+        path.write_bytes(path.read_bytes()[:-100])
+    else:
+        np.save(path, np.array([["a"] * 32] * 32, dtype=object), allow_pickle=True)
+    code, err = _main(capsys, "run", _surface_case(tmp_path), "--out", tmp_path / "r.nc", "--dry-run")
+    _one_line(code, err, "indenter.file")
+
+
+def test_fifo_as_height_file_does_not_hang(tmp_path):
+    os.mkfifo(tmp_path / "h.npy")
+    proc = subprocess.run([sys.executable, "-m", "viscontact.cli", "run", str(_surface_case(tmp_path)), "--out",
+                           str(tmp_path / "r.nc"), "--dry-run"], capture_output=True, text=True, timeout=120)
+    lines = proc.stderr.strip().splitlines()
+    assert proc.returncode == 2 and len(lines) == 1 and "indenter.file" in lines[0] and "regular file" in lines[0]
+
+
+def test_deeply_nested_arrays_are_one_line(tmp_path, capsys):
+    case = tmp_path / "case.toml"
+    case.write_text(CREEP_TEXT.replace("[material]", "junk = " + "[" * 5000 + "]" * 5000 + "\n[material]", 1))
+    code, err = _main(capsys, "run", case, "--out", tmp_path / "r.nc", "--dry-run")
+    _one_line(code, err, "case file")
+
+
+def test_nul_in_the_title_is_refused_up_front(tmp_path, capsys):
+    case = tmp_path / "case.toml"
+    case.write_text(CREEP_TEXT.replace('title = "Creep', 'title = "Cre\\u0000ep'))
+    code, err = _main(capsys, "run", case, "--out", tmp_path / "r.nc", *SMALL)
+    _one_line(code, err, "title")
+    assert not (tmp_path / "r.nc").exists()
+
+
+def test_utf8_bom_case_file_is_accepted(tmp_path, capsys):
+    case = tmp_path / "case.toml"
+    case.write_bytes(b"\xef\xbb\xbf" + CREEP_TEXT.encode())
+    code, err = _main(capsys, "run", case, "--out", tmp_path / "r.nc", "--dry-run")
+    assert code == 0, err
+
+
+def test_prony_with_a_vanishing_long_term_modulus_is_one_line(tmp_path, capsys):
+    case = tmp_path / "case.toml"
+    case.write_text(CREEP_TEXT.replace(
+        'type = "zener"\nshear_modulus_instantaneous = 1.93e6  # Pa, G(0)\nshear_modulus_long_term = 0.193e6     # Pa, G(inf)\n'
+        'retardation_time = 0.01               # s',
+        'type = "prony"\ng_inf = 1e-300\ng = [1.737e6]\ntau = [0.001]'))
+    code, err = _main(capsys, "run", case, "--out", tmp_path / "r.nc", "--dry-run", "--set", "time.scheme=\"linear\"")
+    _one_line(code, err, "material.g_inf")
+
+
+# --- resume ----------------------------------------------------------------------------------------
+@pytest.fixture
+def stopped_run(tmp_path, capsys):
+    """A run stopped by its checkpoint writer after step 5 (as a kill would), leaving its checkpoint."""
+    case = tmp_path / "case.toml"
+    case.write_text(CREEP_TEXT)
+    out = tmp_path / "r.nc"
+    from viscontact import api
+
+    calls = []
+
+    def stop() -> str | None:
+        calls.append(1)
+        return "SIGTERM" if len(calls) == 6 else None
+
+    with pytest.raises(Exception):
+        api.run(api.load_case(case).with_overrides({"grid.n": 32, "time.t_end": 0.005}), checkpoint=api.checkpoint_path(out),
+                checkpoint_every=2, should_stop=stop)
+    assert api.checkpoint_path(out).exists()
+    return case, out
+
+
+@pytest.mark.parametrize("change", ["output.fields=[\"pressure\"]", "output.every=2"])
+def test_resume_refuses_changed_output_settings(stopped_run, capsys, change):
+    case, out = stopped_run
+    code, err = _main(capsys, "run", case, "--out", out, "--resume", *SMALL, "--set", change)
+    _one_line(code, err, "--resume")
+    assert "output settings" in err[0]
+
+
+def test_resume_with_the_same_settings_completes(stopped_run, capsys):
+    case, out = stopped_run
+    code, err = _main(capsys, "run", case, "--out", out, "--resume", "--quiet", *SMALL)
+    assert code == 0, err
+    assert xr.open_dataset(out).attrs["complete"] == 1
+
+
+@pytest.mark.parametrize("damage", ["truncated", "keyless", "garbage"])
+def test_damaged_checkpoint_is_one_line(stopped_run, capsys, damage):
+    case, out = stopped_run
+    ckpt = Path(str(out) + ".checkpoint.npz")
+    if damage == "truncated":
+        ckpt.write_bytes(ckpt.read_bytes()[: ckpt.stat().st_size // 2])
+    elif damage == "keyless":
+        np.savez(ckpt, step=np.array(3))
+    else:
+        ckpt.write_bytes(b"not a checkpoint")
+    code, err = _main(capsys, "run", case, "--out", out, "--resume", *SMALL)
+    _one_line(code, err, "--resume")
+    assert str(ckpt) in err[0]

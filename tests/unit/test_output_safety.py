@@ -1,0 +1,304 @@
+"""Never lose a finished run (issue 14 items 1, 2, 7): the output checked before computing, full
+disks, signals during the final write, resource estimates beyond the machine.
+
+Faults are real where the machine allows (a 1 MiB tmpfs filled during the write, a read-only mount,
+``chattr +i``; these need root and are skipped otherwise) and injected otherwise (ENOSPC / EIO from
+the writer). Signals are delivered to a real ``viscontact run`` subprocess while its final write is
+under way (the write is slowed down by a wrapper so that the signal surely lands inside it).
+"""
+from __future__ import annotations
+
+import errno
+import os
+import shutil
+import signal
+import stat
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from viscontact import cli, output_files, resources
+from viscontact.results import write_netcdf
+
+ROOT = Path(__file__).resolve().parents[2]
+CREEP = ROOT / "cases" / "creep_indentation.toml"
+#: a 1-2 s run: creep indentation on 32^2 cells, 41 steps, dense displacement field recorded
+SMALL = ("--set", "grid.n=32", "--set", "time.t_end=0.01", "--set", "output.fields=[\"pressure\", \"displacement_z\"]")
+
+
+def _err_lines(capsys) -> list[str]:
+    return [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+
+
+def _run(*args: str | Path) -> tuple[int, list[str]]:
+    return cli.main(["run", *map(str, args)]), []
+
+
+def _leftovers(folder: Path) -> list[str]:
+    return [p.name for p in folder.iterdir() if p.name.endswith(".tmp") or "probe" in p.name]
+
+
+@pytest.fixture
+def mount_point(tmp_path):
+    """A folder under which tmpfs mounts can be made (root only); unmounted afterwards."""
+    mounted: list[Path] = []
+
+    def mount(name: str, options: str) -> Path:
+        target = tmp_path / name
+        target.mkdir()
+        proc = subprocess.run(["mount", "-t", "tmpfs", "-o", options, "tmpfs", str(target)], capture_output=True)
+        if proc.returncode != 0:
+            pytest.skip(f"cannot mount a tmpfs here: {proc.stderr.decode().strip()}")
+        mounted.append(target)
+        return target
+
+    yield mount
+    for target in reversed(mounted):
+        subprocess.run(["umount", "-l", str(target)], capture_output=True)
+
+
+# --- the output checked before computing (item 2) ------------------------------------------------
+def test_path_under_a_regular_file_is_refused_before_the_run(tmp_path, capsys):
+    (tmp_path / "file").write_text("x")
+    for extra in ((), ("--dry-run",)):
+        code = cli.main(["run", str(CREEP), "--out", str(tmp_path / "file" / "r.nc"), *extra])
+        err = _err_lines(capsys)
+        assert code == 2 and len(err) == 1 and "is a file, not a folder" in err[0]
+
+
+def test_read_only_mount_is_refused_before_the_run(mount_point, capsys):
+    folder = mount_point("ro", "size=1m,ro")
+    for extra in ((), ("--dry-run",)):
+        started = time.perf_counter()
+        code = cli.main(["run", str(CREEP), "--out", str(folder / "r.nc"), "--quiet", *extra])
+        err = _err_lines(capsys)
+        assert code == 2 and len(err) == 1 and "Read-only file system" in err[0], err
+        assert time.perf_counter() - started < 60  # refused up front, not after the 161-step run
+
+
+def test_immutable_result_is_refused_before_the_run(tmp_path, capsys):
+    out = tmp_path / "r.nc"
+    xr.Dataset({"a": ("t", [1.0])}).to_netcdf(out, engine="h5netcdf")
+    if subprocess.run(["chattr", "+i", str(out)], capture_output=True).returncode != 0:
+        pytest.skip("chattr +i is not available here")
+    try:
+        code = cli.main(["run", str(CREEP), "--out", str(out), "--force", "--dry-run"])
+        err = _err_lines(capsys)
+        assert code == 2 and len(err) == 1 and "immutable" in err[0]
+    finally:
+        subprocess.run(["chattr", "-i", str(out)], capture_output=True)
+
+
+def test_force_never_replaces_the_case_file(tmp_path, capsys):
+    case = tmp_path / "case.toml"
+    shutil.copy(CREEP, case)
+    before = case.read_bytes()
+    for out in (case, tmp_path / "link.toml"):
+        if out != case:
+            out.symlink_to(case)
+        code = cli.main(["run", str(case), "--out", str(out), "--force", "--quiet"])
+        err = _err_lines(capsys)
+        assert code == 2 and len(err) == 1 and "input file" in err[0]
+        assert case.read_bytes() == before
+
+
+def test_force_never_replaces_a_device_or_a_foreign_file(tmp_path, capsys):
+    device = tmp_path / "null"
+    try:
+        os.mknod(device, stat.S_IFCHR | 0o666, os.makedev(1, 3))
+    except OSError:
+        pytest.skip("cannot create a device node here")
+    code = cli.main(["run", str(CREEP), "--out", str(device), "--force", "--quiet", *SMALL])
+    assert code == 2 and "not a regular file" in _err_lines(capsys)[0]
+    assert stat.S_ISCHR(os.stat(device).st_mode)
+    notes = tmp_path / "notes.nc"
+    notes.write_text("my notes")
+    code = cli.main(["run", str(CREEP), "--out", str(notes), "--force", "--quiet", *SMALL])
+    assert code == 2 and "not a netCDF result file" in _err_lines(capsys)[0]
+    assert notes.read_text() == "my notes"
+
+
+def test_force_through_a_symlink_replaces_its_target(tmp_path, capsys):
+    target = tmp_path / "data" / "r.nc"
+    target.parent.mkdir()
+    xr.Dataset({"a": ("t", [1.0])}).to_netcdf(target, engine="h5netcdf")
+    link = tmp_path / "r.nc"
+    link.symlink_to(target)
+    assert cli.main(["run", str(CREEP), "--out", str(link), "--force", "--quiet", *SMALL]) == 0
+    assert link.is_symlink() and "pressure" in xr.open_dataset(target).data_vars
+    assert _leftovers(tmp_path) == [] and _leftovers(target.parent) == []
+
+
+# --- full disks (item 1) ---------------------------------------------------------------------------
+def test_disk_filling_during_the_final_write_is_one_line_and_leaves_nothing(mount_point, tmp_path):
+    """A real 1 MiB filesystem that passes the pre-run estimate and fills up while the final result is
+    being written (another program writing there). It used to crash inside h5py (exit 139, a .tmp left)."""
+    folder = mount_point("tiny", "size=1m")
+    out = folder / "r.nc"
+    proc, flag = _slow_writer(tmp_path, CREEP, "--out", out, "--quiet", *SMALL)
+    _wait_for(flag, proc)
+    free = shutil.disk_usage(folder).free
+    (folder / "filler").write_bytes(b"\0" * (free - 16 * 1024))
+    _, err = proc.communicate(timeout=120)
+    errors = [line for line in err.splitlines() if line.startswith("viscontact: error")]
+    assert proc.returncode == 2 and len(errors) == 1 and "Traceback" not in err, err
+    assert "no space left" in errors[0] and "r.nc" in errors[0] and "needs about" in errors[0]
+    assert sorted(p.name for p in folder.iterdir()) == ["filler"]
+
+
+def test_injected_enospc_and_eio_keep_the_previous_result(tmp_path, monkeypatch):
+    out = tmp_path / "r.nc"
+    old = xr.Dataset({"a": ("t", [1.0])})
+    write_netcdf(old, out)
+    new = xr.Dataset({"a": ("t", np.arange(1000.0))})
+
+    def no_space(fd, offset, length):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(output_files.os, "posix_fallocate", no_space)
+    with pytest.raises(OSError, match="needs about") as exc:
+        write_netcdf(new, out, force=True)
+    assert exc.value.errno == errno.ENOSPC and exc.value.filename == str(out)
+    monkeypatch.undo()
+
+    def io_error(fd):
+        raise OSError(errno.EIO, "Input/output error")
+
+    monkeypatch.setattr(output_files.os, "fsync", io_error)
+    with pytest.raises(OSError, match="Input/output error") as exc:
+        write_netcdf(new, out, force=True)
+    assert exc.value.filename == str(out)
+    assert xr.open_dataset(out)["a"].size == 1 and _leftovers(tmp_path) == []
+
+
+def test_full_disk_at_a_checkpoint_names_the_file_the_size_and_the_remedy(tmp_path, capsys, monkeypatch):
+    real = output_files.os.posix_fallocate
+
+    def no_space_for_checkpoints(fd, offset, length):
+        if ".checkpoint.npz" in os.readlink(f"/proc/self/fd/{fd}"):
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return real(fd, offset, length)
+
+    monkeypatch.setattr(output_files.os, "posix_fallocate", no_space_for_checkpoints)
+    code = cli.main(["run", str(CREEP), "--out", str(tmp_path / "r.nc"), "--quiet", "--checkpoint-every", "5", *SMALL])
+    err = _err_lines(capsys)
+    assert code == 2 and len(err) == 1, err
+    assert "r.nc.checkpoint.npz" in err[0] and "needs about" in err[0] and "--checkpoint-every" in err[0]
+    assert _leftovers(tmp_path) == []
+
+
+def test_pre_run_disk_check_counts_the_checkpoints(tmp_path, capsys, monkeypatch):
+    est = resources.estimate(resources_problem := __import__("viscontact.api", fromlist=["prepare"]).prepare(
+        __import__("viscontact.case", fromlist=["load_case"]).load_case(CREEP))[0])
+    assert est.checkpoint_bytes > est.result_bytes > 0 and resources_problem.grid.n == 128
+    free = est.result_bytes + est.checkpoint_bytes  # enough for the result, not for two checkpoints beside it
+    monkeypatch.setattr(shutil, "disk_usage", lambda path: shutil._ntuple_diskusage(10**12, 10**12 - free, free))
+    out = str(tmp_path / "r.nc")
+    assert cli.main(["run", str(CREEP), "--out", out, "--dry-run"]) == 0
+    capsys.readouterr()
+    code = cli.main(["run", str(CREEP), "--out", out, "--dry-run", "--checkpoint-every", "10"])
+    err = _err_lines(capsys)
+    assert code == 2 and len(err) == 1 and "checkpoints" in err[0] and "--force" in err[0]
+
+
+# --- resources beyond the machine (item 7) ----------------------------------------------------------
+def test_memory_and_run_time_beyond_the_machine_are_refused_unless_forced(tmp_path, capsys, monkeypatch):
+    out = str(tmp_path / "r.nc")
+    monkeypatch.setattr(resources, "available_memory", lambda: 2**20)
+    assert cli.main(["run", str(CREEP), "--out", out, "--dry-run"]) == 2
+    err = _err_lines(capsys)
+    assert len(err) == 1 and "memory" in err[0] and "--force" in err[0]
+    assert cli.main(["run", str(CREEP), "--out", out, "--dry-run", "--force"]) == 0
+    err = _err_lines(capsys)
+    assert len(err) == 1 and err[0].startswith("viscontact: warning:") and "memory" in err[0]
+    monkeypatch.undo()
+    monkeypatch.setattr(resources, "MAX_RUN_SECONDS", 1e-3)
+    assert cli.main(["run", str(CREEP), "--out", out, "--dry-run"]) == 2
+    err = _err_lines(capsys)
+    assert len(err) == 1 and err[0].startswith("viscontact: error: time.t_end:")
+
+
+# --- signals (item 1) ------------------------------------------------------------------------------
+SLOW_WRITE = textwrap.dedent("""
+    import sys, time, xarray
+    flag = sys.argv[1]
+    original = xarray.Dataset.to_netcdf
+    def slow(self, *args, **kwargs):
+        open(flag, "a").close()
+        time.sleep(2.0)
+        return original(self, *args, **kwargs)
+    xarray.Dataset.to_netcdf = slow
+    from viscontact.cli import main
+    sys.exit(main(sys.argv[2:]))
+""")
+
+
+def _slow_writer(tmp_path: Path, *args: str | Path) -> tuple[subprocess.Popen, Path]:
+    flag = tmp_path / "writing"
+    proc = subprocess.Popen([sys.executable, "-c", SLOW_WRITE, str(flag), "run", *map(str, args)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    return proc, flag
+
+
+def _wait_for(path: Path, proc: subprocess.Popen, timeout: float = 120) -> None:
+    deadline = time.time() + timeout
+    while not path.exists():
+        if proc.poll() is not None or time.time() > deadline:
+            proc.kill()
+            pytest.fail(f"{path.name} never appeared: {proc.communicate()}")
+        time.sleep(0.01)
+
+
+@pytest.mark.parametrize("sig, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_signal_during_the_final_write_keeps_the_finished_run(tmp_path, sig, code):
+    out = tmp_path / "r.nc"
+    proc, flag = _slow_writer(tmp_path, CREEP, "--out", out, "--quiet", *SMALL)
+    _wait_for(flag, proc)
+    proc.send_signal(sig)
+    _, err = proc.communicate(timeout=120)
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert proc.returncode == code and len(lines) == 1 and "Traceback" not in err, err
+    assert signal.Signals(sig).name in lines[0] and "complete" in lines[0]
+    ds = xr.open_dataset(out)
+    assert ds.attrs["complete"] == 1 and ds.sizes["t"] == 41
+    assert _leftovers(tmp_path) == []
+
+
+def test_double_sigint_still_writes_what_is_done(tmp_path):
+    out = tmp_path / "r.nc"
+    proc, flag = _slow_writer(tmp_path, CREEP, "--out", out, "--quiet", "--checkpoint-every", "2", "--set", "grid.n=64")
+    _wait_for(Path(str(out) + ".checkpoint.npz"), proc)
+    proc.send_signal(signal.SIGINT)  # stop after this step: the partial result is written (slowly)
+    _wait_for(flag, proc)
+    proc.send_signal(signal.SIGINT)  # a second one during that write
+    _, err = proc.communicate(timeout=120)
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert proc.returncode == 130 and len(lines) == 1 and "Traceback" not in err, err
+    ds = xr.open_dataset(out)
+    assert ds.attrs["complete"] == 0 and 0 < ds.sizes["t"] < 161
+    assert _leftovers(tmp_path) == []
+
+
+SCRIPT = Path(sys.executable).with_name("viscontact")
+
+
+@pytest.mark.skipif(not SCRIPT.exists(), reason="the viscontact console script is not installed")
+@pytest.mark.parametrize("delay", [0.3, 0.6])
+def test_sigint_at_start_up_is_one_line(tmp_path, delay):
+    """SIGINT while the command is still importing (xarray and the solvers take about a second here):
+    one line, status 130. (Before the interpreter runs the script's first line, about 0.1 s on this
+    loaded machine, nothing of viscontact can act.)"""
+    proc = subprocess.Popen([str(SCRIPT), "run", str(CREEP), "--out", str(tmp_path / "r.nc")],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(delay)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert proc.returncode == 130 and len(lines) == 1 and "Traceback" not in err, err
+    assert lines[0].startswith("viscontact: error:") and "interrupted" in lines[0]
