@@ -505,6 +505,10 @@ class Case(_Section):
         tan = self.tangential
         return (2.0 * self.grid.half_width / self.grid.n) / tan.sliding_speed / tan.steps_per_cell
 
+    def input_files(self) -> list[Path]:
+        """The files the case reads besides its own text (``indenter.file``)."""
+        return [self._base_dir / self.indenter.file] if self.indenter.shape == "surface" else []
+
     def gap(self, grid: Grid) -> np.ndarray:
         """Undeformed gap h0(x, y) [m] on ``grid``: (x^2 + y^2)/(2R) for a smooth sphere, else the
         heights (z up) shifted so that the highest point touches first at delta_z = 0; a .npy

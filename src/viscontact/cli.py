@@ -115,6 +115,7 @@ def _add_sweep(sub: Any) -> None:
                    f"{default_workers()} here)")
     p.add_argument("--plots", metavar="DIR", help="also write the sweep figures into DIR")
     _figure_arguments(p)
+    p.add_argument("--force", action="store_true", help="replace an existing SWEEP.nc of another sweep")
     p.add_argument("--quiet", action="store_true", help="no progress bar, no summary, no warnings")
     p.set_defaults(handler=_cmd_sweep)
 
@@ -481,7 +482,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
             except (OSError, TimeoutError) as exc:
                 raise ParameterError("--scheduler", f"cannot connect to {args.scheduler}: {exc}") from None
         with _bar(args, "run") as bar:
-            ds = sweep(spec, client=client, out=args.out, workers=args.workers,
+            ds = sweep(spec, client=client, out=args.out, workers=args.workers, force=args.force,
                        progress=lambda done, failed, total: bar.update(done + failed, total, done=done, failed=failed))
     except KeyboardInterrupt as exc:
         exc.note = (f"; the finished runs are kept in {runs_dir(args.out)}/ - run the same "  # type: ignore[attr-defined]

@@ -143,10 +143,9 @@ def grid_suggestion(est: ContactEstimate, n: int, half_width: float) -> tuple[in
     """The smallest change of (n, half_width) that holds and resolves ``est`` (checked to pass)."""
     from .case import MAX_GRID_N
 
-    if est.largest > half_width - EDGE_CELLS * 2.0 * half_width / n:
-        half_width = float(f"{1.5 * est.largest:.2g}") if 1.5 * est.largest > half_width else half_width
-        while est.largest > 0.75 * half_width and math.isfinite(half_width):  # rounding to 2 digits
-            half_width *= 1.1
+    if est.largest > half_width - EDGE_CELLS * 2.0 * half_width / n and 1.5 * est.largest > half_width:
+        scale = 10.0 ** (math.floor(math.log10(1.5 * est.largest)) - 1)
+        half_width = math.ceil(1.5 * est.largest / scale) * scale  # 1.5 a, rounded up to two digits
     cells_needed = 1.05 * math.sqrt(0.5 / (1.0 - (1.0 - WARNING_LIMIT) ** 2))  # 5 % margin under the warning
     n_needed = max(n, math.ceil(min(2.0 * half_width * cells_needed / est.smallest, 2.0 * MAX_GRID_N)))
     n = min(2 ** math.ceil(math.log2(n_needed)), MAX_GRID_N) if n_needed > n else n
@@ -183,7 +182,7 @@ def _check_space(problem: Problem, transient: bool) -> None:
                 raise ParameterError(key, f"{message}; no grid of up to {MAX_GRID_N}^2 cells can hold and resolve "
                                      f"a contact of radius {est.smallest:.3g} to {est.largest:.3g} m: check the "
                                      "units of the moduli (Pa), the load (N) and indenter.radius (m)")
-            raise ParameterError(key, f"{message}; use grid.half_width = {half_width:.3g} m and grid.n = {n}")
+            raise ParameterError(key, f"{message}; use grid.half_width = {half_width:.2g} m and grid.n = {n}")
         cells = est.smallest / grid.spacing
         if peak_pressure_error(cells) > WARNING_LIMIT:
             n, _ = grid_suggestion(est, grid.n, grid.half_width)
@@ -203,16 +202,27 @@ def hereditary_integral(kernel_inf: float, amplitudes: np.ndarray, times: np.nda
     """y(t_j) = int_0^t_j K(t_j - s) df(s) [units of K x f] on the uniform times t_j = j h, for
     K(t) = kernel_inf + sum_i amplitudes_i exp(-t / times_i) and f linear between its samples ``f``
     with a step of f[0] at t = 0. Exact for that f (recursion over the exponentials, seed Eq. 6)."""
-    from scipy.signal import lfilter
-
     y = kernel_inf * f
     slope = np.diff(f, prepend=f[0]) / h
     for amplitude, time in zip(np.atleast_1d(amplitudes), np.atleast_1d(times)):
-        decay = math.exp(-h / time)
         drive = slope * time * -math.expm1(-h / time)
         drive[0] = f[0]
-        y = y + amplitude * lfilter([1.0], [1.0, -decay], drive)
+        y = y + amplitude * _exponential_filter(drive, h / time)
     return y
+
+
+def _exponential_filter(drive: np.ndarray, rate: float) -> np.ndarray:
+    """y_j = exp(-rate) y_(j-1) + drive_j (y_(-1) = 0), vectorised in blocks short enough for
+    exp(rate k) not to overflow: y_(s+k) = exp(-rate k) (exp(-rate) y_(s-1) + sum_i exp(rate i) drive_(s+i))."""
+    out = np.empty_like(drive)
+    block = max(1, min(drive.size, int(200.0 / max(rate, 1e-300))))
+    carry = 0.0
+    for start in range(0, drive.size, block):
+        k = np.arange(min(block, drive.size - start))
+        seg = np.exp(-rate * k) * (math.exp(-rate) * carry + np.cumsum(drive[start:start + k.size] * np.exp(rate * k)))
+        out[start:start + k.size] = seg
+        carry = seg[-1]
+    return out
 
 
 def _scheme_response(problem: Problem, driving: np.ndarray) -> np.ndarray:
@@ -281,17 +291,33 @@ def _check_time(problem: Problem) -> None:
     err = time_step_error(problem)
     what = "relaxation" if problem.normal.control == "displacement" else "creep"
     if err > TIME_ERROR_LIMIT:
-        raise ParameterError("time.dt", f"{dt:.4g} s with the {problem.time.scheme} scheme misses the {what} of this "
-                             f"material and loading by about {100 * err:.0f} % (one-point estimate against the "
-                             f"exact hereditary integral); use a smaller time.dt{_linear_hint(problem)}")
+        key = "time.dt" if not problem.tangential.slides else \
+            ("grid.n" if problem.radius is None else "tangential.steps_per_cell")  # dt = dx / (v k) when sliding
+        raise ParameterError(key, f"time.dt = {dt:.4g} s with the {problem.time.scheme} scheme misses the {what} of "
+                             f"this material and loading by about {100 * err:.0f} % (one-point estimate against the "
+                             f"exact hereditary integral); {_time_step_suggestion(problem)}")
     if err > TIME_WARNING_LIMIT:
         warnings.warn(f"time.dt = {dt:.4g} s: the {problem.time.scheme} scheme misses the {what} by about "
-                      f"{100 * err:.1f} % (one-point estimate); a smaller time.dt{_linear_hint(problem)} reduces it",
+                      f"{100 * err:.1f} % (one-point estimate); {_time_step_suggestion(problem)}",
                       ViscontactWarning, stacklevel=3)
 
 
-def _linear_hint(problem: Problem) -> str:
-    return " or time.scheme = \"linear\"" if problem.time.scheme == "constant" else ""
+def _time_step_suggestion(problem: Problem) -> str:
+    """The step (halved until the estimate is under the warning limit) and the scheme to use."""
+    from dataclasses import replace
+
+    linear = " (or time.scheme = \"linear\")" if problem.time.scheme == "constant" else ""
+    for halvings in range(1, 11):
+        factor = 2**halvings
+        trial = replace(problem, time=replace(problem.time, dt=problem.time.dt / factor))
+        if time_step_error(trial) <= TIME_WARNING_LIMIT:
+            if problem.tangential.slides and problem.radius is None:  # dt = dx / v: a finer height file
+                return f"use grid.n = {problem.grid.n * factor} (time.dt = {trial.time.dt:.3g} s){linear}"
+            if problem.tangential.slides:
+                return (f"use tangential.steps_per_cell = {problem.tangential.steps_per_cell * factor} "
+                        f"(time.dt = {trial.time.dt:.3g} s){linear}")
+            return f"use time.dt = {trial.time.dt:.3g} s{linear}"
+    return f"use a much smaller time.dt{linear}"
 
 
 def _check_material(material: Material) -> None:

@@ -206,7 +206,7 @@ def write_atomically(path: str | Path, content: bytes | memoryview | Callable[[B
         size = memoryview(content).nbytes
     with signals_deferred():
         target.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+        fd, tmp = tempfile.mkstemp(prefix=f"{target.name}.tmp", dir=target.parent)
         try:
             with os.fdopen(fd, "wb") as fh:
                 if size:

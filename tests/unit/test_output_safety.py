@@ -41,7 +41,7 @@ def _run(*args: str | Path) -> tuple[int, list[str]]:
 
 
 def _leftovers(folder: Path) -> list[str]:
-    return [p.name for p in folder.iterdir() if p.name.endswith(".tmp") or "probe" in p.name]
+    return [p.name for p in folder.iterdir() if ".tmp" in p.name or "probe" in p.name]
 
 
 @pytest.fixture

@@ -55,11 +55,13 @@ def test_elastic_material_has_no_time_scale():
 @pytest.fixture(scope="module")
 def tiny_cases(tmp_path_factory) -> Path:
     """The cases of fig10 (and the marker case) at n = 16 with the linear scheme (the seed's constant
-    scheme is unstable at the coarse dt = dx/v of so small a grid)."""
+    scheme is unstable at the coarse dt = dx/v of so small a grid) and two steps per cell (one misses
+    the creep by 23 %: refused by viscontact.guards)."""
     folder = tmp_path_factory.mktemp("cases")
     for name in ("seed_table1_v0.8", *FIGURES["fig10"].cases):
         text = (CASES / f"{name}.toml").read_text().replace("\nn = 256", "\nn = 16")
         assert '\nscheme = "constant"' in text  # the seed cases state the seed's scheme
+        text = text.replace("[tangential]\n", "[tangential]\nsteps_per_cell = 2\n")
         (folder / f"{name}.toml").write_text(text.replace('\nscheme = "constant"', '\nscheme = "linear"'))
     return folder
 

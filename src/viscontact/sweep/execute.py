@@ -100,7 +100,8 @@ def runs_dir(out: str | Path) -> Path:
 
 
 def sweep(spec: SweepSpec | str | Path, client: Any = None, out: str | Path | None = None,
-          progress: Callable[[int, int, int], None] | None = None, *, workers: int | None = None) -> xr.Dataset:
+          progress: Callable[[int, int, int], None] | None = None, *, workers: int | None = None,
+          force: bool = False) -> xr.Dataset:
     """Run every point of a sweep on a dask.distributed cluster and gather the results.
 
     Parameters
@@ -112,9 +113,10 @@ def sweep(spec: SweepSpec | str | Path, client: Any = None, out: str | Path | No
         A ``distributed.Client``. None: a ``LocalCluster`` of ``workers`` processes (default one
         per core) with one thread each is started for the call and closed after it.
     out
-        The sweep's netCDF file (written, replacing an older one); the runs' result files go to
-        ``SWEEP.runs/`` beside it, and complete ones found there are reused (resume). None: no
-        files, nothing reused.
+        The sweep's netCDF file; the runs' result files go to ``SWEEP.runs/`` beside it, and complete
+        ones found there are reused (resume). An existing ``out`` is replaced when it holds this same
+        sweep (resuming) or with ``force``; never the sweep file or the base case. Checked before any
+        run. None: no files, nothing reused.
     progress
         Called as ``progress(done, failed, total)`` after each finished (or reused) run.
     workers
@@ -137,6 +139,10 @@ def sweep(spec: SweepSpec | str | Path, client: Any = None, out: str | Path | No
     the_plan = plan(spec, fixed={} if user_set_workers else {"solver.workers": 1})
     if workers is not None and workers < 1:
         raise ParameterError("--workers", f"must be >= 1, got {workers}")
+    if out is not None:
+        from ..output_files import check_output_path
+
+        check_output_path(out, force=force or _holds_sweep(out, spec), inputs=[spec.source, the_plan.base_path])
     folder = runs_dir(out) if out is not None else None
     transient = spec.solver == "transient"
     total = len(the_plan.runs)
@@ -185,6 +191,17 @@ def sweep(spec: SweepSpec | str | Path, client: Any = None, out: str | Path | No
 
         write_netcdf(ds, out, force=True)
     return ds
+
+
+def _holds_sweep(path: str | Path, spec: SweepSpec) -> bool:
+    """Whether ``path`` is the result of a sweep file with the text of ``spec`` (resuming it)."""
+    import xarray as xr
+
+    try:
+        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            return ds.attrs.get("kind") == "sweep" and ds.attrs.get("sweep") == spec.text
+    except (OSError, ValueError):
+        return False
 
 
 def glob_escape(name: str) -> str:

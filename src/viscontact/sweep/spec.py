@@ -220,10 +220,21 @@ def plan(spec: SweepSpec | str | Path, *, fixed: Mapping[str, Any] | None = None
             case = base.with_overrides({**extra, **combo})
         except ParameterError as exc:
             raise ParameterError(exc.key, f"{exc.message} (in the run {label})") from None
-        fp = hashlib.sha256(f"{spec.solver}\n{case.model_dump_json()}".encode()).hexdigest()[:16]
-        runs.append(Run(index, combo, case, run_file_name(combo), fp))
+        runs.append(Run(index, combo, case, run_file_name(combo), run_fingerprint(spec.solver, case)))
     runs = _unique_names(runs)
     return Plan(spec, base, base_path, tuple(runs), extra)
+
+
+def run_fingerprint(solver: str, case: Any) -> str:
+    """A hash of everything that shapes a run's result: the solver, the validated case and the
+    content of every file it reads (a changed height file makes its runs stale)."""
+    digest = hashlib.sha256(f"{solver}\n{case.model_dump_json()}".encode())
+    for path in case.input_files():
+        try:
+            digest.update(Path(path).read_bytes())
+        except OSError as exc:
+            raise ParameterError("indenter.file", f"cannot read {path}: {exc.strerror}") from None
+    return digest.hexdigest()[:16]
 
 
 def format_value(value: Any) -> str:
