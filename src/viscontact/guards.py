@@ -19,9 +19,9 @@ closed-form contact mechanics and from the time scheme applied to one point:
 * **small strain** -- the half-space and the paraboloidal gap are small-strain, small-slope
   approximations; the largest strain is about p0/E* = 2a/(pi R) (Hertz), so a/R above
   :data:`RADIUS_RATIO_ERROR` cannot be trusted and above :data:`RADIUS_RATIO_WARNING` is marginal.
-* **time step** -- the time scheme (:mod:`viscontact.history`) is run on one point of a contact
-  whose area does not change: under displacement control the traction responds to the approach
-  history delta(t) through the relaxation modulus G(t); under load control the displacement
+* **time step** -- the time scheme (:mod:`viscontact.schemes`, :mod:`viscontact.history`) is run on
+  one point of a contact whose area does not change: under displacement control the traction
+  responds to the approach history delta(t) through the relaxation modulus G(t); under load control the displacement
   responds to the load history W(t) through the creep compliance J(t). Both are compared with the
   exact hereditary integrals of the piecewise-linear history (seed Eq. 5 with dt -> 0). This
   compares dt with the relaxation and retardation times and with the time scale of the loading.
@@ -39,9 +39,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import ParameterError, ViscontactWarning
-from .history import PronyHistory, stable_step_limit, step_coefficients
+from .history import PronyHistory
 from .materials import Material
 from .problem import Problem
+from .schemes import stable_step_limit, step_coefficients
 
 __all__ = ["ContactEstimate", "check_problem", "contact_estimate", "grid_suggestion", "peak_pressure_error",
            "time_step_error"]
@@ -57,7 +58,7 @@ TIME_ERROR_LIMIT, TIME_WARNING_LIMIT = 0.20, 0.07
 EDGE_CELLS = 1
 #: contact radius / sphere radius: refused above, warned about above (strain ~ 2a/(pi R))
 RADIUS_RATIO_ERROR, RADIUS_RATIO_WARNING = 0.5, 0.2
-#: largest G(0)/G(inf) [-]: J_inst = J(inf) - sum_m J_m beta_m (viscontact.history) loses
+#: largest G(0)/G(inf) [-]: J_inst = J(inf) - sum_m J_m beta_m (viscontact.schemes) loses
 #: log10(G(0)/G(inf)) of the 16 digits of float64; above 1e8 it is not known to the solver tolerance
 MAX_MODULUS_RATIO = 1e8
 #: the time-step check runs the scheme over at most this many steps (the response has settled by then
@@ -164,7 +165,8 @@ def _check_space(problem: Problem, transient: bool) -> None:
     if est is not None:
         ratio = est.largest / est.sphere_radius
         if ratio > RADIUS_RATIO_ERROR:
-            raise ParameterError(_normal_key(problem), f"the contact radius reaches about {ratio:.2g} x the indenter radius "
+            raise ParameterError(_normal_key(problem), f"the contact radius reaches about {ratio:.2g} x the "
+                                 "indenter radius "
                                  f"({est.largest:.3g} m against {est.sphere_radius:.3g} m): beyond the small-strain "
                                  f"half-space theory (a/R <= {RADIUS_RATIO_ERROR:g}); check the units "
                                  "(N, m) of the load and of indenter.radius")
@@ -229,18 +231,18 @@ def _scheme_response(problem: Problem, driving: np.ndarray) -> np.ndarray:
     """The time scheme of :mod:`viscontact.transient` on one point: the traction under the
     displacements ``driving`` (displacement control) or the displacement under the tractions
     ``driving`` (load control), at the steps t_k = k dt."""
-    mat, dt, scheme = problem.material, problem.time.dt, problem.time.scheme
-    first, regular = (step_coefficients(mat, dt, scheme, f) for f in (True, False))
-    hist = PronyHistory.zeros(mat.creep.retardation_times.size, 1)
+    spectrum, dt, scheme = problem.material.creep, problem.time.dt, problem.time.scheme
+    first, regular = (step_coefficients(spectrum, dt, scheme, f) for f in (True, False))
+    hist = PronyHistory.zeros(spectrum.retardation_times.size, 1)
     out = np.empty(driving.size)
     for k, value in enumerate(driving):
         coef = first if k == 0 else regular
-        r = float(hist.traction(mat, coef)[0, 0])
+        r = float(hist.known(coef, k * dt)[0, 0])
         if problem.normal.control == "displacement":
             p = out[k] = (value - r) / coef.instantaneous
         else:
             p, out[k] = value, coef.instantaneous * value + r
-        hist.advance(np.full((1, 1), p), coef)
+        hist = hist.advanced(np.full((1, 1), p), coef, k * dt)
     return out
 
 
@@ -286,7 +288,7 @@ def time_step_error(problem: Problem) -> float:
 
 def _check_time(problem: Problem) -> None:
     dt = problem.time.dt
-    if dt > stable_step_limit(problem.material, problem.time.scheme):
+    if dt > stable_step_limit(problem.material.creep, problem.time.scheme):
         return  # unstable: refused with its own message by viscontact.transient.validate
     err = time_step_error(problem)
     what = "relaxation" if problem.normal.control == "displacement" else "creep"

@@ -97,7 +97,8 @@ def check_resources(problem: Problem, out: str | Path, *, force: bool = False, c
                          "([output] fields = [\"pressure\"])"))
     ram = available_memory()
     if ram is not None and est.peak_memory_bytes > ram:
-        problems.append(("grid.n", f"the run may need about {format_size(est.peak_memory_bytes)} of memory, {format_size(ram)} is "
+        problems.append(("grid.n", f"the run may need about {format_size(est.peak_memory_bytes)} of memory, "
+                         f"{format_size(ram)} is "
                          "free: thin the output ([output] every, fields) or use a smaller grid.n"))
     if est.seconds > MAX_RUN_SECONDS:
         problems.append(("time.t_end", f"{problem.time.n_steps} steps on {problem.grid.n}^2 cells would take about "
@@ -121,7 +122,8 @@ def describe(problem: Problem, est: Estimate) -> str:
     g, t = problem.grid, problem.time
     return (f"{problem.title or 'case'}: {g.n} x {g.n} cells of {g.spacing * 1e6:.3g} um, {t.n_steps} steps of "
             f"{t.dt:.4g} s ({problem.tangential.mode}, {problem.normal.control} control, scheme {t.scheme}); "
-            f"result about {format_size(est.result_bytes)} ({est.records} records of {', '.join(problem.output.fields)}), "
+            f"result about {format_size(est.result_bytes)} ({est.records} records of "
+            f"{', '.join(problem.output.fields)}), "
             f"peak memory about {format_size(est.peak_memory_bytes)}, run time about {_duration(est.seconds)}")
 
 
