@@ -347,6 +347,11 @@ def _cmd_run(args: argparse.Namespace) -> int:
         print(describe(problem, estimate))
         return 0
     checkpoint = api.checkpoint_path(args.out) if (args.checkpoint_every or args.resume) else None
+    if args.resume:  # what the killed run's writes left half way
+        from .output_files import remove_temporaries
+
+        remove_temporaries(args.out)
+        remove_temporaries(checkpoint)
     force = args.force or args.resume
     with _bar(args, "step") as bar, _stop_on_signals() as signals:
         try:

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import errno
 import fcntl
+import glob
 import os
 import shutil
 import signal
@@ -34,7 +35,7 @@ from typing import BinaryIO
 
 from .resources import format_size
 
-__all__ = ["check_output_path", "disk_full_error", "signals_deferred", "write_atomically"]
+__all__ = ["check_output_path", "disk_full_error", "remove_temporaries", "signals_deferred", "write_atomically"]
 
 #: first bytes of the files a result may be: netCDF-4 (HDF5) and classic netCDF
 RESULT_SIGNATURES = (b"\x89HDF\r\n\x1a\n", b"CDF\x01", b"CDF\x02")
@@ -149,6 +150,16 @@ def check_output_path(out: str | Path, *, force: bool = False, inputs: Iterable[
                                   str(path))
     _probe_writable(_existing_folder(target), path)
     return target
+
+
+def remove_temporaries(path: str | Path) -> list[Path]:
+    """Remove what writes of ``path`` killed half way (SIGKILL, power loss) left: ``NAME.tmp*`` beside
+    it. Call it only when no other process writes ``path`` (resuming a run or a sweep)."""
+    target = _target(Path(path))
+    found = list(target.parent.glob(f"{glob.escape(target.name)}.tmp*")) if target.parent.is_dir() else []
+    for tmp in found:
+        tmp.unlink(missing_ok=True)
+    return found
 
 
 def disk_full_error(path: Path, needed: int, what: str = "") -> OSError:

@@ -302,3 +302,17 @@ def test_sigint_at_start_up_is_one_line(tmp_path, delay):
     lines = [line for line in err.splitlines() if line.strip()]
     assert proc.returncode == 130 and len(lines) == 1 and "Traceback" not in err, err
     assert lines[0].startswith("viscontact: error:") and "interrupted" in lines[0]
+
+
+def test_resume_removes_what_a_killed_write_left(tmp_path):
+    """kill -9 cannot be deferred: a write killed half way leaves NAME.tmpXXXX; resuming (no other
+    writer then) removes it."""
+    out = tmp_path / "r.nc"
+    stale = [tmp_path / "r.nc.tmpab12cd", tmp_path / "r.nc.checkpoint.npz.tmpef34gh"]
+    for path in stale:
+        path.write_bytes(b"half")
+    other = tmp_path / "x.nc.tmp123"
+    other.write_bytes(b"someone else's")
+    removed = output_files.remove_temporaries(out) + output_files.remove_temporaries(str(out) + ".checkpoint.npz")
+    assert sorted(removed) == sorted(stale) and other.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["x.nc.tmp123"]

@@ -12,13 +12,13 @@ from __future__ import annotations
 import json
 import math
 import os
-import re
 import time
 import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable
 
 from ..errors import ParameterError, ViscontactWarning
+from ..output_files import remove_temporaries
 from .assemble import assemble, summarize
 from .spec import Plan, Run, SweepSpec, load_sweep, plan
 
@@ -176,8 +176,7 @@ def sweep(spec: SweepSpec | str | Path, client: Any = None, out: str | Path | No
         if folder is not None:
             folder.mkdir(parents=True, exist_ok=True)
             for k in todo:  # temporary files of writes that were killed half way
-                for tmp in folder.glob(f"{glob_escape(the_plan.runs[k].name)}.tmp*"):
-                    tmp.unlink(missing_ok=True)
+                remove_temporaries(folder / the_plan.runs[k].name)
         tasks = {k: _task(the_plan, the_plan.runs[k], folder) for k in todo}
         with cluster_client(client, workers) as cl:
             _submit_all(cl, tasks, tick)
@@ -202,10 +201,6 @@ def _holds_sweep(path: str | Path, spec: SweepSpec) -> bool:
             return ds.attrs.get("kind") == "sweep" and ds.attrs.get("sweep") == spec.text
     except (OSError, ValueError):
         return False
-
-
-def glob_escape(name: str) -> str:
-    return re.sub(r"([\[\]*?])", r"[\1]", name)
 
 
 def _task(the_plan: Plan, run: Run, folder: Path | None) -> dict[str, Any]:
