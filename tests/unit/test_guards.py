@@ -134,7 +134,7 @@ def test_hereditary_integral_against_quadrature():
 def test_time_step_estimate_matches_the_solver_on_the_relaxation_case():
     """The seed scheme at dt = 1 ms on the relaxation case: W/W0 = 0.14 against G(t)/G(0) = 0.43 at
     t = dt. The one-point estimate predicts the solver's error (held approach: exact correspondence)."""
-    pb = _problem(RELAXATION, **{"grid.n": 32, "time.dt": 1e-3, "time.t_end": 3e-3})
+    pb = _problem(RELAXATION, **{"grid.n": 32, "time.dt": 1e-3, "time.t_end": 3e-3, "time.scheme": "constant"})
     loads = np.array([r.load for r in simulate(replace(pb, output=replace(pb.output, fields=("pressure",))))])
     exact = pb.material.relaxation_modulus(np.arange(4) * 1e-3) / pb.material.shear_modulus_instantaneous
     error = np.max(np.abs(loads / loads[0] - exact))
@@ -143,9 +143,9 @@ def test_time_step_estimate_matches_the_solver_on_the_relaxation_case():
 
 
 def test_time_step_refused_and_warned(capsys):
-    code, err = _dry_run(capsys, RELAXATION, "time.dt=1e-3")
+    code, err = _dry_run(capsys, RELAXATION, "time.dt=1e-3", "time.scheme=\"constant\"")
     assert code == 2 and len(err) == 1 and err[0].startswith("viscontact: error: time.dt:") and "29 %" in err[0]
-    code, err = _dry_run(capsys, RELAXATION, "time.dt=5e-4")
+    code, err = _dry_run(capsys, RELAXATION, "time.dt=5e-4", "time.scheme=\"constant\"")
     assert code == 0 and len(err) == 1 and err[0].startswith("viscontact: warning: time.dt") and "%" in err[0]
     code, err = _dry_run(capsys, RELAXATION, "time.dt=1e-3", "time.scheme=\"linear\"")
     assert code == 0 and err == []

@@ -99,9 +99,10 @@ def test_force_never_replaces_the_case_file(tmp_path, capsys):
     case = tmp_path / "case.toml"
     shutil.copy(CREEP, case)
     before = case.read_bytes()
-    for out in (case, tmp_path / "link.toml"):
-        if out != case:
-            out.symlink_to(case)
+    # a result must be named *.nc, so the case file is reached through a link of that name
+    for out in (tmp_path / "link.nc", tmp_path / "deeper" / "link.nc"):
+        out.parent.mkdir(exist_ok=True)
+        out.symlink_to(case)
         code = cli.main(["run", str(case), "--out", str(out), "--force", "--quiet"])
         err = _err_lines(capsys)
         assert code == 2 and len(err) == 1 and "input file" in err[0]
@@ -109,7 +110,7 @@ def test_force_never_replaces_the_case_file(tmp_path, capsys):
 
 
 def test_force_never_replaces_a_device_or_a_foreign_file(tmp_path, capsys):
-    device = tmp_path / "null"
+    device = tmp_path / "null.nc"
     try:
         os.mknod(device, stat.S_IFCHR | 0o666, os.makedev(1, 3))
     except OSError:

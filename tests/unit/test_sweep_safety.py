@@ -50,7 +50,9 @@ def test_existing_result_is_not_replaced_without_force(tmp_path, capsys, no_clus
 def test_the_sweep_file_and_its_base_case_are_never_replaced(tmp_path, capsys, no_cluster, target):
     spec = _sweep_file(tmp_path)
     before = (tmp_path / target).read_bytes()
-    assert cli.main(["sweep", str(spec), "--out", str(tmp_path / target), "--force", "--quiet"]) == 2
+    link = tmp_path / "link.nc"  # a result must be named *.nc: the input file is reached through a link
+    link.symlink_to(tmp_path / target)
+    assert cli.main(["sweep", str(spec), "--out", str(link), "--force", "--quiet"]) == 2
     err = _errors(capsys)
     assert len(err) == 1 and "input file" in err[0]
     assert (tmp_path / target).read_bytes() == before
