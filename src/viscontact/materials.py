@@ -43,6 +43,10 @@ def shear_from_tensile(tensile_modulus: float | np.ndarray, poisson_ratio: float
 def wlf_shift_factor(temperature: float, reference_temperature: float, c1: float, c2: float) -> float:
     """WLF shift factor a_T = 10^(-C1 (T - T_ref) / (C2 + T - T_ref)) [-].
 
+    Every relaxation (and retardation) time at T is a_T times its value at T_ref (Williams, Landel
+    & Ferry, J. Am. Chem. Soc. 77, 3701, 1955). The formula diverges at T - T_ref = -C2: below
+    that it is meaningless, and :class:`ParameterError` says so.
+
     Parameters
     ----------
     temperature, reference_temperature
@@ -51,10 +55,6 @@ def wlf_shift_factor(temperature: float, reference_temperature: float, c1: float
         C1 [-].
     c2
         C2 [deg C].
-
-    Every relaxation (and retardation) time at T is a_T times its value at T_ref (Williams, Landel
-    & Ferry, J. Am. Chem. Soc. 77, 3701, 1955). The formula diverges at T - T_ref = -C2: below
-    that it is meaningless, and :class:`ParameterError` says so.
     """
     d_t = temperature - reference_temperature
     if not c2 + d_t > 0:
