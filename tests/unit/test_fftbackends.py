@@ -1,0 +1,71 @@
+"""Zero-block DC-FFT transforms (viscontact.fftbackends) against independent truth.
+
+* the literal O(n^4) aperiodic sum (``direct_convolution``): agreement to round-off, 1e-12
+  relative to the largest value (a transform that dropped a non-zero block, or that wrapped the
+  padding periodically, is off by O(1));
+* the full 2-D real FFT of the zero-padded field (``numpy.fft.rfft2``, another implementation);
+* odd n (the padded length 2n is then not a power of two) and fields non-zero up to every edge.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from viscontact.convolution import direct_convolution
+from viscontact.fftbackends import BACKENDS, dcfft_transforms
+
+
+def _backends() -> list:
+    names = ["scipy"]
+    try:
+        import pyfftw  # noqa: F401
+        names.append("pyfftw")
+    except ImportError:
+        pass
+    return names
+
+
+def _rel(a: np.ndarray, b: np.ndarray) -> float:
+    return float(np.max(np.abs(a - b)) / np.max(np.abs(b)))
+
+
+@pytest.mark.parametrize("name", _backends())
+@pytest.mark.parametrize("n", [7, 12, 16])
+def test_convolve_equals_direct_sum(name: str, n: int) -> None:
+    rng = np.random.default_rng(n)
+    kernel = rng.standard_normal((2 * n, 2 * n))
+    field = rng.standard_normal((n, n))
+    tr = dcfft_transforms(name, n, 1)
+    kernel_hat = np.fft.rfft2(kernel)
+    reference = direct_convolution(kernel, field)
+    assert _rel(tr.convolve(kernel_hat, field), reference) < 1e-12
+    # forward/inverse separately: the same convolution, and the caller owns the results
+    spectrum = tr.forward(field)
+    first = spectrum.copy()
+    tr.forward(np.zeros((n, n)))
+    assert np.array_equal(spectrum, first)
+    assert _rel(tr.inverse(kernel_hat * spectrum), reference) < 1e-12
+
+
+@pytest.mark.parametrize("name", _backends())
+def test_forward_is_the_padded_real_fft(name: str) -> None:
+    n = 10
+    field = np.random.default_rng(3).standard_normal((n, n))
+    spectrum = dcfft_transforms(name, n, 1).forward(field)
+    assert spectrum.shape == (2 * n, n + 1)
+    assert _rel(spectrum, np.fft.rfft2(field, s=(2 * n, 2 * n))) < 1e-13
+
+
+@pytest.mark.parametrize("name", _backends())
+def test_inverse_keeps_the_physical_block(name: str) -> None:
+    n = 9
+    big = np.random.default_rng(4).standard_normal((2 * n, 2 * n))
+    block = dcfft_transforms(name, n, 1).inverse(np.fft.rfft2(big))
+    assert block.shape == (n, n)
+    assert _rel(block, big[:n, :n]) < 1e-13
+
+
+def test_unknown_backend_is_refused() -> None:
+    with pytest.raises(ValueError, match="unknown FFT backend 'fftx'"):
+        dcfft_transforms("fftx", 8)
+    assert set(BACKENDS) == {"scipy", "pyfftw"}
