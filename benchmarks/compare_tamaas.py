@@ -29,8 +29,9 @@ Contestants, each in its own subprocess (so that its peak memory is its own):
 
 The contestants alternate (viscontact, tamaas, viscontact, tamaas, ...) so that a change in the load
 of a shared machine hits both; the table gives the median of each. Wall time is the subprocess's
-(imports included) and the solve's alone; CPU time (user + sys) and peak resident memory come from
-``os.wait4`` (the kernel's ``ru_maxrss`` of that child).
+(imports included) and the solve's alone; CPU time (user + sys) comes from ``os.wait4`` (the kernel's
+rusage of that child), peak resident memory from the child's own VmHWM (its ``ru_maxrss`` would
+include the parent's size, which Linux carries over through fork and exec).
 
 The Tamaas environment
 ----------------------
@@ -82,6 +83,21 @@ def cell_centres(n: int) -> tuple[np.ndarray, np.ndarray]:
     dx = 2 * HALF_WIDTH / n
     x = -HALF_WIDTH + (np.arange(n) + 0.5) * dx
     return np.meshgrid(x, x, indexing="xy")
+
+
+def peak_rss_mib() -> float:
+    """This process's own peak resident memory [MiB]: VmHWM of /proc/self/status (Linux), which
+    belongs to the process image; ``ru_maxrss`` is not used because Linux carries it over from the
+    parent through fork and exec (a child would report at least its parent's size)."""
+    try:
+        with open("/proc/self/status") as status:
+            for line in status:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024
+    except OSError:
+        pass
+    import resource
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
 def _cpu() -> float:
@@ -243,7 +259,7 @@ def run_half(python: str, half: str, args: argparse.Namespace, workdir: Path) ->
         sys.exit(f"compare_tamaas: the {half} half failed (exit {os.waitstatus_to_exitcode(status)})")
     with np.load(result) as data:
         out = {k: data[k] for k in data.files}
-    out.update(wall=wall, cpu=usage.ru_utime + usage.ru_stime, sys=usage.ru_stime, rss_mib=usage.ru_maxrss / 1024)
+    out.update(wall=wall, cpu=usage.ru_utime + usage.ru_stime, sys=usage.ru_stime, rss_mib=float(out["own_rss_mib"]))
     return out
 
 
@@ -311,6 +327,7 @@ def main() -> None:
                     os.dup2(saved[1], 2)
                 log.seek(0)
                 out["iterations"] = _tamaas_iterations(log.read())
+        out["own_rss_mib"] = peak_rss_mib()
         np.savez(args.result, **{k: np.asarray(v) for k, v in out.items()})
         return
 

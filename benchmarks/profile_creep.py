@@ -32,6 +32,7 @@ import numpy as np
 import scipy.fft
 
 import viscontact as vc
+from compare_tamaas import peak_rss_mib
 from viscontact import transient
 
 HALF_WIDTH, RADIUS, LOAD, DT = 1.5e-3, 0.01, 0.15, 2e-4
@@ -114,14 +115,14 @@ def categorise(stats: pstats.Stats) -> dict[str, float]:
 
 def memory_growth(n: int, steps: tuple[int, int]) -> None:
     """Peak RSS of the run at two lengths, each in a fresh interpreter."""
-    code = ("import resource, sys; sys.argv = ['x']; import profile_creep as p; "
-            f"p.run(p.creep_problem({n}, {{steps}})); print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)")
+    code = ("import profile_creep as p, compare_tamaas as c; "
+            f"p.run(p.creep_problem({n}, {{steps}})); print(c.peak_rss_mib())")
     here = os.path.dirname(os.path.abspath(__file__))
     rss = []
     for s in steps:
         out = subprocess.run([sys.executable, "-c", code.format(steps=s)], cwd=here, capture_output=True, text=True,
                              check=True)
-        rss.append(int(out.stdout.split()[-1]) / 1024)
+        rss.append(float(out.stdout.split()[-1]))
     print(f"peak RSS: {rss[0]:.0f} MiB at {steps[0]} steps, {rss[1]:.0f} MiB at {steps[1]} steps "
           f"-> {(rss[1] - rss[0]) / (steps[1] - steps[0]) * 1024:.0f} KiB per step "
           f"(one (n, n) float64 field is {n * n * 8 / 1024:.0f} KiB)")
@@ -167,7 +168,7 @@ def main() -> None:
     its = np.array([r.iterations for r in records])
     print(f"plain run: wall {w1 - w0:.1f} s, user {t1.user - t0.user:.1f} s, sys {t1.system - t0.system:.1f} s, "
           f"minor page faults {r1.ru_minflt - r0.ru_minflt} ({(r1.ru_minflt - r0.ru_minflt) / len(records):.0f} per "
-          f"step), peak RSS {r1.ru_maxrss / 1024:.0f} MiB")
+          f"step), peak RSS {peak_rss_mib():.0f} MiB")
     print(f"CG iterations per step: first {its[0]}, mean {its.mean():.1f}, median {np.median(its):.0f}, "
           f"max {its.max()}, total {its.sum()}")
     del records
