@@ -10,11 +10,12 @@ of which only the (n, n) physical block is kept. Candidates:
 ``numpy``        ``numpy.fft`` (pocketfft, one thread)
 ``fftw``         pyFFTW, planned (FFTW_MEASURE) 2-D real transforms on pre-allocated aligned buffers,
                  padding zeros kept in the input buffer (only the block is copied in), threads 1 / 2
-``scipy-zb``     zero-block transforms with scipy.fft: forward = real FFT of the n non-zero rows
-                 (length 2n) then the complex FFT of length 2n down the n + 1 columns; inverse = the
-                 complex inverse down the columns, then the inverse real FFT of the n kept rows only
-                 (saves half of the row transforms both ways)
-``fftw-zb``      the same zero-block scheme with planned pyFFTW transforms on pre-allocated buffers
+``scipy-zb``     ``viscontact.fftbackends.ZeroBlockTransforms``: forward = real FFT of the n non-zero
+                 rows (length 2n) then the complex FFT of length 2n down the n + 1 columns; inverse =
+                 the complex inverse down the columns, then the inverse real FFT of the n kept rows
+                 only (half of the row transforms both ways)
+``fftw-zb``      ``viscontact.fftbackends.FFTWTransforms``: the same scheme, planned pyFFTW transforms on
+                 pre-allocated buffers
 
 Each candidate is checked against ``scipy`` (max relative difference printed) and timed over
 ``--reps`` pairs, all candidates in turn, ``--rounds`` times; the table gives the median wall and
@@ -30,6 +31,8 @@ from typing import Callable
 
 import numpy as np
 import scipy.fft
+
+from viscontact.fftbackends import FFTWTransforms, ZeroBlockTransforms
 
 
 def scipy_pair(n: int, workers: int) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
@@ -48,14 +51,9 @@ def numpy_pair(n: int) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
     return pair
 
 
-def scipy_zero_block_pair(n: int, workers: int) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
-    def pair(field: np.ndarray, kernel_hat: np.ndarray) -> np.ndarray:
-        rows = scipy.fft.rfft(field, n=2 * n, axis=1, workers=workers)                 # (n, n+1)
-        spec = scipy.fft.fft(rows, n=2 * n, axis=0, workers=workers, overwrite_x=True)  # (2n, n+1)
-        spec *= kernel_hat
-        cols = scipy.fft.ifft(spec, axis=0, workers=workers, overwrite_x=True)[:n]      # (n, n+1)
-        return scipy.fft.irfft(cols, n=2 * n, axis=1, workers=workers)[:, :n]
-    return pair
+def module_pair(transforms) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
+    """A pair through :mod:`viscontact.fftbackends` (the zero-block transforms the solver uses)."""
+    return lambda field, kernel_hat: transforms.convolve(kernel_hat, field)
 
 
 def fftw_pair(n: int, threads: int) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
@@ -82,44 +80,17 @@ def fftw_pair(n: int, threads: int) -> Callable[[np.ndarray, np.ndarray], np.nda
     return pair
 
 
-def fftw_zero_block_pair(n: int, threads: int) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
-    import pyfftw
-
-    rows_in = pyfftw.empty_aligned((n, 2 * n), dtype="float64")
-    spec = pyfftw.empty_aligned((2 * n, n + 1), dtype="complex128")
-    flags = ("FFTW_MEASURE",)
-    rows_fwd = pyfftw.FFTW(rows_in, spec[:n], axes=(1,), direction="FFTW_FORWARD", flags=flags, threads=threads)
-    cols_fwd = pyfftw.FFTW(spec, spec, axes=(0,), direction="FFTW_FORWARD", flags=flags, threads=threads)
-    cols_bwd = pyfftw.FFTW(spec, spec, axes=(0,), direction="FFTW_BACKWARD", flags=flags, threads=threads)
-    rows_bwd = pyfftw.FFTW(spec[:n], rows_in, axes=(1,), direction="FFTW_BACKWARD",
-                           flags=flags + ("FFTW_DESTROY_INPUT",), threads=threads)
-    rows_in[:] = 0.0
-    out = np.empty((n, n))
-
-    def pair(field: np.ndarray, kernel_hat: np.ndarray) -> np.ndarray:
-        rows_in[:, n:] = 0.0
-        rows_in[:, :n] = field
-        rows_fwd()
-        spec[n:] = 0.0
-        cols_fwd()
-        np.multiply(spec, kernel_hat, out=spec)
-        cols_bwd(normalise_idft=False)
-        rows_bwd(normalise_idft=False)
-        np.multiply(rows_in[:, :n], 1.0 / (4 * n * n), out=out)
-        return out
-    return pair
-
-
 def candidates(n: int) -> dict[str, Callable]:
     out = {"scipy w=2": scipy_pair(n, 2), "scipy w=1": scipy_pair(n, 1), "numpy": numpy_pair(n),
-           "scipy-zb w=2": scipy_zero_block_pair(n, 2), "scipy-zb w=1": scipy_zero_block_pair(n, 1)}
+           "scipy-zb w=2": module_pair(ZeroBlockTransforms(n, 2)),
+           "scipy-zb w=1": module_pair(ZeroBlockTransforms(n, 1))}
     try:
         import pyfftw  # noqa: F401
     except ImportError:
         print("pyFFTW missing (pip install -e '.[bench]'): its rows are skipped")
         return out
     out.update({"fftw t=2": fftw_pair(n, 2), "fftw t=1": fftw_pair(n, 1),
-                "fftw-zb t=2": fftw_zero_block_pair(n, 2), "fftw-zb t=1": fftw_zero_block_pair(n, 1)})
+                "fftw-zb t=2": module_pair(FFTWTransforms(n, 2)), "fftw-zb t=1": module_pair(FFTWTransforms(n, 1))})
     return out
 
 
