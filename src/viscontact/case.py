@@ -378,8 +378,8 @@ class OutputSection(_Section):
 
 class SolverSection(_Section):
     """Tolerances (relative) and iteration caps of the constrained CG and the coupling loop, FFT
-    workers, the history algorithm, and ``coupling`` (false: drop the (1 - 2 nu) normal/tangential
-    cross terms)."""
+    workers and backend (``fft``: "scipy" or "pyfftw"), the history algorithm, and ``coupling``
+    (false: drop the (1 - 2 nu) normal/tangential cross terms)."""
 
     tolerance: float = _num(SolverSettings.tolerance, unit="", gt=0, lt=1,
                             description="relative residual of the constrained conjugate-gradient solves")
@@ -395,6 +395,8 @@ class SolverSection(_Section):
                                                     "sum over all past steps (reference, slow)")
     coupling: bool = Field(SolverSettings.coupling, description="false: drop the (1 - 2 nu) normal/tangential "
                            "cross terms")
+    fft: Literal["scipy", "pyfftw"] = Field(SolverSettings.fft, description="DC-FFT transforms: scipy (pocketfft) "
+                                            "or pyfftw (FFTW plans; needs the optional package pyFFTW, extra fast)")
 
     @model_validator(mode="after")
     def _workers(self) -> SolverSection:

@@ -7,13 +7,14 @@ aperiodic discrete convolution. Kernel spectra are computed once per grid and re
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field as dataclass_field
 from types import ModuleType
 from typing import Iterable, Mapping
 
 import numpy as np
 import scipy.fft
 
+from .fftbackends import DCFFTTransforms, ZeroBlockTransforms
 from .grid import Grid
 from .kernels import influence_coefficients
 
@@ -36,6 +37,11 @@ class Convolver:
     xp, fft
         Array namespace and FFT backend (``numpy`` and ``scipy.fft``; any module with the same
         ``rfft2``/``irfft2`` signatures, e.g. ``cupyx.scipy.fft`` with ``cupy``).
+    transforms
+        The DC-FFT transforms of the fields (:mod:`viscontact.fftbackends`): by default the
+        zero-block transforms with ``fft`` and ``workers``, which skip the zero half of the padded
+        input and the discarded half of the output (the kernel spectra above are full 2-D
+        transforms, made once).
     """
 
     n: int
@@ -44,14 +50,21 @@ class Convolver:
     kernels: Mapping[str, np.ndarray] | None = None
     xp: ModuleType = np
     fft: ModuleType = scipy.fft
+    transforms: DCFFTTransforms | None = dataclass_field(default=None, compare=False, repr=False)
+
+    def __post_init__(self) -> None:
+        if self.transforms is None:
+            object.__setattr__(self, "transforms", ZeroBlockTransforms(self.n, self.workers, self.fft))
 
     @classmethod
     def from_kernels(cls, n: int, kernels: Mapping[str, np.ndarray], workers: int = -1, *,
-                     xp: ModuleType = np, fft: ModuleType = scipy.fft) -> "Convolver":
+                     xp: ModuleType = np, fft: ModuleType = scipy.fft,
+                     transforms: DCFFTTransforms | None = None) -> "Convolver":
         """Spectra of kernels given on the (2n, 2n) offset grid (the kernels are kept for
         :meth:`apply_sparse`)."""
         centred = {k: xp.roll(v, (n - 1, n - 1), axis=(0, 1)) for k, v in kernels.items()}
-        return cls(n, {k: fft.rfft2(v, workers=workers) for k, v in kernels.items()}, workers, centred, xp, fft)
+        return cls(n, {k: fft.rfft2(v, workers=workers) for k, v in kernels.items()}, workers, centred, xp, fft,
+                   transforms)
 
     def apply_sparse(self, name: str, field: np.ndarray) -> np.ndarray:
         """Same as :meth:`apply` for a field with few non-zeros, by direct sum of kernel blocks
@@ -73,18 +86,17 @@ class Convolver:
         return cls.from_kernels(grid.n, {c: ics[c] for c in components}, workers)
 
     def spectrum(self, field: np.ndarray) -> np.ndarray:
-        """Real FFT of ``field`` (n, n) zero-padded to (2n, 2n)."""
-        return self.fft.rfft2(field, s=(2 * self.n, 2 * self.n), workers=self.workers)
+        """Real FFT (2n, n+1) of ``field`` (n, n) zero-padded to (2n, 2n)."""
+        return self.transforms.forward(field)
 
     def inverse(self, spectrum: np.ndarray) -> np.ndarray:
         """The (n, n) physical block of the inverse transform of a (2n, n+1) spectrum (which it
         may overwrite: pass a temporary)."""
-        out = self.fft.irfft2(spectrum, s=(2 * self.n, 2 * self.n), workers=self.workers, overwrite_x=True)
-        return out[: self.n, : self.n]
+        return self.transforms.inverse(spectrum)
 
     def apply(self, name: str, field: np.ndarray) -> np.ndarray:
         """sum_j K_name(x_i - x_j) field_j [m per unit modulus]."""
-        return self.inverse(self.spectra[name] * self.spectrum(field))
+        return self.transforms.convolve(self.spectra[name], field)
 
     def combine(self, terms: Iterable[tuple[str, float, np.ndarray]]) -> np.ndarray:
         """sum over terms of factor * (K_name * field), with one inverse transform.

@@ -65,6 +65,7 @@ class ZeroBlockTransforms:
 
     def __init__(self, n: int, workers: int = -1, fft: ModuleType = scipy.fft) -> None:
         self.n = n
+        self.workers = workers
         self.fft = fft
         self._kw = {"workers": workers} if fft is scipy.fft else {}
 

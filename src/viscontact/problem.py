@@ -5,6 +5,7 @@ case file into them; a script may build them directly. All quantities are SI (m,
 """
 from __future__ import annotations
 
+import importlib.util
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Literal
@@ -148,6 +149,7 @@ class SolverSettings:
     workers: int = -1                 # scipy.fft workers (-1: all cores)
     history: Literal["recursive", "direct"] = "recursive"  # direct: literal sum of seed Eq. 5 (reference)
     coupling: bool = True             # False: drop the (1 - 2 nu) normal/tangential cross terms
+    fft: Literal["scipy", "pyfftw"] = "scipy"  # DC-FFT transforms (viscontact.fftbackends); pyfftw: extra "fast"
 
     def __post_init__(self) -> None:
         for name in ("tolerance", "coupling_tolerance"):
@@ -165,6 +167,11 @@ class SolverSettings:
             raise ParameterError("solver.history", f"must be 'recursive' or 'direct', got {self.history!r}")
         if not isinstance(self.coupling, (bool, np.bool_)):
             raise ParameterError("solver.coupling", f"must be true or false, got {self.coupling!r}")
+        if self.fft not in ("scipy", "pyfftw"):
+            raise ParameterError("solver.fft", f"must be 'scipy' or 'pyfftw', got {self.fft!r}")
+        if self.fft == "pyfftw" and importlib.util.find_spec("pyfftw") is None:
+            raise ParameterError("solver.fft", "'pyfftw' needs the optional package pyFFTW "
+                                 "(pip install 'viscontact[fast]'); use 'scipy'")
 
 
 @dataclass(frozen=True)

@@ -46,6 +46,7 @@ import numpy as np
 import scipy.fft
 
 from .convolution import Convolver, FourierPreconditioner
+from .fftbackends import dcfft_transforms
 from .grid import Grid
 from .history import DirectHistory, History, PronyHistory
 from .kernels import influence_coefficients
@@ -267,6 +268,8 @@ class HalfSpace(TermSubstrate):
         Kernels to build among ``zz``, ``xx``, ``xz``, ``zx`` (``zz`` always).
     workers
         FFT worker threads (-1: all cores).
+    fft
+        DC-FFT transforms by backend name (:func:`~viscontact.fftbackends.dcfft_transforms`).
     grid, scheme, dt, direct
         As for :class:`TermSubstrate`.
     """
@@ -274,14 +277,15 @@ class HalfSpace(TermSubstrate):
     ORDER = ("zz", "zx", "xz", "xx")
 
     def __init__(self, grid: Grid, material: Material, components: Sequence[str], scheme: str | TimeScheme,
-                 dt: float, *, workers: int = -1, direct: bool = False) -> None:
+                 dt: float, *, workers: int = -1, direct: bool = False, fft: str = "scipy") -> None:
         comps = [c for c in self.ORDER if c in set(components) | {"zz"}]
         if grid.periodic:
             conv = PeriodicConvolver.for_grid(grid, material.poisson_ratio, workers, comps)
             precond = {c: conv.preconditioner(c) for c in ("zz", "xx") if c in comps}
         else:
             ics = influence_coefficients(grid, material.poisson_ratio)
-            conv = Convolver.from_kernels(grid.n, {c: ics[c] for c in comps}, workers, xp=np, fft=scipy.fft)
+            conv = Convolver.from_kernels(grid.n, {c: ics[c] for c in comps}, workers, xp=np, fft=scipy.fft,
+                                          transforms=dcfft_transforms(fft, grid.n, workers))
             precond = {c: FourierPreconditioner.for_kernel(ics[c], 1.0, workers, fft=scipy.fft)
                        for c in ("zz", "xx") if c in comps}
         terms = [Term(c[0], c[1], c, c[1]) for c in comps]
@@ -305,7 +309,8 @@ class HalfSpace(TermSubstrate):
             builder = self._steady_builders[comps] = SteadyKernelBuilder(self.grid, self.material.poisson_ratio, comps)
         c = self.material.creep
         kernels = builder.effective(c.instantaneous, c.amplitudes, c.retardation_times, speed)
-        return Convolver.from_kernels(self.grid.n, kernels, self.workers, xp=self.xp, fft=self.fft), kernels
+        return Convolver.from_kernels(self.grid.n, kernels, self.workers, xp=self.xp, fft=self.fft,
+                                      transforms=self.convolver.transforms), kernels
 
 
 def substrate_for(problem, components: Sequence[str] | None = None) -> TermSubstrate:
@@ -322,4 +327,5 @@ def substrate_for(problem, components: Sequence[str] | None = None) -> TermSubst
         if nu < 0.5 and problem.solver.coupling and mode in ("partial_slip", "gross_sliding"):
             components += ["xz", "zx"]
     return HalfSpace(problem.grid, problem.material, components, problem.time.scheme, problem.time.dt,
-                     workers=problem.solver.workers, direct=problem.solver.history == "direct")
+                     workers=problem.solver.workers, direct=problem.solver.history == "direct",
+                     fft=problem.solver.fft)

@@ -8,11 +8,21 @@
 """
 from __future__ import annotations
 
+import importlib.util
+from pathlib import Path
+
 import numpy as np
 import pytest
+from vc_testing import seed_material, sphere_problem
 
+from viscontact.case import load_case
 from viscontact.convolution import direct_convolution
+from viscontact.errors import ParameterError
 from viscontact.fftbackends import BACKENDS, dcfft_transforms
+from viscontact.problem import SolverSettings
+from viscontact.transient import simulate
+
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _backends() -> list:
@@ -69,3 +79,31 @@ def test_unknown_backend_is_refused() -> None:
     with pytest.raises(ValueError, match="unknown FFT backend 'fftx'"):
         dcfft_transforms("fftx", 8)
     assert set(BACKENDS) == {"scipy", "pyfftw"}
+
+
+def test_solver_fft_is_a_case_key(monkeypatch: pytest.MonkeyPatch) -> None:
+    case = load_case(ROOT / "cases" / "creep_indentation.toml")
+    assert case.to_problem().solver.fft == "scipy"
+    with pytest.raises(ParameterError) as err:
+        case.with_overrides({"solver.fft": "fftx"})
+    assert err.value.key == "solver.fft"
+    real_find_spec = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec",
+                        lambda name, *a: None if name == "pyfftw" else real_find_spec(name, *a))
+    with pytest.raises(ParameterError) as err:
+        SolverSettings(fft="pyfftw")
+    assert err.value.key == "solver.fft" and "viscontact[fast]" in err.value.message
+
+
+@pytest.mark.skipif("pyfftw" not in _backends(), reason="pyFFTW not installed (extra 'fast')")
+def test_pyfftw_run_equals_scipy_run() -> None:
+    """The creep transient with FFTW plans against the one with pocketfft (another FFT library):
+    the same pressures to round-off amplified by the iteration (1e-10), the same iterations."""
+    runs = {}
+    for name in ("scipy", "pyfftw"):
+        problem = sphere_problem(seed_material(), 24, 1.5e-3, t_end=0.01, dt=1e-3,
+                                 solver=SolverSettings(workers=1, fft=name))
+        runs[name] = list(simulate(problem))
+    for a, b in zip(runs["scipy"], runs["pyfftw"]):
+        assert a.iterations == b.iterations
+        assert _rel(b.pressure, a.pressure) < 1e-10
