@@ -240,10 +240,20 @@ def tamaas_python(given: str | None) -> str:
     hint = ("create it with `python3 -m venv /work/tamaas-venv && /work/tamaas-venv/bin/pip install tamaas numpy "
             f"scipy` and pass --tamaas-python /work/tamaas-venv/bin/python (or set {TAMAAS_ENV})")
     if not path:
-        sys.exit(f"compare_tamaas: no Tamaas environment given; {hint}")
-    if subprocess.run([path, "-c", "import tamaas, numpy"], capture_output=True).returncode != 0:
-        sys.exit(f"compare_tamaas: {path} cannot import tamaas and numpy; {hint}")
+        _refuse(f"no Tamaas environment given; {hint}")
+    try:
+        usable = subprocess.run([path, "-c", "import tamaas, numpy"], capture_output=True).returncode == 0
+    except OSError:
+        usable = False
+    if not usable:
+        _refuse(f"{path} cannot import tamaas and numpy; {hint}")
     return path
+
+
+def _refuse(message: str) -> None:
+    """Bad input: one line, exit status 2."""
+    print(f"compare_tamaas: {message}", file=sys.stderr)
+    sys.exit(2)
 
 
 def run_half(python: str, half: str, args: argparse.Namespace, workdir: Path) -> dict:
