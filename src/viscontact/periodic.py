@@ -211,6 +211,10 @@ class PeriodicConvolver(Convolver):
         """Inverse real FFT (n, n) of a (n, n // 2 + 1) spectrum (which it may overwrite)."""
         return self.fft.irfft2(spectrum, s=(self.n, self.n), workers=self.workers, overwrite_x=True)
 
+    def apply(self, name: str, field: np.ndarray) -> np.ndarray:
+        """sum_j K_name(x_i - x_j) field_j over the period (unpadded transforms)."""
+        return self.inverse(self.spectra[name] * self.spectrum(field))
+
     def preconditioner(self, name: str, factor: float = 1.0) -> FourierPreconditioner:
         """The exact inverse of ``factor`` x the (symmetric part of the) kernel ``name``: the periodic
         operator is diagonal in Fourier space. The undetermined q = 0 mode gets the symbol of the
