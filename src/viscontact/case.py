@@ -21,6 +21,7 @@ viscontact.errors.ParameterError: grid.n: must be >= 8, got 4
 from __future__ import annotations
 
 import copy
+import dataclasses
 import difflib
 import stat
 import typing
@@ -36,7 +37,9 @@ from .errors import ParameterError
 from .grid import Grid
 from .materials import Material, shear_from_tensile, wlf_shift_factor
 from .prony_table import parse_prony_table
+from .poisson import BulkElasticMaterial
 from .problem import (
+    LayerSettings,
     NormalLoading,
     OutputSettings,
     PiecewiseLinear,
@@ -72,7 +75,40 @@ class _Section(BaseModel):
 
 
 # --- [material] ---------------------------------------------------------------------------------
-class _ViscoelasticSection(_Section):
+class _MaterialSection(_Section):
+    """What every material type shares: exactly one of ``poisson_ratio`` (constant nu) and
+    ``bulk_modulus`` (elastic K [Pa]; nu(t) follows from G(t) and K, :mod:`viscontact.poisson`)."""
+
+    poisson_ratio: float | None = _num(None, unit="", ge=0, le=0.5,
+                                       description=_POISSON + " [-], in [0, 0.5]; give this or bulk_modulus")
+    bulk_modulus: float | None = _num(None, unit="Pa", gt=0,
+                                      description="elastic bulk modulus K [Pa] (>= 2 G(0)/3) in place of "
+                                                  "poisson_ratio: nu(t) = (3K - 2G(t)) / (2 (3K + G(t)))")
+
+    @model_validator(mode="after")
+    def _one_poisson(self) -> _MaterialSection:
+        if (self.poisson_ratio is None) == (self.bulk_modulus is None):
+            raise ParameterError("material.poisson_ratio", "give exactly one of material.poisson_ratio "
+                                 "(in [0, 0.5]) and material.bulk_modulus (> 0 Pa)")
+        return self
+
+    def _build(self, poisson_ratio: float, base_dir: Path) -> Material:
+        raise NotImplementedError
+
+    def build(self, base_dir: Path = Path(".")) -> Material:
+        """The material (files named in the section relative to ``base_dir``); with ``bulk_modulus``
+        its ``poisson_ratio`` is nu(0) (K checked >= 2 G(0)/3)."""
+        if self.bulk_modulus is None:
+            return self._build(self.poisson_ratio, base_dir)
+        bulk = self.bulk_elastic(base_dir)
+        return dataclasses.replace(bulk.shear, poisson_ratio=bulk.poisson_ratio_instantaneous)
+
+    def bulk_elastic(self, base_dir: Path = Path(".")) -> BulkElasticMaterial:
+        """The shear relaxation with the elastic bulk modulus (needs ``bulk_modulus``)."""
+        return BulkElasticMaterial(self._build(0.5, base_dir), float(self.bulk_modulus))
+
+
+class _ViscoelasticSection(_MaterialSection):
     """Time-temperature superposition (WLF), shared by the viscoelastic materials: at
     ``temperature`` every relaxation time is multiplied by a_T (:func:`~viscontact.materials.wlf_shift_factor`)
     of ``reference_temperature``, ``wlf_c1``, ``wlf_c2``. Without ``temperature`` the material is
@@ -101,11 +137,11 @@ class _ViscoelasticSection(_Section):
             return 1.0
         return wlf_shift_factor(self.temperature, self.reference_temperature, self.wlf_c1, self.wlf_c2)
 
-    def build(self, base_dir: Path = Path(".")) -> Material:
+    def _build(self, poisson_ratio: float, base_dir: Path) -> Material:
         """The material at ``temperature``; files named in the section are relative to ``base_dir``."""
-        return self._at_reference(base_dir).shifted(self.shift_factor())
+        return self._at_reference(base_dir, poisson_ratio).shifted(self.shift_factor())
 
-    def _at_reference(self, base_dir: Path) -> Material:
+    def _at_reference(self, base_dir: Path, poisson_ratio: float) -> Material:
         raise NotImplementedError
 
 
@@ -118,7 +154,6 @@ class ZenerMaterial(_ViscoelasticSection):
                                           description="long-term shear modulus G(inf), at most G(0)")
     retardation_time: float = _num(unit="s", gt=0, description="retardation (creep) time; the relaxation time "
                                    "is retardation_time G(inf)/G(0)")
-    poisson_ratio: float = _num(unit="", ge=0, le=0.5, description=_POISSON)
 
     @model_validator(mode="after")
     def _ordered(self) -> ZenerMaterial:
@@ -128,9 +163,9 @@ class ZenerMaterial(_ViscoelasticSection):
                                  f"got {self.shear_modulus_long_term:g} Pa")
         return self
 
-    def _at_reference(self, base_dir: Path) -> Material:
+    def _at_reference(self, base_dir: Path, poisson_ratio: float) -> Material:
         return Material.zener(self.shear_modulus_instantaneous, self.shear_modulus_long_term,
-                              self.retardation_time, self.poisson_ratio)
+                              self.retardation_time, poisson_ratio)
 
 
 class PronyMaterial(_ViscoelasticSection):
@@ -149,11 +184,13 @@ class PronyMaterial(_ViscoelasticSection):
                              "to the case file, in place of g_inf, g and tau")
     modulus: Literal["shear", "tensile"] = Field("shear", description="the moduli given are shear ones (G) or "
                                                  "tensile ones (E, converted to G = E / (2 (1 + nu)))")
-    poisson_ratio: float = _num(unit="", ge=0, le=0.5, description=_POISSON)
 
     @model_validator(mode="after")
     def _terms(self) -> PronyMaterial:
         typed = [k for k in ("g_inf", "g", "tau") if getattr(self, k) is not None]
+        if self.modulus == "tensile" and self.bulk_modulus is not None:
+            raise ParameterError("material.modulus", "'tensile' converts E to G with material.poisson_ratio; "
+                                 "with material.bulk_modulus give shear moduli (modulus = 'shear')")
         if self.file is not None:
             if typed:
                 raise ParameterError(f"material.{typed[0]}", "give either material.file or g_inf, g and tau, not both")
@@ -167,7 +204,7 @@ class PronyMaterial(_ViscoelasticSection):
                                  f"got {len(self.tau)}")
         return self
 
-    def _at_reference(self, base_dir: Path) -> Material:
+    def _at_reference(self, base_dir: Path, poisson_ratio: float) -> Material:
         if self.file is None:
             g_inf, g, tau, quantity = self.g_inf, self.g, self.tau, ""
         else:
@@ -180,20 +217,19 @@ class PronyMaterial(_ViscoelasticSection):
                                      f"({'tensile' if quantity == 'E' else 'shear'} moduli); set modulus = "
                                      f"'{'tensile' if quantity == 'E' else 'shear'}', got {self.modulus!r}")
         if self.modulus == "tensile":
-            g_inf = shear_from_tensile(g_inf, self.poisson_ratio)
-            g = [shear_from_tensile(x, self.poisson_ratio) for x in g]
-        return Material.prony(g_inf, g, tau, self.poisson_ratio)
+            g_inf = shear_from_tensile(g_inf, poisson_ratio)
+            g = [shear_from_tensile(x, poisson_ratio) for x in g]
+        return Material.prony(g_inf, g, tau, poisson_ratio)
 
 
-class ElasticMaterial(_Section):
+class ElasticMaterial(_MaterialSection):
     """Elastic half-space: shear modulus G [Pa]."""
 
     type: Literal["elastic"]
     shear_modulus: float = _num(unit="Pa", gt=0, description="shear modulus G")
-    poisson_ratio: float = _num(unit="", ge=0, le=0.5, description=_POISSON)
 
-    def build(self, base_dir: Path = Path(".")) -> Material:
-        return Material.elastic(self.shear_modulus, self.poisson_ratio)
+    def _build(self, poisson_ratio: float, base_dir: Path) -> Material:
+        return Material.elastic(self.shear_modulus, poisson_ratio)
 
 
 MATERIALS: dict[str, type[_Section]] = {"zener": ZenerMaterial, "prony": PronyMaterial,
@@ -369,11 +405,50 @@ _FIELD_NAMES = Literal["pressure", "shear_x", "stick", "displacement_z"]
 
 
 class OutputSection(_Section):
-    """Record every ``every``-th step (and the last) and these fields."""
+    """Record every ``every``-th step (and the last) and these fields; optionally the subsurface
+    stresses in the section y = 0 at ``subsurface_depths`` [m] and ``subsurface_times`` [s]."""
 
     every: int = _int(OutputSettings.every, ge=1, description="record every k-th step (and the last)")
     fields: list[_FIELD_NAMES] = Field(list(OutputSettings.fields), json_schema_extra={"unit": ""},
                                        description="fields on the grid kept at the recorded steps")
+    subsurface_depths: list[Annotated[float, Field(ge=0, allow_inf_nan=False)]] = Field(
+        [], json_schema_extra={"unit": "m"},
+        description="depths z [m] (>= 0) of the stress output in the section y = 0 (von Mises, maximum shear); "
+                    "homogeneous half-space with poisson_ratio only")
+    subsurface_times: list[Annotated[float, Field(ge=0, allow_inf_nan=False)]] | None = Field(
+        None, json_schema_extra={"unit": "s"},
+        description="times [s] of the subsurface output (nearest recorded steps); default the last recorded step")
+
+
+class LayerSection(_Section):
+    """The material is a layer of ``thickness`` [m] on a rigid or elastic substrate."""
+
+    thickness: float = _num(unit="m", gt=0, description="layer thickness h [m], > 0")
+    substrate: Literal["rigid", "elastic"] = Field(
+        "rigid", description="what the layer lies on: 'rigid' or 'elastic' (then substrate_shear_modulus, "
+                             "substrate_poisson_ratio; an elastic [material] only)")
+    interface: Literal["bonded", "frictionless"] = Field(
+        "bonded", description="layer/substrate interface: 'bonded' or 'frictionless' (normal contact only)")
+    substrate_shear_modulus: float | None = _num(None, unit="Pa", gt=0,
+                                                 description="shear modulus G_s [Pa] of an elastic substrate")
+    substrate_poisson_ratio: float | None = _num(None, unit="", ge=0, le=0.5,
+                                                 description="Poisson ratio nu_s [-] of an elastic substrate, in [0, 0.5]")
+
+    @model_validator(mode="after")
+    def _substrate_needs(self) -> LayerSection:
+        for key in ("substrate_shear_modulus", "substrate_poisson_ratio"):
+            given = getattr(self, key) is not None
+            if self.substrate == "elastic" and not given:
+                raise ParameterError(f"layer.{key}", "required with layer.substrate = 'elastic'")
+            if self.substrate == "rigid" and given:
+                raise ParameterError(f"layer.{key}", "only with layer.substrate = 'elastic'")
+        return self
+
+    def build(self) -> LayerSettings:
+        if self.substrate == "rigid":
+            return LayerSettings(self.thickness, "rigid", self.interface)
+        return LayerSettings(self.thickness, "elastic", self.interface, self.substrate_shear_modulus,
+                             self.substrate_poisson_ratio)
 
 
 class SolverSection(_Section):
@@ -422,6 +497,7 @@ class Case(_Section):
     time: TimeSection
     output: OutputSection = OutputSection()
     solver: SolverSection = SolverSection()
+    layer: LayerSection | None = None
 
     _text: str = PrivateAttr("")
     _base_dir: Path = PrivateAttr(default_factory=Path)
@@ -436,6 +512,16 @@ class Case(_Section):
             raise ParameterError("time.dt", "required (> 0 s) when tangential.mode = 'none'")
         if self.time.dt is not None and self.time.dt > self.time.t_end:
             raise ParameterError("time.dt", f"must be <= time.t_end = {self.time.t_end:g} s, got {self.time.dt:g} s")
+        if self.output.subsurface_depths:
+            if self.layer is not None or self.material.bulk_modulus is not None:
+                raise ParameterError("output.subsurface_depths", "needs a homogeneous half-space with "
+                                     "material.poisson_ratio (no [layer], no material.bulk_modulus)")
+            needs = ["pressure"] + (["shear_x"] if self.tangential.mode in ("gross_sliding", "partial_slip") else [])
+            missing = [f for f in needs if f not in self.output.fields]
+            if missing:
+                raise ParameterError("output.fields", f"must include {missing} for output.subsurface_depths")
+        if self.layer is not None and self.material.bulk_modulus is not None:
+            raise ParameterError("material.bulk_modulus", "not supported with [layer]; give material.poisson_ratio")
         return self
 
     # --- construction -------------------------------------------------------------------------
@@ -544,9 +630,12 @@ class Case(_Section):
             tangential=self.tangential.build(),
             time=TimeStepping(self.time.t_end, self.default_dt(), self.time.scheme),
             solver=SolverSettings(**self.solver.model_dump()),
-            output=OutputSettings(self.output.every, fields),
+            output=OutputSettings(self.output.every, fields, tuple(self.output.subsurface_depths),
+                                  None if self.output.subsurface_times is None else tuple(self.output.subsurface_times)),
             radius=self.indenter.radius,
             title=self.title,
+            bulk_modulus=self.material.bulk_modulus,
+            layer=None if self.layer is None else self.layer.build(),
         )
 
 

@@ -180,6 +180,26 @@ class OutputSettings:
 
     every: int = 1
     fields: tuple[str, ...] = ("pressure", "shear_x", "stick")
+    #: depths z [m] of the subsurface stress output in the section y = 0 (empty: none)
+    subsurface_depths: tuple[float, ...] = ()
+    #: times [s] of the subsurface output (the nearest recorded steps); None: the last recorded step
+    subsurface_times: tuple[float, ...] | None = None
+
+
+@dataclass(frozen=True)
+class LayerSettings:
+    """The viscoelastic material is a layer of ``thickness`` [m] on a substrate.
+
+    ``substrate``: ``"rigid"`` or ``"elastic"`` (then ``substrate_shear_modulus`` [Pa] and
+    ``substrate_poisson_ratio`` [-]); ``interface``: ``"bonded"`` or ``"frictionless"``. The
+    compliance is that of :class:`viscontact.layers.Layer`.
+    """
+
+    thickness: float
+    substrate: Literal["rigid", "elastic"] = "rigid"
+    interface: Literal["bonded", "frictionless"] = "bonded"
+    substrate_shear_modulus: float = float("inf")
+    substrate_poisson_ratio: float = 0.3
 
 
 @dataclass(frozen=True)
@@ -201,6 +221,10 @@ class Problem:
     output: OutputSettings = OutputSettings()
     radius: float | None = None
     title: str = ""
+    #: elastic bulk modulus K [Pa]: nu(t) from G(t) and K (``material.poisson_ratio`` is then nu(0))
+    bulk_modulus: float | None = None
+    #: the material is a layer on a substrate (None: a half-space)
+    layer: LayerSettings | None = None
 
     @cached_property
     def _gap_is_sphere(self) -> bool:

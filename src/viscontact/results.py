@@ -65,7 +65,15 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "contact_patches": ("1", "number of contact patches (4-connected; merged across the edges of a periodic domain)"),
     "mean_gap": ("m", "mean deformed gap over the domain (mean separation)"),
     "mean_contact_pressure": ("Pa", "load / real contact area"),
+    "stress_xx": ("Pa", "subsurface stress sigma_xx in the section y = 0 (tension positive)"),
+    "stress_yy": ("Pa", "subsurface stress sigma_yy in the section y = 0 (tension positive)"),
+    "stress_zz": ("Pa", "subsurface stress sigma_zz in the section y = 0 (tension positive)"),
+    "stress_xz": ("Pa", "subsurface stress sigma_xz in the section y = 0"),
+    "von_mises_stress": ("Pa", "von Mises stress sqrt(3 J2) in the section y = 0"),
+    "max_shear_stress": ("Pa", "maximum shear stress (sigma_1 - sigma_3)/2 in the section y = 0"),
 }
+#: subsurface variables (dims t_sub, z, x)
+SUBSURFACE_VARIABLES = ("stress_xx", "stress_yy", "stress_zz", "stress_xz", "von_mises_stress", "max_shear_stress")
 
 #: scales of a result: scalar variables with units (``a0`` and ``p0`` are also global attributes)
 SCALES: dict[str, tuple[str, str]] = {
@@ -159,6 +167,7 @@ def global_attrs(problem: Problem, case_text: str = "") -> dict[str, Any]:
         "poisson_ratio": mat.poisson_ratio,
         "a_T": mat.shift_factor,
         "radius": float("nan") if problem.radius is None else float(problem.radius),
+        **_substrate_attrs(problem),
         "dt": problem.time.dt,
         "time_scheme": problem.time.scheme,
         "grid_n": problem.grid.n,
@@ -171,6 +180,54 @@ def global_attrs(problem: Problem, case_text: str = "") -> dict[str, Any]:
         "references": REFERENCES,
         "history": f"{datetime.now(timezone.utc).strftime('%Y-%m-%dT%H:%M:%SZ')} created by viscontact {__version__}",
     }
+
+
+def _substrate_attrs(problem: Problem) -> dict[str, Any]:
+    """nu(0), nu(inf) and K [Pa] with a bulk modulus; the layer's keys with a [layer]."""
+    out: dict[str, Any] = {}
+    if problem.bulk_modulus is not None:
+        from .poisson import BulkElasticMaterial
+
+        nu = BulkElasticMaterial.poisson_ratio_of
+        k, mat = problem.bulk_modulus, problem.material
+        out.update(bulk_modulus=float(k), poisson_ratio_instantaneous=nu(mat.shear_modulus_instantaneous, k),
+                   poisson_ratio_long_term=nu(mat.shear_modulus_long_term, k))
+    if problem.layer is not None:
+        lay = problem.layer
+        out.update(layer_thickness=float(lay.thickness), layer_substrate=lay.substrate,
+                   layer_interface=lay.interface, layer_substrate_shear_modulus=float(lay.substrate_shear_modulus),
+                   layer_substrate_poisson_ratio=float(lay.substrate_poisson_ratio))
+    return out
+
+
+def subsurface_variables(records: Sequence[StepRecord], problem: Problem) -> tuple[dict, dict]:
+    """Stresses in the section y = 0 (:func:`viscontact.subsurface.section_stresses`) of the recorded
+    tractions at ``problem.output.subsurface_depths`` [m], at the recorded steps nearest to
+    ``subsurface_times`` [s] (default: the last one): variables on (``t_sub``, ``z``, ``x``) and
+    their coordinates. Empty when no depths are asked for or nothing was recorded."""
+    out = problem.output
+    if not out.subsurface_depths or not records:
+        return {}, {}
+    from .subsurface import section_stresses
+
+    t = np.array([r.t for r in records])
+    wanted = [t[-1]] if out.subsurface_times is None else out.subsurface_times
+    picks = [int(np.argmin(np.abs(t - w))) for w in wanted]
+    depths = np.asarray(out.subsurface_depths, dtype=float)
+    stacks: dict[str, list[np.ndarray]] = {name: [] for name in SUBSURFACE_VARIABLES}
+    for k in picks:
+        rec = records[k]
+        sec = section_stresses(problem.grid, problem.material.poisson_ratio, depths, rec.pressure, rec.shear_x,
+                               workers=problem.solver.workers)
+        for c in ("xx", "yy", "zz", "xz"):
+            stacks[f"stress_{c}"].append(sec.stress[c])
+        stacks["von_mises_stress"].append(sec.von_mises)
+        stacks["max_shear_stress"].append(sec.max_shear)
+    mode = problem.tangential.mode
+    variables = {name: _variable(name, ("t_sub", "z", "x"), np.stack(v), mode) for name, v in stacks.items()}
+    coords = {"t_sub": ("t_sub", t[picks], {"units": "s", "long_name": "time of the subsurface output"}),
+              "z": ("z", depths, {"units": "m", "long_name": "depth below the surface"})}
+    return variables, coords
 
 
 def _coords(problem: Problem) -> dict[str, Any]:
@@ -251,7 +308,8 @@ def to_dataset(records: Sequence[StepRecord], problem: Problem, *, case_text: st
     coords = {"t": ("t", t, {"units": "s", "long_name": "time"}),
               "step": ("t", np.array([r.step for r in records], dtype=int), {"long_name": "time-step index"}),
               **_coords(problem)}
-    ds = xr.Dataset(variables, coords=coords)
+    sub_vars, sub_coords = subsurface_variables(records, problem)
+    ds = xr.Dataset({**variables, **sub_vars}, coords={**coords, **sub_coords})
     ds.attrs.update(global_attrs(problem, case_text))
     ds.attrs["t_gross_sliding"] = _t_gross_sliding(mode, t, variables["phase"].values)
     last = records[-1].step if records else -1

@@ -46,6 +46,7 @@ import numpy as np
 import scipy.fft
 
 from .convolution import Convolver, FourierPreconditioner
+from .errors import ParameterError
 from .fftbackends import dcfft_transforms
 from .grid import Grid
 from .history import DirectHistory, History, PronyHistory
@@ -247,8 +248,15 @@ class TermSubstrate:
     # --- steady sliding ---------------------------------------------------------------------------
     def steady_convolver(self, speed: float, components: Sequence[str] = ("zz",)
                          ) -> tuple[Convolver, dict[str, Array]]:
-        """Convolver of the effective steady kernels at ``speed`` [m/s] (1/Pa included) and the kernels."""
-        raise NotImplementedError
+        """Convolver of the effective steady kernels at ``speed`` [m/s] (1/Pa included) and the kernels.
+
+        Not built for general terms (it needs each term's history kernels of its own shape, not only
+        those of the half-space in :func:`~viscontact.kernels.history_kernels`): a
+        :class:`~viscontact.errors.ParameterError` that sends the user to the transient solver.
+        """
+        raise ParameterError("steady", "the steady solver supports the homogeneous half-space with constant "
+                             "material.poisson_ratio only (no [layer], no material.bulk_modulus); "
+                             "use `viscontact run` (transient)")
 
 
 class HalfSpace(TermSubstrate):
@@ -319,6 +327,10 @@ def substrate_for(problem, components: Sequence[str] | None = None) -> TermSubst
     ``components``: the kernels to build; by default what the transient needs: ``zz``, ``xx`` for
     partial slip, and the coupling ``xz``, ``zx`` when sliding with friction, nu < 0.5 and
     ``solver.coupling``. The steady solver asks for ``("zz",)`` (it builds its own kernels).
+
+    ``problem.layer``: the layer's terms (:func:`layer_terms`); ``problem.bulk_modulus``: the
+    half-space with nu(t) (:func:`viscontact.poisson.half_space_terms`, two histories per traction
+    component); else the :class:`HalfSpace` with constant nu.
     """
     if components is None:
         nu = problem.material.poisson_ratio
@@ -326,6 +338,59 @@ def substrate_for(problem, components: Sequence[str] | None = None) -> TermSubst
         components = ["zz"] + (["xx"] if mode == "partial_slip" else [])
         if nu < 0.5 and problem.solver.coupling and mode in ("partial_slip", "gross_sliding"):
             components += ["xz", "zx"]
-    return HalfSpace(problem.grid, problem.material, components, problem.time.scheme, problem.time.dt,
-                     workers=problem.solver.workers, direct=problem.solver.history == "direct",
-                     fft=problem.solver.fft)
+    if problem.layer is None and problem.bulk_modulus is None:
+        return HalfSpace(problem.grid, problem.material, components, problem.time.scheme, problem.time.dt,
+                         workers=problem.solver.workers, direct=problem.solver.history == "direct",
+                         fft=problem.solver.fft)
+    from .compliance_terms import term_substrate
+
+    comps = tuple(c for c in HalfSpace.ORDER if c in set(components) | {"zz"})
+    if problem.layer is not None:
+        terms = layer_terms(problem.grid, problem.layer, problem.material, comps)
+    else:
+        from .poisson import BulkElasticMaterial, half_space_terms
+
+        terms = half_space_terms(problem.grid, BulkElasticMaterial(problem.material, problem.bulk_modulus), comps)
+    return term_substrate(problem.grid, terms, problem.time.scheme, problem.time.dt,
+                          workers=problem.solver.workers, direct=problem.solver.history == "direct")
+
+
+def stability_responses(problem) -> list[CreepSpectrum]:
+    """Time responses [1/Pa] whose step stability bounds dt (:func:`~viscontact.schemes.stable_step_limit`):
+    the shear creep J(t), and with ``problem.bulk_modulus`` the normal (1 - nu)/G and tangential
+    1/G factors of :class:`~viscontact.poisson.BulkElasticMaterial` (the normal one has the extra,
+    shorter retardation time of G(t) + 3K)."""
+    out = [problem.material.creep]
+    if problem.bulk_modulus is not None:
+        from .poisson import BulkElasticMaterial
+
+        bulk = BulkElasticMaterial(problem.material, problem.bulk_modulus)
+        out += [bulk.factor("normal"), bulk.factor("tangential")]
+    return out
+
+
+def layer_terms(grid: Grid, settings, material: Material, components: Sequence[str]) -> list:
+    """Compliance terms of ``material`` as a layer (``settings``: a
+    :class:`~viscontact.problem.LayerSettings`) on its substrate.
+
+    Rigid base: :func:`viscontact.layers.rigid_base_terms` (unit-modulus kernels x J(t)). Elastic
+    substrate: exact for an elastic layer (the kernels at its G, response 1/G); a viscoelastic layer
+    there needs one kernel per relaxation mode, built by :mod:`viscontact.layers` for periodic
+    domains only, so it is refused (:class:`~viscontact.errors.ParameterError`).
+    """
+    from .compliance_terms import ComplianceTerm
+    from .layers import Layer, influence_coefficients, rigid_base_terms
+
+    layer = Layer(settings.thickness, material.shear_modulus_instantaneous, material.poisson_ratio,
+                  settings.substrate, settings.interface, settings.substrate_shear_modulus,
+                  settings.substrate_poisson_ratio)
+    comps = tuple(components)
+    if layer.substrate == "rigid":
+        return rigid_base_terms(grid, layer, material, comps)
+    if not material.is_elastic:
+        raise ParameterError("layer.substrate", "'elastic' needs an elastic [material] (type = 'elastic'): a "
+                             "viscoelastic layer on an elastic substrate needs one kernel per relaxation mode, "
+                             "not built for the non-periodic grid; use substrate = 'rigid'")
+    kernels = influence_coefficients(grid, layer, comps)
+    g = layer.shear_modulus
+    return [ComplianceTerm(c[0], c[1], kernels[c] * g, material.creep, c) for c in comps]

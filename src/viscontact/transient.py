@@ -33,7 +33,7 @@ from .records import StepRecord
 from .roughness import roughness_metrics
 from .schemes import stable_step_limit
 from .sliding import Wake, hysteresis_force, pressure_centroid
-from .substrate import TermSubstrate, substrate_for
+from .substrate import TermSubstrate, stability_responses, substrate_for
 
 #: relative margin under mu_f p below which a node counts as stuck
 STICK_MARGIN = 1e-9
@@ -109,7 +109,7 @@ def validate(problem: Problem) -> None:
                        "normal.value" if len(problem.normal.history.values) == 1 else "normal.history")
     if tan.mode == "partial_slip" and not tan.displacement_rate > 0:
         raise ParameterError("tangential.displacement_rate", f"must be > 0 m/s for partial_slip, got {tan.displacement_rate}")
-    limit = stable_step_limit(problem.material.creep, problem.time.scheme)
+    limit = min(stable_step_limit(r, problem.time.scheme) for r in stability_responses(problem))
     if problem.time.dt > limit:
         raise ParameterError(
             "time.dt", f"{problem.time.dt:.4g} s exceeds the stability limit {limit:.4g} s of the piecewise-constant "

@@ -32,6 +32,20 @@ BAD = {
     "not_toml": ({"[time]": "[time"}, "case file"),
     "value_and_history": ({"value = 0.15 ": "value = 0.15\nhistory = [[0.0, 0.15]] "}, "normal.value"),
     "bad_mode": ({'mode = "none"': 'mode = "rolling"'}, "tangential.mode"),
+    # issue 12: bulk modulus, [layer], subsurface output
+    "both_poisson_and_bulk": ({"poisson_ratio = 0.3": "poisson_ratio = 0.3\nbulk_modulus = 4e6"},
+                              "material.poisson_ratio"),
+    "bulk_too_small": ({"poisson_ratio = 0.3": "bulk_modulus = 1e5"}, "material.bulk_modulus"),
+    "layer_thickness": ({"[time]": "[layer]\nthickness = 0.0\n\n[time]"}, "layer.thickness"),
+    "layer_substrate": ({"[time]": '[layer]\nthickness = 1e-3\nsubstrate = "steel"\n\n[time]'}, "layer.substrate"),
+    "layer_needs_substrate_modulus": ({"[time]": '[layer]\nthickness = 1e-3\nsubstrate = "elastic"\n\n[time]'},
+                                      "layer.substrate_shear_modulus"),
+    "layer_viscoelastic_on_elastic": ({"[time]": '[layer]\nthickness = 1e-3\nsubstrate = "elastic"\n'
+                                                 'substrate_shear_modulus = 1e9\nsubstrate_poisson_ratio = 0.3\n\n[time]'},
+                                      "layer.substrate"),
+    "subsurface_depth": ({"[time]": "[output]\nsubsurface_depths = [-1e-4]\n\n[time]"}, "output.subsurface_depths[0]"),
+    "subsurface_with_bulk": ({"poisson_ratio = 0.3": "bulk_modulus = 4e6",
+                              "[time]": "[output]\nsubsurface_depths = [1e-4]\n\n[time]"}, "output.subsurface_depths"),
 }
 
 
@@ -50,6 +64,15 @@ def test_bad_case(tmp_path: Path, name: str) -> None:
     proc = viscontact("run", "case.toml", "--out", "out.nc", cwd=tmp_path)
     assert_one_line_error(proc, key)
     assert not (tmp_path / "out.nc").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["case.toml"]
+
+
+def test_steady_refuses_bulk_modulus(tmp_path: Path) -> None:
+    text = edited(BASE, {**TINY, "poisson_ratio = 0.3": "bulk_modulus = 4e6",
+                         'mode = "none"': 'mode = "frictionless_sliding"\nsliding_speed = 0.01', "dt = 2.5e-4": ""})
+    (tmp_path / "case.toml").write_text(text)
+    proc = viscontact("steady", "case.toml", "--out", "out.nc", cwd=tmp_path)
+    assert_one_line_error(proc, "steady")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["case.toml"]
 
 

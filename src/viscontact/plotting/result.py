@@ -22,7 +22,8 @@ if TYPE_CHECKING:
     from ..materials import Material
 
 __all__ = ["contact_history_figure", "material_of", "plot_result", "plot_speed_curve", "pressure_maps_figure",
-           "profiles_figure", "speed_curve_figure", "tangential_loop_figure"]
+           "profiles_figure", "speed_curve_figure", "subsurface_figure",
+           "tangential_loop_figure"]
 
 #: frames of the pressure animation at most
 MAX_FRAMES = 60
@@ -257,6 +258,31 @@ def _pressure_animation(ds: xr.Dataset, files: FigureFiles) -> Path:
     return files.save_animation(fig, frame, len(picks), "pressure")
 
 
+def subsurface_figure(ds: xr.Dataset) -> Any:
+    """Von Mises and maximum shear stress maps in the section y = 0 (x-z, depth downwards) at the
+    last subsurface time, scaled by p0 (else MPa) and x, z by a0 (else mm)."""
+    plt = pyplot()
+    sc = Scales(ds)
+    (l_scale, l_label), (p_scale, p_label) = sc.length, sc.pressure
+    k = ds.sizes["t_sub"] - 1
+    x = ds["x"].values / l_scale
+    z = ds["z"].values / l_scale
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True, constrained_layout=True)
+    stress_unit = p_label.replace("p", "σ", 1)
+    for ax, name, title in zip(axes, ("von_mises_stress", "max_shear_stress"), ("von Mises", "maximum shear")):
+        data = ds[name].values[k] / p_scale
+        if z.size > 1:
+            mesh = ax.pcolormesh(x, z, data, shading="nearest", cmap="viridis")
+            fig.colorbar(mesh, ax=ax, label=stress_unit)
+            ax.invert_yaxis()
+        else:
+            ax.plot(x, data[0])
+        ax.set_title(f"{title}, {sc.t_label(float(ds['t_sub'].values[k]))}")
+        ax.set_xlabel(l_label)
+    axes[0].set_ylabel(l_label.replace("x", "z", 1) if z.size > 1 else stress_unit)
+    return fig
+
+
 def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] | None = None, fmt: str = "png",
                 dpi: int | None = None) -> list[Path]:
     """Figures of a transient (or single steady) result, written into ``out_dir``.
@@ -266,7 +292,8 @@ def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] |
     radius, load and approach against time; Lee & Radok for held indentation), ``pressure.gif``
     (an animation of the pressure field), when sliding ``friction`` (apparent friction against time)
     and in partial slip ``tangential_loop`` (Q against δ_x, with Cattaneo-Mindlin) and
-    ``stick_map`` (stick/slip maps). A steady state is drawn as one state, with no time histories.
+    ``stick_map`` (stick/slip maps); with subsurface output ``subsurface_stress`` (von Mises and
+    maximum shear maps in the section y = 0). A steady state is drawn as one state, with no time histories.
 
     Parameters
     ----------
@@ -299,6 +326,8 @@ def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] |
             figures["tangential_loop"] = tangential_loop_figure(ds)
             if "stick" in ds and "pressure" in ds:
                 figures["stick_map"] = _stick_map(ds, times)
+    if "von_mises_stress" in ds and ds.sizes.get("t_sub", 0):
+        figures["subsurface_stress"] = subsurface_figure(ds)
     paths = [files.save(fig, name) for name, fig in figures.items()]
     if "pressure" in ds and not is_steady(ds) and ds.sizes["t"] > 1:
         paths.append(_pressure_animation(ds, files))
