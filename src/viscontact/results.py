@@ -82,6 +82,10 @@ SCALES: dict[str, tuple[str, str]] = {
     "p0": ("Pa", "Hertz peak pressure with G(0) at the reference normal value"),
     "retardation_time": ("s", "shortest creep retardation time tau of the material"),
     "t_gross_sliding": ("s", "first recorded time in gross sliding (0 when sliding from t = 0, NaN when never)"),
+    "poisson_ratio_instantaneous": ("1", "Poisson ratio nu(0) from G(0) and the elastic bulk modulus K "
+                                         "(material.bulk_modulus only)"),
+    "poisson_ratio_long_term": ("1", "Poisson ratio nu(inf) from G(inf) and the elastic bulk modulus K "
+                                     "(material.bulk_modulus only)"),
 }
 
 #: CF flags of the integer and boolean variables: (flag_values, flag_meanings)

@@ -56,6 +56,7 @@ def test_bulk_modulus_case_creeps_as_lee_radok_with_the_normal_creep_function():
     assert ds.attrs["poisson_ratio_instantaneous"] == pytest.approx(4 / 14)
     assert ds.attrs["poisson_ratio_long_term"] == pytest.approx((6 - 0.2) / (2 * 6.1))
     assert ds.attrs["poisson_ratio"] == pytest.approx(4 / 14)  # the Hertz scales use nu(0)
+    assert ds["poisson_ratio_long_term"].attrs["units"] == "1"  # also a scalar variable
 
 
 SLIDING = {"tangential.sliding_speed": 0.05, "tangential.friction_coefficient": 0.3, "time.dt": None, "time.scheme": "linear",
