@@ -177,3 +177,14 @@ def test_subsurface_times_pick_the_nearest_recorded_steps():
     assert ds["t_sub"].values.tolist() == pytest.approx([0.0, 2e-3])
     assert ds["stress_zz"].shape == (2, 1, 16)
     assert ds["t"].size == 5 and "pressure" in ds     # the existing variables are untouched
+
+
+def test_prony_material_takes_a_bulk_modulus_but_not_tensile_moduli():
+    prony = {"material.type": "prony", "material.shear_modulus_instantaneous": None,
+             "material.shear_modulus_long_term": None, "material.retardation_time": None,
+             "material.g_inf": 1.93e5, "material.g": [1.737e6], "material.tau": [1e-3],
+             "material.poisson_ratio": None, "material.bulk_modulus": 4e6}
+    problem = BASE.with_overrides(prony).to_problem()
+    assert problem.material.poisson_ratio == pytest.approx((12e6 - 2 * 1.93e6) / (2 * (12e6 + 1.93e6)))
+    with pytest.raises(ParameterError, match="^material.modulus: 'tensile' converts E to G"):
+        BASE.with_overrides({**prony, "material.modulus": "tensile"})
