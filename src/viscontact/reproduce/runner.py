@@ -90,23 +90,37 @@ def stable_steps(case: Case) -> tuple[Case, str]:
     alternates in sign and decays slowly, which draws an oscillating curve (``--n 64`` previews).
     At half the limit it decays by a factor 0.03 (G(0)/G(inf) = 10) to 0.3 (= 3) per step. A case
     whose ``time.dt`` follows the grid gets ``tangential.steps_per_cell`` k times larger, one that
-    gives ``time.dt`` a k times smaller one. The linear scheme is stable for every step: unchanged.
+    gives ``time.dt`` a k times smaller one. The linear scheme is stable for every step. Then (either
+    scheme) the step is halved until :func:`viscontact.guards.time_step_error` is under the guards'
+    warning limit, so that a coarse preview is neither refused nor warned about.
     """
+    from dataclasses import replace
+
+    from ..guards import TIME_WARNING_LIMIT, time_step_error
     from ..schemes import stable_step_limit
 
-    if case.time.scheme != "constant":
-        return case, ""
-    limit = stable_step_limit(case.material.build().creep, "constant")
     dt = case.default_dt()
-    k = math.ceil(dt / (STABLE_FRACTION * limit) - 1e-9) if math.isfinite(limit) else 1
+    k, why = 1, ""
+    if case.time.scheme == "constant":
+        limit = stable_step_limit(case.material.build().creep, "constant")
+        if math.isfinite(limit):
+            k = max(1, math.ceil(dt / (STABLE_FRACTION * limit) - 1e-9))
+            why = (f"dt = {dt * 1e3:.3g} ms is over {STABLE_FRACTION:g} of the stability limit "
+                   f"{limit * 1e3:.3g} ms of time.scheme = 'constant'") if k > 1 else ""
+    problem = case.to_problem()
+    for _ in range(10):  # then halve dt until the time-step guard (viscontact.guards) has nothing to say
+        error = time_step_error(replace(problem, time=replace(problem.time, dt=dt / k)))
+        if error <= TIME_WARNING_LIMIT:
+            break
+        k *= 2
+        why = why or f"dt = {dt * 1e3:.3g} ms misses the material's response by more than {100 * TIME_WARNING_LIMIT:g} %"
     if k <= 1:
         return case, ""
     if case.time.dt is None:
         key, value = "tangential.steps_per_cell", case.tangential.steps_per_cell * k
     else:
         key, value = "time.dt", case.time.dt / k
-    note = (f"{key} = {value:g}: dt = {dt * 1e3:.3g} ms is over {STABLE_FRACTION:g} of the stability limit "
-            f"{limit * 1e3:.3g} ms of time.scheme = 'constant' (now dt = {dt / k * 1e3:.3g} ms)")
+    note = f"{key} = {value:g}: {why} (now dt = {dt / k * 1e3:.3g} ms)"
     return case.with_overrides({key: value}), note
 
 
