@@ -86,8 +86,7 @@ def _add_material(sub: Any) -> None:
     p = sub.add_parser("material", help="the case's material: moduli, retardation times, a_T (and figures)")
     p.add_argument("case", metavar="CASE.toml", help="case file")
     p.add_argument("--plots", metavar="DIR", help="also draw G(t), J(t), G'(omega), G''(omega), tan delta into DIR")
-    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
-                   help="override a case-file key, e.g. --set material.temperature=40 (repeatable)")
+    _set_argument(p)
     p.set_defaults(handler=_cmd_material)
 
 
