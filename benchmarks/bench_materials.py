@@ -12,7 +12,11 @@ kernel/per-mode  the steady effective kernel built mode by mode (``kernels.histo
 kernel/one-pass  the same kernel from ``steady_kernels.SteadyKernelBuilder`` (first speed: with its
                  IC node values; next speeds: without), and its largest difference to the per-mode one.
 curve            mu_app against speed: 30 speeds over 8 decades, 30-term material, n^2 (steady
-                 solver, ``steady.speed_sweep``: one kernel builder, each speed warm-started).
+                 solver, ``steady.speed_sweep``: one kernel builder, each speed warm-started), split
+                 into phases: setup (the substrate: influence coefficients, FFT plans), kernels
+                 (``HalfSpace.steady_convolver``: the effective kernels and their spectra; the first
+                 speed, which also evaluates the builder's IC nodes, apart) and solve (the rest: the
+                 active-set / GMRES solve of each speed, its preconditioner and the record).
 transient        gross sliding (mu_f = 0.3, coupled), linear scheme, n^2: wall time per step, M = 1
                  and M = 30 measured alternately in one process; and the hereditary update alone
                  (``PronyHistory.known`` + ``advanced``, one component) per step.
@@ -23,9 +27,12 @@ import argparse
 import platform
 import time
 import warnings
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 import numpy as np
 
+from viscontact import steady
 from viscontact.grid import Grid
 from viscontact.history import PronyHistory
 from viscontact.kernels import history_kernels
@@ -33,8 +40,8 @@ from viscontact.materials import Material
 from viscontact.problem import (NormalLoading, OutputSettings, PiecewiseLinear, Problem, TangentialLoading,
                                 TimeStepping)
 from viscontact.schemes import step_coefficients
-from viscontact.steady import speed_sweep
 from viscontact.steady_kernels import SteadyKernelBuilder
+from viscontact.substrate import HalfSpace
 from viscontact.transient import simulate
 
 G0, NU, R = 1.93e6, 0.3, 0.01
@@ -95,16 +102,46 @@ def main() -> None:
         transient_rows(n_transient)
 
 
+@contextmanager
+def call_times(owner: object, name: str) -> Iterator[list[float]]:
+    """Wall time [s] of each call of ``owner.name`` (a class's method or a module's function) while
+    the context is open: the attribute is wrapped, and restored on exit."""
+    original = getattr(owner, name)
+    times: list[float] = []
+
+    def timed(*args, **kwargs):
+        start = time.perf_counter()
+        try:
+            return original(*args, **kwargs)
+        finally:
+            times.append(time.perf_counter() - start)
+
+    setattr(owner, name, timed)
+    try:
+        yield times
+    finally:
+        setattr(owner, name, original)
+
+
 def curve_row(n: int) -> None:
     problem = sliding(material(30), n, 1, "frictionless_sliding", 0.0)
     speeds = np.geomspace(1e-6, 1e2, 30)
-    start = time.perf_counter()
-    records = speed_sweep(problem, speeds)
-    wall = time.perf_counter() - start
+    with call_times(steady, "substrate_for") as setup, call_times(HalfSpace, "steady_convolver") as kernels:
+        start = time.perf_counter()
+        records = steady.speed_sweep(problem, speeds)
+        wall = time.perf_counter() - start
+    solve = wall - sum(setup) - sum(kernels)
     mu = np.array([r.mu_app for r in records])
     print(f"\n## mu_app curve: 30 speeds 1e-6 ... 1e2 m/s, 30 terms, {n}^2, frictionless")
     print(f"wall time {wall:.1f} s ({wall / 30:.2f} s per speed); mu_app max {mu.max():.4f} at "
-          f"v = {speeds[int(np.argmax(mu))]:.2g} m/s; active-set rounds {sum(r.iterations for r in records)}")
+          f"v = {speeds[int(np.argmax(mu))]:.2g} m/s; GMRES iterations {sum(r.iterations for r in records)}")
+    print("| phase | total [s] | per speed [s] |")
+    print("|---|---|---|")
+    print(f"| setup (substrate) | {sum(setup):.2f} | - |")
+    print(f"| kernels, first speed (with the IC nodes) | {kernels[0]:.2f} | - |")
+    print(f"| kernels, next {len(kernels) - 1} speeds | {sum(kernels[1:]):.2f} | "
+          f"{sum(kernels[1:]) / max(len(kernels) - 1, 1):.2f} |")
+    print(f"| solve (active set, GMRES, record) | {solve:.2f} | {solve / len(speeds):.2f} |")
 
 
 def kernel_rows(n_steady: int) -> None:
