@@ -162,3 +162,106 @@ def test_plot_maps_at_chosen_times_in_pdf(tmp_path, capsys, result):
     written = sorted(Path(p).name for p in capsys.readouterr().out.split())
     assert "pressure_maps.pdf" in written and "stick_map.pdf" in written and "pressure.gif" in written
     assert (tmp_path / "figs" / "pressure_maps.pdf").read_bytes().startswith(b"%PDF")
+
+
+# --- rough contact on a periodic cell (issue 11, items 4 and 5) --------------------------------------
+@pytest.fixture(scope="module")
+def rough(tmp_path_factory):
+    """The shipped rough case on a 32² period, to 7 τ: partial slip, then gross sliding from 5 τ,
+    saved and reopened (figures read saved results)."""
+    import warnings
+
+    from viscontact.api import run
+    from viscontact.case import load_case
+    from viscontact.errors import ViscontactWarning
+    from viscontact.results import open_result, write_netcdf
+    from viscontact.shipped import shipped_case
+
+    case = load_case(shipped_case("rough_periodic_sliding")).with_overrides({"grid.n": 32, "time.t_end": 0.07})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ViscontactWarning)  # coarse grid and time step: a preview
+        ds = run(case)
+    path = write_netcdf(ds, tmp_path_factory.mktemp("rough") / "rough.nc")
+    return open_result(path).load()
+
+
+@pytest.fixture
+def rough_result(rough):
+    return rough.copy(deep=True)
+
+
+def _panel(fig, ylabel: str):
+    (ax,) = [ax for ax in fig.axes if ax.get_visible() and ax.get_ylabel() == ylabel]
+    return ax
+
+
+def test_rough_contact_figure_draws_the_result_histories(rough_result):
+    from viscontact.plotting.result import is_rough, rough_contact_figure
+
+    ds = rough_result
+    assert is_rough(ds)
+    fig = rough_contact_figure(ds)
+    t = ds["t"].values / ds.attrs["retardation_time"]
+    expected = {"real contact area fraction A_r / A_0 [-]": ds["contact_fraction"].values,
+                "contact patches [-]": ds["contact_patches"].values,
+                "mean gap [µm]": ds["mean_gap"].values * 1e6,
+                "approach δ_z [µm]": ds["delta_z"].values * 1e6}
+    for label, values in expected.items():
+        line = _panel(fig, label).get_lines()[0]
+        np.testing.assert_allclose(line.get_xdata(), t, rtol=1e-12)
+        np.testing.assert_allclose(line.get_ydata(), values, rtol=1e-12)
+    friction = _panel(fig, "friction coefficient [-]").get_lines()
+    np.testing.assert_allclose(friction[0].get_ydata(), ds["mu_app"].values, rtol=1e-12)
+    np.testing.assert_allclose(friction[1].get_ydata(), ds["friction_force"].values / ds["load"].values, rtol=1e-12)
+    assert not [ax for ax in fig.axes if ax.get_ylabel() == "load W [N]"]         # the load is held
+    gross = [line for line in friction if line.get_label() == "gross sliding"]
+    assert gross and gross[0].get_xdata()[0] == pytest.approx(float(ds["t_gross_sliding"]) / 0.01)
+    title = _suptitle(fig)
+    assert "period L = 1 mm" in title and "p̄ = W/L² = 10 kPa" in title and "τ = 10 ms" in title, title
+    assert "(load held)" in title and "a0" not in title                       # no Hertz scale on a period
+    # the run itself went from partial slip to gross sliding with several patches: the figure is not empty
+    assert ds["contact_patches"].values.max() > 1 and 0 < np.nanmin(ds["contact_fraction"].values) < 1
+
+
+def test_maps_of_a_periodic_result_are_drawn_over_the_period(rough_result):
+    """Pressure and stick/slip maps at chosen times: the result's fields, the period [-w, w)² as the
+    axes, wrapped around when the surface sits at a sub-cell offset."""
+    from viscontact.plotting.base import contact_state
+    from viscontact.plotting.result import pressure_maps_figure, stick_maps_figure
+
+    ds = rough_result
+    w = ds.attrs["grid_half_width"]
+    dx = 2 * w / ds.attrs["grid_n"]
+    times = [0.01, 0.04, 0.06]
+    picks = [int(np.argmin(np.abs(ds["t"].values - t))) for t in times]
+    for draw, values in ((pressure_maps_figure, lambda k: ds["pressure"].values[k] / 1e6),
+                         (stick_maps_figure, lambda k: contact_state(ds, k))):
+        fig = draw(ds, times)
+        axes = [ax for ax in fig.axes if ax.images]
+        assert len(axes) == len(times)
+        for ax, k in zip(axes, picks):
+            (image,) = ax.images
+            data = np.asarray(image.get_array())
+            np.testing.assert_array_equal(data[:, :-1], values(k))
+            np.testing.assert_array_equal(data[:, -1], values(k)[:, 0])      # the period wraps around
+            np.testing.assert_allclose(ax.get_xlim(), (-w * 1e3, w * 1e3), rtol=1e-12)
+            np.testing.assert_allclose(ax.get_ylim(), (-w * 1e3, w * 1e3), rtol=1e-12)
+            assert ax.get_title().startswith(f"t/τ = {ds['t'].values[k] / 0.01:.3g}")
+        assert "period L = 1 mm" in _suptitle(fig)
+    # a sub-cell frame offset (steps_per_cell > 1) moves the image, not the cell
+    ds["frame_offset"].values[:] = 0.25 * dx
+    fig = pressure_maps_figure(ds, times[:1])
+    extent = fig.axes[0].images[0].get_extent()
+    np.testing.assert_allclose(extent[:2], ((-w - 0.25 * dx) * 1e3, (w + 0.75 * dx) * 1e3), rtol=1e-12)
+    np.testing.assert_allclose(fig.axes[0].get_xlim(), (-w * 1e3, w * 1e3), rtol=1e-12)
+
+
+def test_plot_of_a_periodic_result_draws_the_rough_history_not_a_contact_radius(rough_result, tmp_path):
+    from viscontact.plotting import plot_any
+    from viscontact.plotting.result import is_rough
+
+    names = sorted(p.name for p in plot_any(rough_result, tmp_path, fmt="svg"))
+    assert names == ["friction.svg", "pressure.gif", "pressure_maps.svg", "pressure_profiles.svg",
+                     "rough_contact.svg", "stick_map.svg", "tangential_loop.svg"]
+    problem = make_problem()                  # a smooth sphere, one patch: no rough-contact figure
+    assert not is_rough(to_dataset(fake_records(problem), problem))

@@ -18,9 +18,9 @@ from ..problem import PHASE_NAMES
 if TYPE_CHECKING:  # xarray is imported where it is used
     import xarray as xr
 
-__all__ = ["DPI", "FORMATS", "FigureFiles", "Scales", "check_format", "contact_state", "draw_contact_maps",
-           "is_steady", "phase_name", "positive_attr", "profile", "pyplot", "save_figure", "scales_line", "set_title",
-           "time_index"]
+__all__ = ["DPI", "FORMATS", "FigureFiles", "Scales", "cell_limits", "check_format", "contact_state",
+           "draw_contact_maps", "draw_map", "is_periodic", "is_steady", "map_image", "nominal_pressure", "period",
+           "phase_name", "positive_attr", "profile", "pyplot", "save_figure", "scales_line", "set_title", "time_index"]
 
 #: resolution of raster figures [dots per inch] unless asked otherwise
 DPI = 150
@@ -115,10 +115,34 @@ class Scales:
         return f"t/τ = {t / scale:.3g}" if label.startswith("t /") else f"t = {t:.3g} s"
 
 
+def is_periodic(ds: xr.Dataset) -> bool:
+    """The result is one period of a periodic domain (``grid.periodic = true``)."""
+    return bool(int(ds.attrs.get("grid_periodic", 0) or 0))
+
+
+def period(ds: xr.Dataset) -> float | None:
+    """Side L = 2 half_width [m] of the (square) domain, None when the result does not say."""
+    half_width = positive_attr(ds, "grid_half_width")
+    return 2.0 * half_width if half_width else None
+
+
+def nominal_pressure(ds: xr.Dataset) -> float | None:
+    """Nominal (mean) pressure W / L² [Pa] of a periodic result under a held load (``normal_control =
+    "load"``, the reference load ``normal_reference`` [N] on one period of side L), else None."""
+    side, load = period(ds), positive_attr(ds, "normal_reference")
+    if not (is_periodic(ds) and side and load and ds.attrs.get("normal_control") == "load"):
+        return None
+    return load / side**2
+
+
 def scales_line(ds: xr.Dataset) -> str:
-    """``a0 = 588.7 µm, p0 = 0.2067 MPa, τ = 10 ms``: the scales of a result (those it has)."""
+    """``a0 = 588.7 µm, p0 = 0.2067 MPa, τ = 10 ms``: the scales of a result (those it has); a periodic
+    result: ``period L = 1 mm, p̄ = W/L² = 10 kPa, τ = 10 ms``."""
     a0, p0, tau = positive_attr(ds, "a0"), positive_attr(ds, "p0"), positive_attr(ds, "retardation_time")
-    parts = [f"a0 = {a0 * 1e6:.4g} µm" if a0 else "", f"p0 = {p0 * 1e-6:.4g} MPa" if p0 else "",
+    side, mean_p = (period(ds), nominal_pressure(ds)) if is_periodic(ds) else (None, None)
+    parts = [f"period L = {side * 1e3:.4g} mm" if side else "",
+             f"p̄ = W/L² = {mean_p * 1e-3:.4g} kPa" if mean_p else "",
+             f"a0 = {a0 * 1e6:.4g} µm" if a0 else "", f"p0 = {p0 * 1e-6:.4g} MPa" if p0 else "",
              f"τ = {tau * 1e3:.4g} ms" if tau else ""]
     return ", ".join(p for p in parts if p)
 
@@ -176,6 +200,38 @@ def map_extent(ds: xr.Dataset, k: int, sc: Scales) -> tuple[float, float, float,
     return ((x[0] - half - offset) / s, (x[-1] + half - offset) / s, (x[0] - half) / s, (x[-1] + half) / s)
 
 
+def map_image(ds: xr.Dataset, k: int, values: np.ndarray, sc: Scales) -> tuple[np.ndarray, tuple[float, ...]]:
+    """(image, imshow extent) of the field ``values`` (y, x) of record ``k`` in the indenter frame.
+
+    On a periodic domain the surface is the frame: the image is drawn over the period, its first
+    column repeated after the last (the period wraps around), so that with the axes limited to the
+    cell (:func:`cell_limits`) a sub-cell ``frame_offset`` leaves no empty strip.
+    """
+    extent = map_extent(ds, k, sc)
+    if not is_periodic(ds):
+        return values, extent
+    dx = (extent[1] - extent[0]) / values.shape[1]
+    return np.concatenate([values, values[:, :1]], axis=1), (extent[0], extent[1] + dx, extent[2], extent[3])
+
+
+def cell_limits(ds: xr.Dataset, sc: Scales) -> tuple[float, float]:
+    """Axis limits of the domain [-w, w] in the units of ``sc`` (the period of a periodic result)."""
+    x = np.asarray(ds["x"].values, dtype=float)
+    half = 0.5 * (x[1] - x[0])
+    return (x[0] - half) / sc.length[0], (x[-1] + half) / sc.length[0]
+
+
+def draw_map(ax: Any, ds: xr.Dataset, k: int, values: np.ndarray, sc: Scales, **imshow: Any) -> Any:
+    """imshow of the field ``values`` of record ``k`` on ``ax`` (:func:`map_image`; a periodic
+    result limited to its period); returns the image."""
+    data, extent = map_image(ds, k, values, sc)
+    image = ax.imshow(data, origin="lower", extent=extent, interpolation="nearest", **imshow)
+    ax.locator_params(axis="x", nbins=5)  # no tick labels running into the next panel's
+    if is_periodic(ds):
+        ax.set_xlim(*cell_limits(ds, sc))
+    return image
+
+
 def map_axes(n: int) -> tuple[Any, Any]:
     """A figure with ``n`` map panels in a row sharing both axes."""
     return pyplot().subplots(1, n, figsize=(3.2 * n + 0.8, 3.6), squeeze=False, sharex=True, sharey=True)
@@ -190,8 +246,7 @@ def draw_contact_maps(ds: xr.Dataset, picks: list[int], titles: list[str], what:
     fig, axes = map_axes(len(picks))
     cmap = ListedColormap(["white", "tab:orange", "tab:blue"])
     for ax, k, title in zip(axes[0], picks, titles):
-        ax.imshow(contact_state(ds, k), origin="lower", extent=map_extent(ds, k, sc), cmap=cmap, vmin=0, vmax=2,
-                  interpolation="nearest")
+        draw_map(ax, ds, k, contact_state(ds, k), sc, cmap=cmap, vmin=0, vmax=2)
         ax.set(title=title, xlabel=sc.length[1])
     axes[0, 0].set_ylabel(sc.length[1].replace("x", "y"))
     set_title(fig, ds, what)

@@ -13,20 +13,22 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..problem import PHASE_GROSS_SLIDING
-from .base import (FigureFiles, Scales, check_format, draw_contact_maps, is_steady, map_axes, map_extent,
-                   positive_attr, profile, pyplot, set_title, time_index)
+from .base import (FigureFiles, Scales, cell_limits, check_format, draw_contact_maps, draw_map, is_periodic, is_steady,
+                   map_axes, map_image, positive_attr, profile, pyplot, set_title, time_index)
 
 if TYPE_CHECKING:
     import xarray as xr
 
     from ..materials import Material
 
-__all__ = ["contact_history_figure", "material_of", "plot_result", "plot_speed_curve", "pressure_maps_figure",
-           "profiles_figure", "speed_curve_figure", "subsurface_figure",
-           "tangential_loop_figure"]
+__all__ = ["ROUGH_VARIABLES", "contact_history_figure", "friction_figure", "is_rough", "material_of", "plot_result",
+           "plot_speed_curve", "pressure_maps_figure", "profiles_figure", "rough_contact_figure", "speed_curve_figure",
+           "stick_maps_figure", "subsurface_figure", "tangential_loop_figure"]
 
 #: frames of the pressure animation at most
 MAX_FRAMES = 60
+#: the rough-contact histories of a result (:mod:`viscontact.roughness`)
+ROUGH_VARIABLES = ("contact_fraction", "contact_patches", "mean_gap", "mean_contact_pressure")
 
 
 def _time_indices(nt: int, count: int = 6) -> np.ndarray:
@@ -123,8 +125,7 @@ def contact_history_figure(ds: xr.Dataset) -> Any:
     t = ds["t"].values
     radius = np.sqrt(ds["contact_area"].values / np.pi)
     panels = [("contact_area", radius / sc.radius[0], f"contact radius √(A/π), {sc.radius[1]}", sc.radius[0])]
-    panels += [(name, ds[name].values * scale, label, scale) for name, scale, label in
-               (("load", 1.0, "load W [N]"), ("delta_z", 1e6, "approach δ_z [µm]")) if not _held(ds[name].values)]
+    panels += _normal_panels(ds)
     fig, axes = pyplot().subplots(1, len(panels), figsize=(4.4 * len(panels), 3.9), squeeze=False, sharex=True)
     curves = {}
     sphere = positive_attr(ds, "radius")
@@ -144,27 +145,94 @@ def contact_history_figure(ds: xr.Dataset) -> Any:
             ax.legend(fontsize=8)
         ax.set(xlabel=sc.time[1], ylabel=label)
         ax.grid(alpha=0.3)
-    held = [word for name, word in (("load", "load"), ("delta_z", "approach")) if _held(ds[name].values)]
-    set_title(fig, ds, "contact against time" + (f" ({' and '.join(held)} held)" if held else ""))
+    set_title(fig, ds, "contact against time" + _held_note(ds))
     fig.tight_layout()
     return fig
 
 
-def _friction(ds: xr.Dataset) -> Any:
-    sc = Scales(ds)
-    fig, ax = pyplot().subplots(figsize=(6.4, 4.4))
+#: the normal quantities against time: (variable, scale, axis label)
+_NORMAL = (("load", 1.0, "load W [N]"), ("delta_z", 1e6, "approach δ_z [µm]"))
+
+
+def _normal_panels(ds: xr.Dataset) -> list[tuple[str, np.ndarray, str, float]]:
+    """(name, scaled values, label, scale) of the load and the approach, without the one held."""
+    return [(name, ds[name].values * scale, label, scale) for name, scale, label in _NORMAL
+            if not _held(ds[name].values)]
+
+
+def _held_note(ds: xr.Dataset) -> str:
+    """`` (load held)``, `` (approach held)`` or nothing."""
+    held = [name.replace("delta_z", "approach") for name, _, _ in _NORMAL if _held(ds[name].values)]
+    return f" ({' and '.join(held)} held)" if held else ""
+
+
+def _draw_friction(ax: Any, ds: xr.Dataset, sc: Scales) -> None:
+    """μ_app and, when nonzero, the dry friction Σ q_x ΔA / W against time on ``ax``, with the onset
+    of gross sliding after partial slip."""
     t = ds["t"].values / sc.time[0]
     ax.plot(t, ds["mu_app"].values, label="μ_app = F_T / W (hysteresis)")
     if np.any(ds["friction_force"].values != 0):
         load = np.where(ds["load"].values > 0, ds["load"].values, np.nan)
         ax.plot(t, ds["friction_force"].values / load, ls="--", label="Σ q_x ΔA / W (dry)")
-    t_gs = positive_attr(ds, "t_gross_sliding")
-    if t_gs and ds.attrs.get("tangential_mode") == "partial_slip":
-        ax.axvline(t_gs / sc.time[0], color="grey", lw=0.8, ls=":", label="gross sliding")
+    _mark_gross_sliding(ax, ds, sc, label="gross sliding")
     ax.set(xlabel=sc.time[1], ylabel="friction coefficient [-]")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
+
+
+def _mark_gross_sliding(ax: Any, ds: xr.Dataset, sc: Scales, label: str | None = None) -> None:
+    """A dotted vertical line at the onset of gross sliding after partial slip."""
+    t_gs = positive_attr(ds, "t_gross_sliding")
+    if t_gs and ds.attrs.get("tangential_mode") == "partial_slip":
+        ax.axvline(t_gs / sc.time[0], color="grey", lw=0.8, ls=":", label=label)
+
+
+def friction_figure(ds: xr.Dataset) -> Any:
+    """The apparent friction μ_app (and the dry friction Σ q_x ΔA / W) against time; returns the Figure."""
+    fig, ax = pyplot().subplots(figsize=(6.4, 4.4))
+    _draw_friction(ax, ds, Scales(ds))
     set_title(fig, ds, "friction against time")
+    fig.tight_layout()
+    return fig
+
+
+def is_rough(ds: xr.Dataset) -> bool:
+    """A rough-contact result: it has the :data:`ROUGH_VARIABLES` against time and is periodic or
+    has more than one contact patch at some record."""
+    if not all(name in ds and ds[name].dims == ("t",) for name in ROUGH_VARIABLES):
+        return False
+    return is_periodic(ds) or bool(np.max(ds["contact_patches"].values, initial=0) > 1)
+
+
+def rough_contact_figure(ds: xr.Dataset) -> Any:
+    """Rough contact against time: μ_app (when sliding; with the dry friction), the real contact area
+    fraction A_r / A_0, the number of contact patches, the mean gap, and the load or approach unless
+    held; the onset of gross sliding marked; returns the Figure."""
+    sc = Scales(ds)
+    t = ds["t"].values / sc.time[0]
+    sliding = ds.attrs.get("tangential_mode", "none") != "none"
+    panels = [(name, ds[name].values * scale, label) for name, scale, label in
+              (("contact_fraction", 1.0, "real contact area fraction A_r / A_0 [-]"),
+               ("contact_patches", 1.0, "contact patches [-]"), ("mean_gap", 1e6, "mean gap [µm]"))]
+    panels += [(name, values, label) for name, values, label, _ in _normal_panels(ds)]
+    count = len(panels) + sliding
+    cols = 2 if count <= 4 else 3
+    rows = -(-count // cols)
+    fig, axes = pyplot().subplots(rows, cols, figsize=(4.2 * cols, 3.4 * rows), squeeze=False, sharex=True)
+    flat = list(axes.flat)
+    if sliding:
+        _draw_friction(flat[0], ds, sc)
+    for ax, (name, values, label) in zip(flat[sliding:], panels):
+        if name == "contact_patches":
+            ax.step(t, values, where="mid")
+        else:
+            ax.plot(t, values)
+        _mark_gross_sliding(ax, ds, sc)
+        ax.set(xlabel=sc.time[1], ylabel=label)
+        ax.grid(alpha=0.3)
+    for ax in flat[count:]:
+        ax.set_visible(False)
+    set_title(fig, ds, "rough contact against time" + _held_note(ds))
     fig.tight_layout()
     return fig
 
@@ -212,8 +280,7 @@ def pressure_maps_figure(ds: xr.Dataset, times: Sequence[float] | None = None) -
     top = float(max(pressure[k].max() for k in picks)) / sc.pressure[0] or 1.0
     fig, axes = map_axes(len(picks))
     for ax, k in zip(axes[0], picks):
-        image = ax.imshow(pressure[k] / sc.pressure[0], origin="lower", extent=map_extent(ds, k, sc), vmin=0,
-                          vmax=top, cmap="viridis", interpolation="nearest")
+        image = draw_map(ax, ds, k, pressure[k] / sc.pressure[0], sc, vmin=0, vmax=top, cmap="viridis")
         ax.set(title=_steady_label(ds) if is_steady(ds) else sc.t_label(float(ds["t"].values[k])),
                xlabel=sc.length[1])
     axes[0, 0].set_ylabel(sc.length[1].replace("x", "y"))
@@ -222,7 +289,9 @@ def pressure_maps_figure(ds: xr.Dataset, times: Sequence[float] | None = None) -
     return fig
 
 
-def _stick_map(ds: xr.Dataset, times: Sequence[float] | None) -> Any:
+def stick_maps_figure(ds: xr.Dataset, times: Sequence[float] | None = None) -> Any:
+    """Maps of the contact (open, slip, stick) at ``times`` [s] (default: three records of partial
+    slip and the first of gross sliding); returns the Figure."""
     sc = Scales(ds)
     phase = ds["phase"].values
     if times:
@@ -241,8 +310,8 @@ def _pressure_animation(ds: xr.Dataset, files: FigureFiles) -> Path:
     picks = _time_indices(ds.sizes["t"], MAX_FRAMES)
     pressure = ds["pressure"].values
     fig, ax = pyplot().subplots(figsize=(5.2, 4.4))
-    image = ax.imshow(pressure[picks[0]] / sc.pressure[0], origin="lower", extent=map_extent(ds, picks[0], sc),
-                      vmin=0, vmax=float(pressure.max()) / sc.pressure[0] or 1.0, cmap="viridis")
+    image = draw_map(ax, ds, int(picks[0]), pressure[picks[0]] / sc.pressure[0], sc, vmin=0,
+                     vmax=float(pressure.max()) / sc.pressure[0] or 1.0, cmap="viridis")
     fig.colorbar(image, ax=ax, label=sc.pressure[1])
     ax.set(xlabel=sc.length[1], ylabel=sc.length[1].replace("x", "y"))
     set_title(fig, ds, "pressure")
@@ -250,8 +319,11 @@ def _pressure_animation(ds: xr.Dataset, files: FigureFiles) -> Path:
 
     def frame(i: int) -> tuple[Any]:
         k = picks[i]
-        image.set_data(pressure[k] / sc.pressure[0])
-        image.set_extent(map_extent(ds, k, sc))
+        data, extent = map_image(ds, k, pressure[k] / sc.pressure[0], sc)
+        image.set_data(data)
+        image.set_extent(extent)
+        if is_periodic(ds):
+            ax.set_xlim(*cell_limits(ds, sc))
         ax.set_title(sc.t_label(float(ds["t"].values[k])))
         return (image,)
 
@@ -289,7 +361,9 @@ def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] |
 
     ``pressure_profiles``: pressure (and shear, when nonzero) along y = 0; ``pressure_maps``: p/p0
     maps at ``times`` [s] (default: four records). A transient adds ``contact_history`` (contact
-    radius, load and approach against time; Lee & Radok for held indentation), ``pressure.gif``
+    radius, load and approach against time; Lee & Radok for held indentation; not on a periodic
+    domain), for a rough contact (:func:`is_rough`) ``rough_contact`` (μ_app, real contact area
+    fraction, contact patches, mean gap against time), ``pressure.gif``
     (an animation of the pressure field), when sliding ``friction`` (apparent friction against time)
     and in partial slip ``tangential_loop`` (Q against δ_x, with Cattaneo-Mindlin) and
     ``stick_map`` (stick/slip maps); with subsurface output ``subsurface_stress`` (von Mises and
@@ -319,13 +393,16 @@ def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] |
         figures["pressure_profiles"] = profiles_figure(ds, times)
         figures["pressure_maps"] = pressure_maps_figure(ds, times)
     if not is_steady(ds):
-        figures["contact_history"] = contact_history_figure(ds)
+        if not is_periodic(ds):  # a contact radius means nothing for the many spots of a period
+            figures["contact_history"] = contact_history_figure(ds)
+        if is_rough(ds):
+            figures["rough_contact"] = rough_contact_figure(ds)
         if mode != "none":
-            figures["friction"] = _friction(ds)
+            figures["friction"] = friction_figure(ds)
         if mode == "partial_slip":
             figures["tangential_loop"] = tangential_loop_figure(ds)
             if "stick" in ds and "pressure" in ds:
-                figures["stick_map"] = _stick_map(ds, times)
+                figures["stick_map"] = stick_maps_figure(ds, times)
     if "von_mises_stress" in ds and ds.sizes.get("t_sub", 0):
         figures["subsurface_stress"] = subsurface_figure(ds)
     paths = [files.save(fig, name) for name, fig in figures.items()]
