@@ -11,10 +11,10 @@ leaves at −x re-enters at +x.
 
 First partial slip at 0.2 mm/s: the real contact area grows by creep while stick islands shrink
 inside the contact spots; when the last one slips (t ≈ 4τ on this grid, 5τ on the case's) the whole
-contact slides at 20 mm/s, the real contact area drops (the sliding half-space responds stiffer than the creeping one) and the
-apparent friction μ_app = F_T/W, the hysteresis friction of seed Eq. 15, rises to the steady state of
-``viscontact steady``, which on a periodic domain is exact (every Fourier mode of the surface
-through the complex modulus at its frequency k_x v).
+contact slides at 20 mm/s, the real contact area drops (the sliding half-space responds stiffer
+than the creeping one) and the apparent friction μ_app = F_T/W, the hysteresis friction of seed
+Eq. 15, rises to the steady state of ``viscontact steady``, which on a periodic domain is exact
+(every Fourier mode of the surface through the complex modulus at its frequency k_x v).
 
 Here on a 32² grid instead of the case's 64²: a preview (about 100 steps).
 """
@@ -32,9 +32,9 @@ problem = case.to_problem()
 
 # %%
 # The rigid surface on the grid: heights h = max(h0) − h0 from the undeformed gap h0, z up. The
-# generated realisation is scaled to its rms slope (|∇h| by forward differences, wrapping around the
-# period) on the grid it is sampled on: a coarser grid gives a smoother surface (smaller rms height),
-# not the same surface resolved less.
+# generated realisation is scaled to its rms slope (the norm of the gradient by forward differences,
+# wrapping around the period) on the grid it is sampled on: a coarser grid gives a smoother surface
+# (smaller rms height), not the same surface resolved less.
 grid = problem.grid
 heights = problem.gap.max() - problem.gap
 gradient = np.hypot(np.roll(heights, -1, axis=1) - heights, np.roll(heights, -1, axis=0) - heights) / grid.spacing
