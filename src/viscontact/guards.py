@@ -78,7 +78,10 @@ class ContactEstimate:
 
 def contact_estimate(problem: Problem, *, transient: bool = True) -> ContactEstimate | None:
     """Hertz estimate of the contact radius at the largest load (or approach) of the run; None when
-    the indenter has no curvature to estimate it from (e.g. a flat punch).
+    the indenter has no curvature to estimate it from (e.g. a flat punch), and for a surface other
+    than a sphere on a periodic grid (a rough period): its load spreads over many asperities, so
+    the one at the lowest point carrying it all is no estimate of the contact, and a period has no
+    edge for a contact to reach.
 
     Under load control the radius creeps (Lee & Radok: a^3 ~ int J(t - s) dW(s)) for as long as a
     material point stays loaded: the run's duration, or when sliding at most 2 a(G(inf)) / v (the
@@ -87,6 +90,8 @@ def contact_estimate(problem: Problem, *, transient: bool = True) -> ContactEsti
     """
     from .results import equivalent_radius
 
+    if problem.grid.periodic and problem.radius is None:
+        return None
     radius = problem.radius if problem.radius is not None else equivalent_radius(problem)
     reference = problem.normal.history.reference
     if not (np.isfinite(radius) and radius > 0 and reference > 0):

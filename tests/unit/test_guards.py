@@ -114,6 +114,21 @@ def test_marginal_small_strain_is_a_warning():
     assert any("indenter radius" in m for m in messages)
 
 
+def test_rough_period_is_not_judged_as_one_asperity():
+    """On a rough periodic cell the load spreads over many asperities: the Hertz estimate from the
+    curvature at the lowest point (0.42 R at 32^2, a refusal at 16^2 when written) is no estimate of
+    the contact, so no contact-size warning or refusal. A sphere on a periodic grid is still judged."""
+    rough = ROOT / "cases" / "rough_periodic_sliding.toml"
+    for n in (16, 32):
+        problem = _problem(rough, **{"grid.n": n})
+        assert guards.contact_estimate(problem) is None
+        assert not any("contact radius" in m for m in _check_quietly(problem))
+    sphere = _problem(CREEP, **{"grid.periodic": True, "grid.n": 8})
+    assert guards.contact_estimate(sphere) is not None
+    with pytest.raises(ParameterError, match="grid.n"):
+        guards.check_problem(sphere)
+
+
 # --- the time step -------------------------------------------------------------------------------
 def test_hereditary_integral_against_quadrature():
     mat = seed_material()
