@@ -13,7 +13,8 @@ from importlib import import_module as _import_module
 #: public name -> module defining it; imported on first use, so that ``viscontact.cli`` starts at once
 #: (and handles SIGINT from its first moment) without loading xarray and the solvers
 _EXPORTS = {
-    "run": "api", "run_steady": "api", "Case": "case", "load_case": "case", "ConvergenceError": "errors",
+    "run": "api", "run_steady": "api", "run_to_file": "api", "Written": "api", "Case": "case", "load_case": "case",
+    "ConvergenceError": "errors",
     "NumericalGuardError": "errors", "ParameterError": "errors", "ViscontactError": "errors",
     "ViscontactWarning": "errors", "Grid": "grid", "Material": "materials", "NormalLoading": "problem",
     "OutputSettings": "problem", "PiecewiseLinear": "problem", "Problem": "problem", "SolverSettings": "problem",
@@ -59,11 +60,13 @@ __all__ = [
     "TimeStepping",
     "ViscontactError",
     "ViscontactWarning",
+    "Written",
     "__version__",
     "load_case",
     "open_result",
     "run",
     "run_steady",
+    "run_to_file",
     "shipped_case",
     "steady",
     "to_dataset",

@@ -18,8 +18,11 @@ and steady frictionless sliding at two speeds [m/s]:
 """
 from __future__ import annotations
 
+import errno
+import os
 from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import Any, NamedTuple
 
 import xarray as xr
 
@@ -28,7 +31,7 @@ from .errors import ParameterError
 from .problem import Problem
 from .results import sweep_dataset, to_dataset
 
-__all__ = ["checkpoint_path", "prepare", "run", "run_steady", "steady"]
+__all__ = ["Written", "checkpoint_path", "prepare", "run", "run_steady", "run_to_file", "steady"]
 
 CaseLike = Case | Problem | str | Path
 
@@ -59,7 +62,9 @@ def checkpoint_path(out: str | Path) -> Path:
 def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
         checkpoint: str | Path | None = None, checkpoint_every: int = 0, resume: bool = False,
         should_stop: Callable[[], str | None] | None = None) -> xr.Dataset:
-    """Run the transient simulation of ``case`` and return its result Dataset (:ref:`result-file`).
+    """Run the transient simulation of ``case`` and return its result Dataset (:ref:`result-file`),
+    assembled in memory (every record is held until the end: for long runs :func:`run_to_file`
+    streams them to the file instead).
 
     Parameters
     ----------
@@ -86,11 +91,9 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
         The run stopped. When steps were recorded before, the exception carries the Dataset of
         those steps (attribute ``complete = 0``) as ``exc.partial``.
     """
-    from . import transient
     from .checkpoint import load_checkpoint
-    from .errors import RunInterrupted
-    from .observers import Checkpointer, Recorder, StopRequest, WakeWarning
-    from .records import records_from_arrays
+    from .observers import Checkpointer, Recorder, WakeWarning
+    from .records import records_from_arrays, records_to_arrays
 
     problem, text = prepare(case)
     start, kept = None, []
@@ -102,24 +105,172 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
     recorder = Recorder(problem, kept)
     observers = [recorder, WakeWarning()]
     if checkpoint is not None:
-        observers.append(Checkpointer(checkpoint, problem, recorder, checkpoint_every))
-    if should_stop is not None:
-        observers.append(StopRequest(should_stop))
-
+        observers.append(Checkpointer(checkpoint, problem, checkpoint_every,
+                                      extra=lambda: records_to_arrays(recorder.records)))
     try:
-        for state, record in transient.steps(problem, progress=progress, state=start):
-            reasons = [r for r in (o.on_step(state, record) for o in observers) if r]
-            if reasons:
-                for o in observers:
-                    o.on_stop(state, reasons[0])
-                raise RunInterrupted(reasons[0])
+        _drive(problem, observers, start=start, progress=progress, should_stop=should_stop)
     except BaseException as exc:
         if recorder.records:
-            why = getattr(exc, "reason", None) or type(exc).__name__
             exc.partial = to_dataset(recorder.records, problem, case_text=text,  # type: ignore[attr-defined]
-                                     attrs={"complete": 0, "stopped_by": why})
+                                     attrs={"complete": 0, "stopped_by": _reason(exc)})
         raise
     return to_dataset(recorder.records, problem, case_text=text)
+
+
+class Written(NamedTuple):
+    """What :func:`run_to_file` wrote: the result file and how many records (time entries) it holds."""
+
+    path: Path
+    records: int
+
+
+def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int], None] | None = None,
+                checkpoint_every: int = 0, resume: bool = False,
+                should_stop: Callable[[], str | None] | None = None, history: str = "",
+                require_space: bool = True, finishing: Callable[[], None] | None = None) -> Written:
+    """Run the transient simulation of ``case``, streaming each record to the result file ``out``.
+
+    Memory does not grow with the number of steps. The records go to ``OUT.partial`` as the run
+    goes (valid netCDF after a kill at any moment, ``complete = 0``), renamed over ``out`` when the
+    run is complete (:mod:`viscontact.streaming`). Whether ``out`` may be replaced is the caller's
+    check (the command line refuses an existing one without ``--force``).
+
+    Parameters
+    ----------
+    case, progress, should_stop
+        As for :func:`run`.
+    out
+        The result file (netCDF-4).
+    history
+        Appended to the file's ``history`` attribute (e.g. the command that ran it).
+    checkpoint_every
+        Write the solver state to :func:`checkpoint_path` (atomically) every ``checkpoint_every``
+        steps (0: never), and when the run is stopped. The checkpoint holds the solver state only;
+        the records are in the streamed file.
+    resume
+        Continue from the checkpoint (written for the same case) and its streamed file (``OUT.partial``,
+        or an incomplete ``out`` left by a clean stop), dropping the records after the checkpoint's
+        step: the result equals that of an uninterrupted run, bit for bit.
+    require_space
+        The disk space of every record still to come is claimed before the first step
+        (:class:`~viscontact.output_files.SpaceClaim`); True: a disk that cannot hold it is an
+        error before any step, False (``--force``): run anyway. Either way a disk that fills stops
+        the run between two records with one ``ENOSPC`` error, the steps done kept.
+    finishing
+        Called once the steps are done (or stopped), before the file is finished and renamed
+        (the command line then only records signals, so that the write completes).
+
+    Returns
+    -------
+    Written
+        ``out`` and the number of records. The checkpoint is removed once ``out`` is complete.
+
+    Raises
+    ------
+    ParameterError
+        Invalid input (before any step is computed), a checkpoint of another case or without its
+        streamed file.
+    OSError
+        The result cannot be written: ``ENOSPC`` naming the file, the size needed and the space
+        free (before the first step, or between two records with the steps done kept as below).
+    ConvergenceError, NumericalGuardError, RunInterrupted, KeyboardInterrupt
+        The run stopped. When steps were recorded, they are in the file (``complete = 0``,
+        ``stopped_by``) named by ``exc.saved = (path, records)``: ``out``, or ``OUT.partial`` when
+        ``out`` holds a complete result (never replaced by an incomplete one).
+    """
+    import numpy as np
+
+    from .checkpoint import load_checkpoint
+    from .observers import Checkpointer, StreamWriter, WakeWarning
+    from .output_files import move_atomically
+    from .records import records_from_arrays
+    from .streaming import ResultStream, is_complete_result, partial_path
+
+    problem, text = prepare(case)
+    out = Path(out)
+    partial, checkpoint = partial_path(out), checkpoint_path(out)
+    start, extra = None, {}
+    if resume:
+        start, extra = load_checkpoint(checkpoint, problem)
+    if resume and "records" in extra:  # the records so far are in the streamed file
+        if not partial.exists() and out.exists() and not is_complete_result(out):
+            os.replace(out, partial)  # the file a clean stop published
+        try:
+            stream = ResultStream.reopen(partial, problem, int(extra["records"]), require_space=require_space)
+        except FileNotFoundError as exc:
+            raise ParameterError("--resume", f"{exc.filename}: {exc.strerror}") from None
+    else:
+        stream = ResultStream.create(partial, problem, case_text=text, history=history, require_space=require_space)
+        for record in records_from_arrays(extra):  # resuming from a checkpoint of :func:`run`: its records
+            stream.append(record)
+    observers = [StreamWriter(problem, stream), WakeWarning()]
+    if checkpoint_every or resume:
+        observers.append(Checkpointer(checkpoint, problem, checkpoint_every,
+                                      extra=lambda: {"records": np.array(stream.count)}))
+    try:
+        _drive(problem, observers, start=start, progress=progress, should_stop=should_stop)
+    except BaseException as exc:
+        if finishing is not None:
+            finishing()
+        exc.saved = _stopped(stream, out, _reason(exc))  # type: ignore[attr-defined]
+        raise
+    if finishing is not None:
+        finishing()
+    stream.finish()
+    move_atomically(partial, out)
+    checkpoint.unlink(missing_ok=True)
+    return Written(out, stream.count)
+
+
+def _stopped(stream: Any, out: Path, reason: str) -> tuple[Path, int] | None:
+    """End the streamed file of a run stopped for ``reason`` (``complete = 0``, ``stopped_by``) and
+    publish it as ``out`` unless ``out`` is a complete result. Returns (where, records), or None
+    (and no file) when no record was written."""
+    from .output_files import move_atomically
+    from .streaming import is_complete_result
+
+    if stream.broken:  # a write failed and so did saving the file: it holds its last flush (complete = 0)
+        return stream.path, stream.count
+    if stream.count == 0:
+        stream.close()
+        stream.path.unlink(missing_ok=True)
+        return None
+    try:
+        stream.finish({"complete": 0, "stopped_by": reason})
+    except Exception:  # noqa: BLE001 - interrupted inside a write: the file holds the last flush
+        stream.close()
+        return stream.path, stream.count
+    if out.exists() and is_complete_result(out):
+        return stream.path, stream.count
+    move_atomically(stream.path, out)
+    return out, stream.count
+
+
+def _reason(exc: BaseException) -> str:
+    """Attribute ``stopped_by`` of a run ended by ``exc``: its reason (a signal), the error's code
+    (``ENOSPC``) or its type."""
+    code = errno.errorcode.get(exc.errno, "") if isinstance(exc, OSError) and exc.errno else ""
+    return getattr(exc, "reason", None) or code or type(exc).__name__
+
+
+def _drive(problem: Problem, observers: list, *, start: Any = None,
+           progress: Callable[[int, int], None] | None = None,
+           should_stop: Callable[[], str | None] | None = None) -> None:
+    """The run: a plain loop over :func:`viscontact.transient.steps` handing each (state, record)
+    to the ``observers`` (:mod:`viscontact.observers`), stopping cleanly with
+    :class:`~viscontact.errors.RunInterrupted` when one of them (or ``should_stop``) asks."""
+    from . import transient
+    from .errors import RunInterrupted
+    from .observers import StopRequest
+
+    if should_stop is not None:
+        observers = [*observers, StopRequest(should_stop)]
+    for state, record in transient.steps(problem, progress=progress, state=start):
+        reasons = [r for r in (o.on_step(state, record) for o in observers) if r]
+        if reasons:
+            for o in observers:
+                o.on_stop(state, reasons[0])
+            raise RunInterrupted(reasons[0])
 
 
 def run_steady(case: CaseLike, speeds: Sequence[float] | None = None) -> xr.Dataset:

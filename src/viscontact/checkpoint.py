@@ -5,7 +5,10 @@ A checkpoint is one ``.npz`` file holding every array and scalar of :class:`~vis
 plus a fingerprint of the problem, written atomically (temporary file in the same folder, flush,
 fsync, ``os.replace``) so that a run killed at any moment leaves either the previous checkpoint or
 the new one, never a torn file. Resuming from it continues the same floating-point computation, so
-the resumed result equals the uninterrupted one.
+the resumed result equals the uninterrupted one. A checkpoint of ``viscontact run`` holds the
+solver state only (a few n x n arrays per retardation mode, whatever the number of steps) and how
+many records the result file streamed as the run goes holds (:mod:`viscontact.streaming`); one of
+the in-memory :func:`viscontact.api.run` also holds the records so far.
 """
 from __future__ import annotations
 
@@ -105,7 +108,8 @@ class _Keys:
 
 def save_checkpoint(path: str | Path, problem: Problem, state: State,
                     extra: dict[str, np.ndarray] | None = None) -> None:
-    """Write ``state`` (and ``extra`` arrays, e.g. the records so far) atomically to ``path``."""
+    """Write ``state`` (and ``extra`` arrays: how many records the streamed result holds, or the
+    records so far) atomically to ``path``."""
     path = Path(path)
     arrays = state_arrays(state)
     arrays["format_version"] = np.array(FORMAT_VERSION)

@@ -3,8 +3,10 @@
 Bad input (case file, missing file, existing result) prints one line
 ``viscontact: error: <key>: <message>`` and exits with status 2; a failed solve (no convergence,
 numerical guard) exits with status 1, keeping the steps done in the result file (``complete = 0``).
-SIGINT / SIGTERM stop a run after its current step, write the steps done (``complete = 0``) and
-exit with 130 / 143. Every sub-command takes ``--quiet`` (no progress bar, summary or warnings) and
+SIGINT / SIGTERM stop a run after its current step, keep the steps done (``complete = 0``) and
+exit with 130 / 143. ``run`` streams its records to ``RESULT.nc.partial`` and renames it to
+``RESULT.nc`` when it ends (:mod:`viscontact.streaming`); after a kill the steps done are in
+``RESULT.nc.partial``. Every sub-command takes ``--quiet`` (no progress bar, summary or warnings) and
 ``--log-level`` (the messages of the ``viscontact`` logger shown on stderr; warnings are at level
 ``warning``).
 """
@@ -68,7 +70,8 @@ def _add_run(sub: Any) -> None:
     p.add_argument("--checkpoint-every", type=int, default=0, metavar="N",
                    help="write the solver state every N steps to RESULT.nc.checkpoint.npz (atomic)")
     p.add_argument("--resume", action="store_true",
-                   help="continue from RESULT.nc.checkpoint.npz (same case file) and overwrite RESULT.nc")
+                   help="continue from RESULT.nc.checkpoint.npz (same case file) and the records streamed to "
+                        "RESULT.nc.partial, and overwrite RESULT.nc")
     p.add_argument("--dry-run", action="store_true",
                    help="validate the case and print the estimated result size and memory; run nothing")
     p.set_defaults(handler=_cmd_run)
@@ -314,29 +317,46 @@ def _parse_positive(text: str, option: str, unit: str, example: str) -> list[flo
 
 
 def _finish(ds: Any, args: argparse.Namespace, started: float) -> None:
-    from .plotting import plot_any  # imported before the run by _prepare when --plots is given
+    """Write the result ``ds`` of a command computed in memory, then :func:`_report`."""
     from .results import write_netcdf
 
-    if getattr(args, "argv", None) is not None:
-        ds.attrs["history"] = f"{ds.attrs.get('history', '')} by the command: {PROG} {shlex.join(args.argv)}".strip()
+    ds.attrs["history"] = f"{ds.attrs.get('history', '')} {_history_note(args)}".strip()
     write_netcdf(ds, args.out, force=args.force)
+    _report(ds, ds.sizes.get("t", ds.sizes.get("speed", 0)), args, started)
+
+
+def _history_note(args: argparse.Namespace) -> str:
+    """``by the command: viscontact ...`` for the result's ``history`` attribute ('' when unknown)."""
+    return f"by the command: {PROG} {shlex.join(args.argv)}" if getattr(args, "argv", None) is not None else ""
+
+
+def _report(ds: Any, records: int, args: argparse.Namespace, started: float) -> None:
+    """Draw the figures of the result ``ds`` (with ``--plots``) and print what was written."""
     written = [Path(args.out)]
     if args.plots:
+        from .plotting import plot_any  # imported before the run by _prepare when --plots is given
+
         written += plot_any(ds, args.plots, fmt=args.fmt, dpi=args.dpi)
     if not args.quiet:
-        steps = ds.sizes.get("t", ds.sizes.get("speed", 0))
-        print(f"wrote {', '.join(str(p) for p in written)} ({steps} records, {time.perf_counter() - started:.1f} s)")
+        print(f"wrote {', '.join(str(p) for p in written)} ({records} records, {time.perf_counter() - started:.1f} s)")
 
 
 def _cmd_run(args: argparse.Namespace) -> int:
+    """The records are streamed to RESULT.nc.partial as the run goes and renamed to RESULT.nc at the
+    end (:func:`viscontact.api.run_to_file`): memory does not grow with the number of steps."""
     from . import api
     from .resources import check_resources, describe
-    from .results import write_netcdf
+    from .results import open_result
+    from .streaming import partial_path
 
     started = time.perf_counter()
     if args.checkpoint_every < 0:
         raise ParameterError("--checkpoint-every", f"must be >= 0 steps, got {args.checkpoint_every}")
     case = _prepare(args)
+    partial = partial_path(args.out)
+    if partial.exists() and not (args.force or args.resume):
+        raise FileExistsError(17, "holds the steps of an interrupted run: --resume continues it (with its "
+                              "checkpoint), --force starts over", str(partial))
     problem, _ = api.prepare(case)
     estimate = check_resources(problem, args.out, force=args.force, checkpoints=bool(args.checkpoint_every))
     if args.dry_run:
@@ -345,33 +365,16 @@ def _cmd_run(args: argparse.Namespace) -> int:
         validate(problem)
         print(describe(problem, estimate))
         return 0
-    checkpoint = api.checkpoint_path(args.out) if (args.checkpoint_every or args.resume) else None
     if args.resume:  # what the killed run's writes left half way
         from .output_files import remove_temporaries
 
         remove_temporaries(args.out)
-        remove_temporaries(checkpoint)
-    force = args.force or args.resume
+        remove_temporaries(api.checkpoint_path(args.out))
     with _bar(args, "step") as bar, _stop_on_signals() as signals:
-        try:
-            ds = api.run(case, progress=bar.update, checkpoint=checkpoint, checkpoint_every=args.checkpoint_every,
-                         resume=args.resume, should_stop=signals.should_stop)
-        except (ConvergenceError, NumericalGuardError, RunInterrupted, KeyboardInterrupt, OSError) as exc:
-            signals.finishing = True
-            partial = getattr(exc, "partial", None)
-            if partial is not None:
-                try:
-                    write_netcdf(partial, args.out, force=force)
-                    exc.saved = (args.out, partial.sizes["t"])  # type: ignore[attr-defined]
-                except OSError:
-                    if not isinstance(exc, OSError):
-                        raise
-            raise
-        signals.finishing = True
-        args.force = force
-        _finish(ds, args, started)
-        if checkpoint is not None and checkpoint.exists():
-            checkpoint.unlink()
+        written = api.run_to_file(case, args.out, progress=bar.update, checkpoint_every=args.checkpoint_every,
+                                  resume=args.resume, should_stop=signals.should_stop, history=_history_note(args),
+                                  require_space=not args.force, finishing=signals.finish)
+    _report(open_result(written.path) if args.plots else None, written.records, args, started)
     if signals.received:
         reason = signals.received[0]
         return _error(f"{reason} received while the result was written: the complete result is in {args.out} "
@@ -389,8 +392,12 @@ class _StopSignals:
         self.finishing = False
 
     def should_stop(self) -> str | None:
-        """The ``should_stop`` callable of :func:`viscontact.api.run`."""
+        """The ``should_stop`` callable of :func:`viscontact.api.run_to_file`."""
         return self.received[0] if self.received else None
+
+    def finish(self) -> None:
+        """The ``finishing`` callable of :func:`viscontact.api.run_to_file`: the result is being written."""
+        self.finishing = True
 
     def handle(self, signum: int, frame: Any) -> None:  # noqa: ARG002
         if self.received and signum == signal.SIGINT and not self.finishing:

@@ -6,9 +6,12 @@
 ``on_stop`` is then called on every observer with that reason before
 :class:`~viscontact.errors.RunInterrupted` is raised.
 
-* :class:`Recorder`: keeps every ``output.every``-th step and the last, with ``output.fields``;
+* :class:`Recorder`: keeps every ``output.every``-th step and the last, with ``output.fields``, in
+  memory (:func:`viscontact.api.run`);
+* :class:`StreamWriter`: the same records, appended to a streamed result file instead of kept
+  (:func:`viscontact.api.run_to_file`: memory does not grow with the number of steps);
 * :class:`WakeWarning`: warns once when the dropped wake biases the result by over 1 %;
-* :class:`Checkpointer`: saves the state and the records so far every N steps and on a stop;
+* :class:`Checkpointer`: saves the solver state every N steps and on a stop;
 * :class:`StopRequest`: asks a callable after each step whether to stop.
 """
 from __future__ import annotations
@@ -17,6 +20,8 @@ import warnings
 from dataclasses import replace
 from pathlib import Path
 from typing import Callable, Sequence
+
+import numpy as np
 
 from .errors import ViscontactWarning
 from .problem import Problem
@@ -53,10 +58,26 @@ class Recorder(Observer):
             return None
         return replace(record, **self.dropped) if self.dropped else record
 
+    def keep(self, record: StepRecord) -> None:
+        """Keep a record selected by :meth:`kept` (here: in :attr:`records`)."""
+        self.records.append(record)
+
     def on_step(self, state, record: StepRecord) -> None:
         kept = self.kept(record)
         if kept is not None:
-            self.records.append(kept)
+            self.keep(kept)
+
+
+class StreamWriter(Recorder):
+    """A :class:`Recorder` that appends each kept record to ``stream``
+    (:class:`~viscontact.streaming.ResultStream`, flushed after each) and holds none."""
+
+    def __init__(self, problem: Problem, stream) -> None:
+        super().__init__(problem)
+        self.stream = stream
+
+    def keep(self, record: StepRecord) -> None:
+        self.stream.append(record)
 
 
 class WakeWarning(Observer):
@@ -75,17 +96,18 @@ class WakeWarning(Observer):
 
 
 class Checkpointer(Observer):
-    """Writes the state and ``recorder.records`` to ``path`` every ``every`` steps (0: never) and when
-    the run stops cleanly (:func:`viscontact.checkpoint.save_checkpoint`, atomic)."""
+    """Writes the solver state to ``path`` every ``every`` steps (0: never) and when the run stops
+    cleanly (:func:`viscontact.checkpoint.save_checkpoint`, atomic), with the arrays ``extra()``
+    returns then (e.g. how many records the streamed file holds)."""
 
-    def __init__(self, path: str | Path, problem: Problem, recorder: Recorder, every: int = 0) -> None:
-        self.path, self.problem, self.recorder, self.every = path, problem, recorder, every
+    def __init__(self, path: str | Path, problem: Problem, every: int = 0,
+                 extra: Callable[[], dict[str, np.ndarray]] | None = None) -> None:
+        self.path, self.problem, self.every, self.extra = path, problem, every, extra
 
     def save(self, state) -> None:
         from .checkpoint import save_checkpoint
-        from .records import records_to_arrays
 
-        save_checkpoint(self.path, self.problem, state, records_to_arrays(self.recorder.records))
+        save_checkpoint(self.path, self.problem, state, self.extra() if self.extra else None)
 
     def on_step(self, state, record: StepRecord) -> None:
         if self.every and (state.step + 1) % self.every == 0:

@@ -13,6 +13,10 @@ line:
   names the file, the size needed and the space free; no temporary file is left behind.
 * :func:`signals_deferred`: SIGINT and SIGTERM arriving while a file is written are held and
   delivered once it is complete, so a finished run is never discarded half-written.
+* :class:`SpaceClaim`: the disk space a file growing as the run goes (a streamed result) will
+  need, claimed before the run in an unnamed file and handed back piece by piece just before each
+  write, which first checks that its piece is free: a full disk stops the run cleanly, between two
+  writes, instead of failing inside one.
 
 Symbolic links: an ``--out`` that is a symbolic link is followed; the new file replaces the link's
 target (the link itself is kept), and the checks apply to the target.
@@ -35,7 +39,7 @@ from typing import BinaryIO
 
 from .resources import format_size
 
-__all__ = ["check_output_path", "disk_full_error", "remove_temporaries", "signals_deferred", "write_atomically"]
+__all__ = ["SpaceClaim", "check_output_path", "disk_full_error", "move_atomically", "remove_temporaries", "signals_deferred", "write_atomically"]
 
 #: first bytes of the files a result may be: netCDF-4 (HDF5) and classic netCDF
 RESULT_SIGNATURES = (b"\x89HDF\r\n\x1a\n", b"CDF\x01", b"CDF\x02")
@@ -173,6 +177,89 @@ def disk_full_error(path: Path, needed: int, what: str = "") -> OSError:
                    f"{free} free in {path.parent}; {hint}", str(path))
 
 
+class SpaceClaim:
+    """Disk space claimed ahead in the folder of ``path`` for a file that grows as a run goes.
+
+    The claim is an unnamed file (``O_TMPFILE``: nothing is left behind, even after ``kill -9``)
+    of ``size`` bytes allocated at once (``posix_fallocate``). :meth:`take` hands back a piece just
+    before it is written and checks that the folder has it free; the last ``reserve`` bytes stay
+    claimed until :meth:`close`, for the file's last write (finishing it, or saving it when a write
+    failed). Where the filesystem cannot make unnamed or allocated files, nothing is claimed and
+    :meth:`take` only checks the free space.
+
+    Parameters
+    ----------
+    path
+        The growing file (named in the errors).
+    size
+        Bytes the file will need from now on (an upper bound), ``reserve`` included.
+    reserve
+        Bytes kept claimed until :meth:`close`.
+    required
+        True: a disk that cannot hold ``size`` now is an error; False (``--force``): go on with
+        ``reserve`` alone claimed (when free), each :meth:`take` checking the free space.
+    hint
+        What to do when the disk is full (the end of the error line).
+
+    Raises
+    ------
+    OSError
+        ``ENOSPC`` (:func:`disk_full_error`) when ``required`` and ``size`` is not free.
+    """
+
+    def __init__(self, path: str | Path, size: int, *, reserve: int = 0, required: bool = True,
+                 hint: str = "") -> None:
+        self.path, self.hint, self.claimed, self._fd = Path(path), hint, 0, -1
+        try:
+            self.block = os.statvfs(self.path.parent).f_frsize or 4096
+        except OSError:
+            self.block = 4096
+        self.reserve = self._blocks(reserve)
+        try:
+            fd = os.open(self.path.parent, os.O_TMPFILE | os.O_RDWR, 0o600)
+        except (OSError, AttributeError):  # no unnamed files here (or not Linux): free space checked per write
+            return
+        for claim in dict.fromkeys((self._blocks(max(size, reserve)), self.reserve)):
+            try:
+                if claim:
+                    os.posix_fallocate(fd, 0, claim)
+                self._fd, self.claimed = fd, claim
+                return
+            except OSError as exc:
+                if exc.errno not in _DISK_FULL:
+                    break  # the filesystem cannot allocate: free space checked per write
+                if required:
+                    os.close(fd)
+                    raise disk_full_error(self.path, size, hint) from None
+        os.close(fd)
+
+    def take(self, nbytes: int, *, needed: int | None = None) -> None:
+        """Hand back ``nbytes`` of the claim (down to the reserve) for the write about to happen,
+        and check that the folder has ``nbytes`` free.
+
+        Raises
+        ------
+        OSError
+            ``ENOSPC`` naming the file, ``needed`` (what it still needs, default ``nbytes``) and the
+            space free: the write must not be attempted.
+        """
+        if self._fd >= 0 and self.claimed > self.reserve:
+            self.claimed = max(self.claimed - self._blocks(nbytes), self.reserve)  # whole blocks: all freed
+            os.ftruncate(self._fd, self.claimed)
+        if shutil.disk_usage(self.path.parent).free < nbytes:
+            raise disk_full_error(self.path, needed or nbytes, self.hint)
+
+    def _blocks(self, nbytes: int) -> int:
+        """``nbytes`` rounded up to whole blocks of the filesystem."""
+        return -(-max(nbytes, 0) // self.block) * self.block
+
+    def close(self) -> None:
+        """Give back what is left of the claim, the reserve included."""
+        if self._fd >= 0:
+            os.close(self._fd)
+            self._fd, self.claimed = -1, 0
+
+
 @contextmanager
 def signals_deferred(signals: Iterable[int] = (signal.SIGINT, signal.SIGTERM)) -> Iterator[list[int]]:
     """Hold ``signals`` while the body runs and deliver them (to the handlers in place before) once
@@ -244,6 +331,26 @@ def write_atomically(path: str | Path, content: bytes | memoryview | Callable[[B
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
             raise
+    return target
+
+
+def move_atomically(source: str | Path, path: str | Path) -> Path:
+    """Rename the finished file ``source`` (in the same folder) over ``path`` (over its target when
+    ``path`` is a symbolic link) with SIGINT / SIGTERM held, and fsync the folder so that the
+    rename outlives a crash. Returns the file replaced."""
+    target = _target(Path(path))
+    with signals_deferred():
+        os.replace(source, target)
+        try:
+            fd = os.open(target.parent, os.O_RDONLY)
+        except OSError:
+            return target
+        try:
+            os.fsync(fd)
+        except OSError:  # some filesystems cannot fsync a folder
+            pass
+        finally:
+            os.close(fd)
     return target
 
 

@@ -24,13 +24,21 @@ _FIELD_BYTES = {"pressure": 8, "shear_x": 8, "stick": 1, "displacement_z": 8}
 SECONDS_PER_CELL_STEP = 19.0 / (201 * 256**2 * math.log2(512))
 #: runs estimated to take longer than this [s] are refused unless forced
 MAX_RUN_SECONDS = 24 * 3600.0
+#: HDF5 bookkeeping one streamed record may add (chunk index entries, flushed metadata) [bytes]
+RECORD_OVERHEAD = 4096
+#: a node of the chunk index of an HDF5 variable (B-tree; about 2 KiB measured) [bytes], an upper bound
+INDEX_NODE_BYTES = 4096
+#: what finishing a streamed result writes beyond its records (attributes, scale variables) [bytes]
+FINISH_BYTES = 64 * 1024
+#: a result file's layout before its first record (variables, attributes, the case text) [bytes]
+LAYOUT_BYTES = 64 * 1024
 
 
 @dataclass(frozen=True)
 class Estimate:
     """``result_bytes``: the result file (uncompressed); ``peak_memory_bytes``: the process at its peak;
-    ``records``: how many time entries the result holds; ``checkpoint_bytes``: one checkpoint at the
-    end of the run (solver state and every record); ``seconds``: the run time on the reference
+    ``records``: how many time entries the result holds; ``checkpoint_bytes``: one checkpoint (the
+    solver state only: the records are in the streamed result); ``seconds``: the run time on the reference
     machine (:data:`SECONDS_PER_CELL_STEP`)."""
 
     result_bytes: int
@@ -48,24 +56,60 @@ class Estimate:
 def estimate(problem: Problem) -> Estimate:
     """Result size and peak memory of the transient run of ``problem``.
 
-    Memory: the recorded fields are kept until the file is written (and copied once when the
-    Dataset is built), plus the solver's own arrays: the history (2 x retardation modes), a dozen
-    n x n work fields, and per influence kernel its (2n)^2 real-space copy, its (2n)(n + 1) complex
-    spectrum and the FFT work arrays.
+    Result: what :mod:`viscontact.streaming` claims on disk for it (:func:`stream_bytes`) plus the
+    file's layout. Memory (``viscontact run`` streams its records: it does not grow with the number
+    of steps): the record being written (and its compressed copy), plus the solver's own arrays: the
+    history (2 x retardation modes), a dozen n x n work fields, and per influence kernel its
+    (2n)^2 real-space copy, its (2n)(n + 1) complex spectrum and the FFT work arrays. Checkpoint:
+    the solver state only (history and the last step's fields).
     """
     n = problem.grid.n
     steps = problem.time.n_steps
-    every = problem.output.every
-    records = (steps - 1) // every + 1 + (1 if (steps - 1) % every else 0)
-    per_record = sum(_FIELD_BYTES.get(f, 8) for f in problem.output.fields) * n * n + 200
-    result = records * per_record + len(problem.title) + 4096
+    records = recorded_steps(problem)
+    per_record = record_bytes(problem)
+    result = stream_bytes(problem, records) + len(problem.title) + LAYOUT_BYTES
     modes = problem.material.creep.retardation_times.size
     kernels = 4 if problem.tangential.mode in ("partial_slip", "gross_sliding") else 1
     solver = (2 * 2 * modes + 16) * 8 * n * n + kernels * (4 * n * n * 8 + 2 * n * (n + 1) * 16) \
         + 6 * 4 * n * n * 8
     state = (2 * modes + 8) * 8 * n * n
     seconds = steps * SECONDS_PER_CELL_STEP * n * n * math.log2(2 * n)
-    return Estimate(int(result), int(2 * result + solver + 150e6), int(records), int(result + state), seconds)
+    return Estimate(int(result), int(2 * per_record + solver + 150e6), int(records), int(state), seconds)
+
+
+def recorded_steps(problem: Problem) -> int:
+    """How many time entries the result of ``problem``'s transient run holds (every
+    ``output.every``-th step and the last)."""
+    steps, every = problem.time.n_steps, problem.output.every
+    return (steps - 1) // every + 1 + (1 if (steps - 1) % every else 0)
+
+
+def record_bytes(problem: Problem) -> int:
+    """Upper bound of what one record adds to a streamed result file [bytes]: its fields
+    uncompressed, its scalars and :data:`RECORD_OVERHEAD`."""
+    from .records import StepRecord
+
+    n = problem.grid.n
+    return sum(_FIELD_BYTES.get(f, 8) for f in problem.output.fields) * n * n \
+        + 8 * (len(StepRecord.SCALARS) + 2) + RECORD_OVERHEAD
+
+
+def stream_bytes(problem: Problem, records: int, *, first: int = 0, finishing: bool = True) -> int:
+    """Upper bound of what the records ``first .. first + records - 1`` add to a streamed result file
+    [bytes]: :func:`record_bytes` each, a new chunk of every time series each
+    :data:`~viscontact.results.SERIES_CHUNK` records (and, the first time, the root node of the
+    chunk index of every variable along ``t``: :data:`INDEX_NODE_BYTES` each), and with ``finishing`` :data:`FINISH_BYTES`
+    and the subsurface stresses."""
+    from .records import StepRecord
+    from .results import SERIES_CHUNK
+
+    chunks = -(-(first + records) // SERIES_CHUNK) - (-(-first // SERIES_CHUNK))
+    out = problem.output
+    subsurface = 6 * len(out.subsurface_depths) * problem.grid.n * 8 * len(out.subsurface_times or (0,))
+    series, fields = len(StepRecord.SCALARS) + 2, len(problem.output.fields)
+    return records * record_bytes(problem) \
+        + chunks * (series * SERIES_CHUNK * 8 + (series + fields) * INDEX_NODE_BYTES) \
+        + (FINISH_BYTES + subsurface if finishing else 0)
 
 
 def available_memory() -> int | None:

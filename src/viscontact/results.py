@@ -30,11 +30,14 @@ __all__ = [
     "REFERENCES",
     "SCALES",
     "VARIABLES",
+    "completeness",
     "global_attrs",
     "hertz_scale",
     "material_dataset",
+    "netcdf_encoding",
     "open_result",
     "sweep_dataset",
+    "t_gross_sliding",
     "to_dataset",
     "write_netcdf",
 ]
@@ -108,7 +111,10 @@ _UNDEFINED = {
                       "zero: no stick zone in gross sliding from t = 0 (tangential.mode = 'gross_sliding')"),
     "partial_slip": ((), ""),
 }
-_COMPRESSION = {"zlib": True, "complevel": 4}
+#: compression of the 3-D fields (chunks of one time step)
+FIELD_COMPRESSION = {"zlib": True, "complevel": 4}
+#: time steps per chunk of the 1-D series of a streamed result (:mod:`viscontact.streaming`)
+SERIES_CHUNK = 512
 
 
 def hertz_scale(problem: Problem) -> tuple[float, float]:
@@ -315,14 +321,18 @@ def to_dataset(records: Sequence[StepRecord], problem: Problem, *, case_text: st
     sub_vars, sub_coords = subsurface_variables(records, problem)
     ds = xr.Dataset({**variables, **sub_vars}, coords={**coords, **sub_coords})
     ds.attrs.update(global_attrs(problem, case_text))
-    ds.attrs["t_gross_sliding"] = _t_gross_sliding(mode, t, variables["phase"].values)
-    last = records[-1].step if records else -1
-    ds.attrs["complete"] = int(last == problem.time.n_steps - 1)
+    ds.attrs["t_gross_sliding"] = t_gross_sliding(mode, t, variables["phase"].values)
+    ds.attrs["complete"] = completeness(coords["step"][1], problem)
     ds.attrs.update(attrs or {})
     return _add_scales(ds)
 
 
-def _t_gross_sliding(mode: str, t: np.ndarray, phase: np.ndarray) -> float:
+def completeness(steps: np.ndarray, problem: Problem) -> int:
+    """Attribute ``complete``: 1 when the last of the recorded ``steps`` is the run's last step, else 0."""
+    return int(len(steps) > 0 and int(steps[-1]) == problem.time.n_steps - 1)
+
+
+def t_gross_sliding(mode: str, t: np.ndarray, phase: np.ndarray) -> float:
     """First recorded time [s] in gross sliding (partial slip), 0 (sliding modes), NaN (otherwise)."""
     if mode == "partial_slip":
         hits = np.flatnonzero(phase == PHASE_GROSS_SLIDING)
@@ -393,6 +403,22 @@ def material_dataset(material: Material, *, points: int = 200) -> xr.Dataset:
     return ds
 
 
+def netcdf_encoding(ds: xr.Dataset, *, streamed: bool = False) -> dict[str, dict[str, Any]]:
+    """How a result is stored: 3-D fields compressed (:data:`FIELD_COMPRESSION`) in chunks of one
+    time step. ``streamed`` (``t`` unlimited, :mod:`viscontact.streaming`): also the 1-D series
+    along ``t`` in chunks of :data:`SERIES_CHUNK` steps, uncompressed (rewritten in place).
+    Coordinates have no fill value."""
+    encoding: dict[str, dict[str, Any]] = {name: {"_FillValue": None} for name in ds.coords}
+    for name, var in ds.variables.items():
+        if var.ndim == 3 and (var.shape[0] or streamed):
+            encoding[name] = {**FIELD_COMPRESSION, "chunksizes": (1,) + var.shape[1:]}
+        elif var.ndim == 3:
+            encoding[name] = dict(FIELD_COMPRESSION)
+        elif streamed and var.dims == ("t",):
+            encoding[name] = {**encoding.get(name, {}), "chunksizes": (SERIES_CHUNK,)}
+    return encoding
+
+
 def write_netcdf(ds: xr.Dataset, path: str | Path, *, force: bool = False) -> Path:
     """Write ``ds`` to ``path`` as netCDF-4 (h5netcdf), atomically.
 
@@ -414,12 +440,8 @@ def write_netcdf(ds: xr.Dataset, path: str | Path, *, force: bool = False) -> Pa
     from .output_files import check_output_path, signals_deferred, write_atomically
 
     check_output_path(path, force=force)
-    encoding: dict[str, dict[str, Any]] = {name: {"_FillValue": None} for name in ds.coords}
-    for name, var in ds.data_vars.items():
-        if var.ndim == 3:
-            encoding[name] = {**_COMPRESSION, "chunksizes": (1,) + var.shape[1:]} if var.shape[0] else dict(_COMPRESSION)
     with signals_deferred(), _local_scheduler():
-        data = ds.to_netcdf(engine="h5netcdf", encoding=encoding)
+        data = ds.to_netcdf(engine="h5netcdf", encoding=netcdf_encoding(ds))
         write_atomically(path, data, hint="free some space or write elsewhere (--out)")
     return Path(path)
 

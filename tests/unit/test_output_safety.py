@@ -137,10 +137,11 @@ def test_force_through_a_symlink_replaces_its_target(tmp_path, capsys):
 
 
 # --- full disks (item 1) ---------------------------------------------------------------------------
-def test_disk_filling_during_the_final_write_is_one_line_and_leaves_nothing(mount_point, tmp_path):
-    """A real 1 MiB filesystem that passes the pre-run estimate and fills up while the final result is
-    being written (another program writing there). It used to crash inside h5py (exit 139, a .tmp left)."""
-    folder = mount_point("tiny", "size=1m")
+def test_disk_filling_while_the_result_is_created_is_one_line_and_leaves_nothing(mount_point, tmp_path):
+    """A real 2 MiB filesystem that passes the pre-run estimate and fills up (another program writing
+    there) while the streamed result file is being created, before its space is claimed. It used to
+    crash inside h5py (exit 139, a .tmp left)."""
+    folder = mount_point("tiny", "size=2m")
     out = folder / "r.nc"
     proc, flag = _slow_writer(tmp_path, CREEP, "--out", out, "--quiet", *SMALL)
     _wait_for(flag, proc)
@@ -151,6 +152,51 @@ def test_disk_filling_during_the_final_write_is_one_line_and_leaves_nothing(moun
     assert proc.returncode == 2 and len(errors) == 1 and "Traceback" not in err, err
     assert "no space left" in errors[0] and "r.nc" in errors[0] and "needs about" in errors[0]
     assert sorted(p.name for p in folder.iterdir()) == ["filler"]
+
+
+def test_disk_filling_during_a_streamed_run_cannot_take_its_claimed_space(mount_point, tmp_path):
+    """Another program fills the disk while the run streams its records: the space of every record was
+    claimed before the first step (viscontact.output_files.SpaceClaim), so the run completes."""
+    folder = mount_point("claimed", "size=2m")
+    out = folder / "r.nc"
+    proc, flag = _slow_writer(tmp_path, CREEP, "--out", out, "--quiet", *SMALL, slow=APPEND)
+    _wait_for(flag, proc)
+    filler = folder / "filler"
+    with open(filler, "wb", buffering=0) as fh:  # everything that is free
+        try:
+            while True:
+                fh.write(b"\0" * 4096)
+                fh.flush()
+        except OSError:
+            pass
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 0 and not err.strip(), err
+    with xr.open_dataset(out) as ds:
+        assert ds.attrs["complete"] == 1 and ds.sizes["t"] == 41
+    assert sorted(p.name for p in folder.iterdir()) == ["filler", "r.nc"]
+
+
+def test_forced_run_on_a_disk_too_small_stops_between_two_records(mount_point, tmp_path):
+    """--force runs a result larger than the disk (refused without it): the run stops cleanly when the
+    next record would not fit, one error line naming the file, what it needs and what is free, exit 2;
+    the steps done stay in r.nc, readable, complete = 0 (never an HDF5 crash inside a write)."""
+    folder = mount_point("small", "size=1m")
+    out = folder / "r.nc"
+    big = ("--set", "grid.n=64", "--set", "time.t_end=0.02", "--set", "output.fields=[\"pressure\", \"displacement_z\"]")
+    code = subprocess.run([sys.executable, "-m", "viscontact.cli", "run", str(CREEP), "--out", str(out), *big],
+                          capture_output=True, text=True)
+    assert code.returncode == 2 and "result needs about" in code.stderr and "--force" in code.stderr
+    proc = subprocess.run([sys.executable, "-m", "viscontact.cli", "run", str(CREEP), "--out", str(out), "--quiet",
+                           "--force", *big], capture_output=True, text=True, timeout=300)
+    errors = [line for line in proc.stderr.splitlines() if line.startswith("viscontact: error")]
+    assert proc.returncode == 2 and len(errors) == 1 and "Traceback" not in proc.stderr, proc.stderr
+    assert "no space left" in errors[0] and "r.nc" in errors[0] and "needs about" in errors[0]
+    assert "free in" in errors[0] and "records done are in" in errors[0]
+    with xr.open_dataset(out) as ds:
+        assert ds.attrs["complete"] == 0 and ds.attrs["stopped_by"] == "ENOSPC" and 0 < ds.sizes["t"] < 81
+        assert np.array_equal(ds["step"].values, np.arange(ds.sizes["t"]))
+        assert np.all(np.isfinite(ds["displacement_z"].values)) and ds["load"].values[-1] > 0
+    assert sorted(p.name for p in folder.iterdir()) == ["r.nc"]
 
 
 def test_injected_enospc_and_eio_keep_the_previous_result(tmp_path, monkeypatch):
@@ -197,7 +243,8 @@ def test_full_disk_at_a_checkpoint_names_the_file_the_size_and_the_remedy(tmp_pa
 def test_pre_run_disk_check_counts_the_checkpoints(tmp_path, capsys, monkeypatch):
     est = resources.estimate(resources_problem := __import__("viscontact.api", fromlist=["prepare"]).prepare(
         __import__("viscontact.case", fromlist=["load_case"]).load_case(CREEP))[0])
-    assert est.checkpoint_bytes > est.result_bytes > 0 and resources_problem.grid.n == 128
+    # the checkpoint holds the solver state only (the records are streamed to the result)
+    assert 0 < est.checkpoint_bytes < est.result_bytes and resources_problem.grid.n == 128
     free = est.result_bytes + est.checkpoint_bytes  # enough for the result, not for two checkpoints beside it
     monkeypatch.setattr(shutil, "disk_usage", lambda path: shutil._ntuple_diskusage(10**12, 10**12 - free, free))
     out = str(tmp_path / "r.nc")
@@ -227,22 +274,31 @@ def test_memory_and_run_time_beyond_the_machine_are_refused_unless_forced(tmp_pa
 
 # --- signals (item 1) ------------------------------------------------------------------------------
 SLOW_WRITE = textwrap.dedent("""
-    import sys, time, xarray
-    flag = sys.argv[1]
-    original = xarray.Dataset.to_netcdf
+    import importlib, os, sys, time
+    flag, where = sys.argv[1:3]
+    module, owner, name = where.split(":")
+    owner = getattr(importlib.import_module(module), owner)
+    original = getattr(owner, name)
     def slow(self, *args, **kwargs):
-        open(flag, "a").close()
-        time.sleep(2.0)
+        if not os.path.exists(flag):
+            open(flag, "a").close()
+            time.sleep(2.0)
         return original(self, *args, **kwargs)
-    xarray.Dataset.to_netcdf = slow
+    setattr(owner, name, slow)
     from viscontact.cli import main
-    sys.exit(main(sys.argv[2:]))
+    sys.exit(main(sys.argv[3:]))
 """)
+#: what the slow writer slows down: the creation of the streamed result file (its layout, by
+#: xarray), its first record, or its finishing (the final write of a streamed run)
+CREATE, APPEND, FINISH = ("xarray:Dataset:to_netcdf", "viscontact.streaming:ResultStream:append",
+                          "viscontact.streaming:ResultStream:finish")
 
 
-def _slow_writer(tmp_path: Path, *args: str | Path) -> tuple[subprocess.Popen, Path]:
+def _slow_writer(tmp_path: Path, *args: str | Path, slow: str = CREATE) -> tuple[subprocess.Popen, Path]:
+    """``viscontact run *args`` in a subprocess whose first call of ``slow`` creates the file
+    ``tmp_path / "writing"`` and then sleeps 2 s."""
     flag = tmp_path / "writing"
-    proc = subprocess.Popen([sys.executable, "-c", SLOW_WRITE, str(flag), "run", *map(str, args)],
+    proc = subprocess.Popen([sys.executable, "-c", SLOW_WRITE, str(flag), slow, "run", *map(str, args)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     return proc, flag
 
@@ -259,7 +315,7 @@ def _wait_for(path: Path, proc: subprocess.Popen, timeout: float = 120) -> None:
 @pytest.mark.parametrize("sig, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
 def test_signal_during_the_final_write_keeps_the_finished_run(tmp_path, sig, code):
     out = tmp_path / "r.nc"
-    proc, flag = _slow_writer(tmp_path, CREEP, "--out", out, "--quiet", *SMALL)
+    proc, flag = _slow_writer(tmp_path, CREEP, "--out", out, "--quiet", *SMALL, slow=FINISH)
     _wait_for(flag, proc)
     proc.send_signal(sig)
     _, err = proc.communicate(timeout=120)
@@ -273,7 +329,8 @@ def test_signal_during_the_final_write_keeps_the_finished_run(tmp_path, sig, cod
 
 def test_double_sigint_still_writes_what_is_done(tmp_path):
     out = tmp_path / "r.nc"
-    proc, flag = _slow_writer(tmp_path, CREEP, "--out", out, "--quiet", "--checkpoint-every", "2", "--set", "grid.n=64")
+    proc, flag = _slow_writer(tmp_path, CREEP, "--out", out, "--quiet", "--checkpoint-every", "2", "--set", "grid.n=64",
+                              slow=FINISH)
     _wait_for(Path(str(out) + ".checkpoint.npz"), proc)
     proc.send_signal(signal.SIGINT)  # stop after this step: the partial result is written (slowly)
     _wait_for(flag, proc)

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from viscontact import cli
+from viscontact import cli, streaming
 from viscontact.errors import NumericalGuardError
 from viscontact.transient import _guard
 
@@ -66,15 +66,24 @@ def test_kill_9_then_resume_equals_uninterrupted(tmp_path):
     assert _run(*common, "--out", str(full)).returncode == 0
     ckpt = Path(str(part) + ".checkpoint.npz")
     proc = _start_and_wait_for(ckpt, *common, "--out", str(part), "--checkpoint-every", "4")
+    time.sleep(0.3 * np.random.default_rng().random())  # a moment of the run: computing or writing
     os.kill(proc.pid, signal.SIGKILL)
     proc.communicate()
     assert not part.exists()  # no result file until the run completes
+    assert not list(tmp_path.glob("*.tmp"))
+    # the steps done are in the streamed file (viscontact.streaming), readable with complete = 0
+    with xr.open_dataset(streaming.partial_path(part)) as streamed, np.load(ckpt) as saved:
+        assert streamed.attrs["complete"] == 0 and 4 <= streamed.sizes["t"] < 161
+        assert np.array_equal(streamed["step"].values, np.arange(streamed.sizes["t"]))
+        assert np.all(np.isfinite(streamed["pressure"].values)) and streamed["load"].values[-1] > 0
+        assert 4 <= int(saved["extra__records"]) <= streamed.sizes["t"]  # resume drops the steps after it
     resumed = _run(*common, "--out", str(part), "--resume")
     assert resumed.returncode == 0, resumed.stderr
     assert not list(tmp_path.glob("*.tmp*"))  # a write killed half way is cleaned up by the resume
     assert xr.open_dataset(part).attrs["complete"] == 1
     _same(full, part)
     assert not ckpt.exists()  # removed after the complete write
+    assert not streaming.partial_path(part).exists()  # renamed to the result
 
 
 @pytest.mark.parametrize("sig, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])

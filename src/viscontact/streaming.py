@@ -1,0 +1,292 @@
+"""Streamed result files: each recorded step goes to the netCDF-4 file as the run goes.
+
+The file has the layout of :func:`viscontact.results.to_dataset` (same variables, coordinates and
+attributes: its skeleton *is* ``to_dataset`` of no records, written by xarray, then each step is
+appended with h5py) with the time dimension ``t`` unlimited. Fields are chunked one step per chunk
+and zlib-compressed, as :func:`viscontact.results.write_netcdf` writes them; the scalar series are
+chunked :data:`~viscontact.results.SERIES_CHUNK` steps at a time, uncompressed (a chunk of fixed
+size is rewritten in place as it fills, so the chunks the file already points to never move).
+After each step the file is flushed: its attribute ``complete`` stays 0 until
+:meth:`ResultStream.finish`, so a run killed at any moment leaves a file that
+``xarray.open_dataset`` reads, holding every step flushed before the kill. Memory does not grow
+with the number of steps: nothing of a record is kept once written.
+
+Safety (:mod:`viscontact.output_files`): the disk space the remaining records need (an upper
+bound, :func:`viscontact.resources.stream_bytes`) is claimed when the file is opened
+(:class:`~viscontact.output_files.SpaceClaim`) and handed back record by record just before each
+write, which first checks that its piece is free: a full disk stops the run between two records
+with one :class:`OSError` (``ENOSPC``), never inside an HDF5 write. SIGINT and SIGTERM arriving
+during a write are held until it is flushed (:func:`~viscontact.output_files.signals_deferred`).
+
+Where the file lives while running (:func:`partial_path`): ``viscontact run --out OUT`` streams into
+the sibling ``OUT.partial`` and renames it over ``OUT`` when the run ends, so an ``OUT`` replaced
+under ``--force`` is kept until the new result is complete. A run that stops cleanly (SIGINT,
+SIGTERM, a failed solve, a full disk) ends the file with ``complete = 0`` and ``stopped_by`` and
+renames it over ``OUT`` too, unless ``OUT`` holds a complete result: that one is never replaced by
+an incomplete one, and the steps done stay in ``OUT.partial``. After a kill (-9, power) the steps
+done are in ``OUT.partial``; ``--resume`` continues it from the checkpoint's step (dropping any
+later steps).
+"""
+from __future__ import annotations
+
+import errno
+import os
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .output_files import SpaceClaim, disk_full_error, signals_deferred, write_atomically
+from .problem import Problem
+from .records import StepRecord
+from .resources import recorded_steps, stream_bytes
+
+__all__ = ["ResultStream", "is_complete_result", "partial_path"]
+
+#: what to do when the disk fills during a streamed run (the end of the error line)
+DISK_FULL_HINT = ("free some space or write elsewhere (--out); the steps done are kept (complete = 0) and "
+                  "--resume continues from the last checkpoint (--checkpoint-every)")
+
+
+def partial_path(out: str | Path) -> Path:
+    """Where the result ``out`` is streamed while its run goes on: ``OUT.partial``."""
+    out = Path(out)
+    return out.with_name(out.name + ".partial")
+
+
+def is_complete_result(path: str | Path) -> bool:
+    """True when ``path`` is a result file whose attribute ``complete`` is 1."""
+    import h5py
+
+    try:
+        with h5py.File(path, "r") as f:
+            return int(np.asarray(f.attrs.get("complete", 0)).item()) == 1
+    except (OSError, ValueError, TypeError):
+        return False
+
+
+class ResultStream:
+    """An open streamed result file: written by xarray with no step (its layout), then appended
+    to with h5py, one time entry at a time.
+
+    Create one with :meth:`create` (a new file) or :meth:`reopen` (continue a file after a resume);
+    :meth:`append` each recorded step; :meth:`finish` sets the final attributes and closes it.
+
+    Attributes
+    ----------
+    path
+        The file written.
+    count
+        Records in the file.
+    """
+
+    def __init__(self, path: str | Path, problem: Problem, *, require_space: bool = True) -> None:
+        import h5py
+
+        self.path, self.problem, self.broken = Path(path), problem, False
+        self.file = h5py.File(self.path, "a")
+        #: every variable along ``t`` by name (the coordinates ``t``, ``step``, the series, the fields)
+        self.along_t = {name: var for name, var in self.file.items()
+                        if isinstance(var, h5py.Dataset) and var.maxshape[:1] == (None,)}
+        self.fields = [name for name in StepRecord.FIELDS if name in self.along_t]
+        self.count = int(self.along_t["t"].shape[0])
+        self.total = recorded_steps(problem)
+        self._hold_metadata_until_flush()
+        try:
+            self.space = SpaceClaim(self.path, self._needed(), reserve=stream_bytes(problem, 0),
+                                    required=require_space, hint=DISK_FULL_HINT)
+        except OSError:
+            self.close()
+            raise
+
+    @classmethod
+    def create(cls, path: str | Path, problem: Problem, *, case_text: str = "", history: str = "",
+               require_space: bool = True) -> ResultStream:
+        """A new file at ``path`` (replaced if there) holding no step yet (``complete = 0``);
+        ``history`` is appended to its ``history`` attribute. The disk space of every record is
+        claimed (``require_space``: or the disk-full error; else go on without a claim).
+
+        Raises
+        ------
+        OSError
+            The file cannot be written, or (``ENOSPC``) the disk cannot hold the result: no file
+            is left behind.
+        """
+        from .results import netcdf_encoding, to_dataset
+
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        skeleton = to_dataset([], problem, case_text=case_text)
+        skeleton.attrs["history"] = f"{skeleton.attrs.get('history', '')} {history}".strip()
+        layout = skeleton.to_netcdf(engine="h5netcdf", unlimited_dims=("t",),
+                                    encoding=netcdf_encoding(skeleton, streamed=True))
+        write_atomically(path, layout, hint=DISK_FULL_HINT)
+        try:
+            return cls(path, problem, require_space=require_space)
+        except BaseException:
+            path.unlink(missing_ok=True)
+            raise
+
+    @classmethod
+    def reopen(cls, path: str | Path, problem: Problem, records: int, *, require_space: bool = True) -> ResultStream:
+        """Continue the file at ``path`` after its first ``records`` records (later ones are dropped).
+
+        Raises
+        ------
+        FileNotFoundError
+            No file at ``path``, or it holds fewer than ``records`` records.
+        """
+        path = Path(path)
+        if not path.exists():
+            raise FileNotFoundError(errno.ENOENT, "the streamed records of the checkpointed run are missing; "
+                                    "run without --resume", str(path))
+        stream = cls(path, problem, require_space=require_space)
+        if stream.count < records:
+            stream.close()
+            raise FileNotFoundError(errno.ENOENT, f"holds {stream.count} records, the checkpoint {records}; "
+                                    "run without --resume", str(path))
+        with signals_deferred():
+            stream._resize(records)
+            stream.file.attrs["complete"] = 0
+            stream.flush()
+        return stream
+
+    def _needed(self) -> int:
+        """Bytes the records still to come need, finishing included (an upper bound)."""
+        return stream_bytes(self.problem, max(self.total - self.count, 0), first=self.count)
+
+    def _hold_metadata_until_flush(self) -> None:
+        """Keep every changed HDF5 metadata entry in memory until :meth:`flush` (no eviction between
+        two flushes), so the file on disk holds the metadata of the last flush, whatever comes after."""
+        config = self.file.id.get_mdc_config()
+        config.evictions_enabled = False
+        config.incr_mode = config.flash_incr_mode = config.decr_mode = 0  # the H5C_*__off modes
+        self.file.id.set_mdc_config(config)
+
+    def _resize(self, count: int) -> None:
+        for var in self.along_t.values():
+            var.resize(count, axis=0)
+        self.count = count
+
+    def append(self, record: StepRecord) -> None:
+        """Write ``record`` as the next time entry (fields not recorded are written as zeros, as
+        :func:`~viscontact.results.to_dataset` does) and flush, with SIGINT / SIGTERM held meanwhile.
+
+        Raises
+        ------
+        OSError
+            ``ENOSPC`` before anything is written when the disk has not the room this record may
+            take (the file stays as it was after the previous record).
+        """
+        k = self.count
+        self.space.take(stream_bytes(self.problem, 1, first=k, finishing=False), needed=self._needed())
+        f = self.along_t
+        with signals_deferred():
+            try:
+                for var in f.values():
+                    var.resize(k + 1, axis=0)
+                f["t"][k] = record.t
+                f["step"][k] = record.step
+                for name in StepRecord.SCALARS:
+                    f[name][k] = getattr(record, name)
+                for name in self.fields:
+                    value, var = getattr(record, name), f[name]
+                    var[k] = np.zeros(var.shape[1:], dtype=var.dtype) if value is None else np.asarray(value, dtype=var.dtype)
+                self.count = k + 1
+                self.flush()
+            except (OSError, RuntimeError) as exc:  # HDF5 reports a failed write as RuntimeError
+                self._rescue(exc)
+
+    def _rescue(self, exc: BaseException) -> None:
+        """A write failed (the disk filled beyond the claim, an I/O error): give back the reserve and
+        flush again, so that the file holds the steps before this one and can be finished, then
+        raise one :class:`OSError` naming the file. When even that fails, the file is left as its
+        last flush wrote it (``complete = 0``) and never touched again (:attr:`broken`)."""
+        self.space.close()
+        try:
+            self._resize(self.count)
+            self.flush()
+        except (OSError, RuntimeError):
+            self.broken = True
+        if getattr(exc, "errno", None) in (errno.ENOSPC, errno.EDQUOT) or "No space left" in str(exc):
+            raise disk_full_error(self.path, self._needed(), DISK_FULL_HINT) from None
+        raise OSError(errno.EIO, f"writing the result failed ({' '.join(str(exc).split())[:200]})",
+                      str(self.path)) from None
+
+    def flush(self) -> None:
+        """Push everything written so far to the operating system: the file on disk is valid as it
+        is (a kill after this loses nothing written before)."""
+        self.file.flush()
+
+    def finish(self, attrs: dict[str, Any] | None = None) -> Path:
+        """Set ``t_gross_sliding`` and ``complete`` as :func:`~viscontact.results.to_dataset` does (and
+        ``attrs``, which override them), add the subsurface stresses the output asks for, fsync and
+        close, with SIGINT / SIGTERM held meanwhile. Returns the path."""
+        from .results import SCALES, completeness, t_gross_sliding
+
+        f = self.file
+        self.space.close()  # what is left of the claim is for the finishing writes
+        with signals_deferred():
+            if self.along_t["t"].shape[0] != self.count:  # an append interrupted (KeyboardInterrupt) part-way
+                self._resize(self.count)
+            t, phase, step = (self.along_t[name][:] for name in ("t", "phase", "step"))
+            final = {"t_gross_sliding": t_gross_sliding(self.problem.tangential.mode, t, phase),
+                     "complete": completeness(step, self.problem), **(attrs or {})}
+            for key, value in final.items():
+                f.attrs[key] = value
+                if key in SCALES and key in f:  # also a scalar variable (to_dataset's scales)
+                    f[key][()] = float(value)
+            subsurface = _FileRecords(self.along_t, t) if self.problem.output.subsurface_depths and len(t) else None
+            if subsurface is not None:
+                from .results import subsurface_variables
+
+                variables, coords = subsurface_variables(subsurface, self.problem)
+            f.close()
+            if subsurface is not None:
+                import xarray as xr
+
+                extra = xr.Dataset(variables, coords=coords)
+                extra.to_netcdf(self.path, mode="a", engine="h5netcdf",
+                                encoding={name: {"_FillValue": None} for name in extra.variables})
+            with open(self.path, "rb+") as fh:
+                os.fsync(fh.fileno())
+        return self.path
+
+    def close(self) -> None:
+        """Close without finishing (the file stays valid, ``complete = 0``) and give back the space
+        claimed."""
+        if self.file.id.valid:
+            self.file.close()
+        space = getattr(self, "space", None)
+        if space is not None:
+            space.close()
+
+
+class _FileRecord:
+    """One record of a streamed file as :func:`viscontact.results.subsurface_variables` reads it:
+    its time, and its fields read from the file on access."""
+
+    def __init__(self, along_t: dict, t: float, k: int) -> None:
+        self._along_t, self.t, self._k = along_t, t, k
+
+    def __getattr__(self, name: str) -> Any:
+        if name in StepRecord.FIELDS:
+            var = self._along_t.get(name)
+            return None if var is None else var[self._k]
+        raise AttributeError(name)
+
+
+class _FileRecords(Sequence):
+    """The records of a streamed file, each read only when its fields are used."""
+
+    def __init__(self, along_t: dict, t: np.ndarray) -> None:
+        self._along_t, self._t = along_t, t
+
+    def __len__(self) -> int:
+        return len(self._t)
+
+    def __getitem__(self, k: int) -> _FileRecord:  # type: ignore[override]
+        if not -len(self) <= k < len(self):
+            raise IndexError(k)
+        return _FileRecord(self._along_t, float(self._t[k]), k % len(self))

@@ -1,0 +1,139 @@
+"""Streamed results (issue 15 item 3): each record goes to the netCDF file as the run goes.
+
+Checked against independent truth: the in-memory result of the same run (``viscontact.run``) for the
+file's content, the uninterrupted run for a resumed one, and the memory an in-memory run takes for
+the claim that a streamed one does not grow with the number of steps. The file after a kill -9 and
+the resume from it: ``test_reliability.test_kill_9_then_resume_equals_uninterrupted``.
+"""
+from __future__ import annotations
+
+import tracemalloc
+from pathlib import Path
+
+import pytest
+import xarray as xr
+
+import viscontact as vc
+from viscontact import api, transient
+from viscontact.errors import RunInterrupted
+from viscontact.observers import StreamWriter
+from viscontact.results import to_dataset
+from viscontact.streaming import ResultStream, is_complete_result, partial_path
+
+from vc_testing import seed_material, sphere_problem
+
+pytestmark = pytest.mark.filterwarnings("ignore:history dropped")  # short runs, wake not the point
+
+
+def _same(a: xr.Dataset, b: xr.Dataset) -> None:
+    """Identical variables, coordinates and attributes but ``history`` (it holds the time of writing)."""
+    xr.testing.assert_identical(a.assign_attrs(history=""), b.assign_attrs(history=""))
+
+
+def _partial_slip(n: int = 16, t_end: float = 6e-3, every: int = 1):
+    return sphere_problem(seed_material(), n, 1.5e-3, mode="partial_slip", friction=0.3, rate=5e-2,
+                          speed=3e-3 / n / 5e-4, t_end=t_end, scheme="linear", every=every,
+                          fields=("pressure", "shear_x", "stick", "displacement_z"), title="stream")
+
+
+def test_streamed_file_is_the_in_memory_result(tmp_path):
+    """Same variables, coordinates, values and attributes as ``to_dataset`` of the same run (the
+    step count is not a multiple of ``every``: the last step is recorded too)."""
+    problem = _partial_slip(every=3)
+    expected = vc.run(problem)
+    written = api.run_to_file(problem, tmp_path / "r.nc")
+    assert written.records == expected.sizes["t"] == 5
+    assert not partial_path(tmp_path / "r.nc").exists()
+    with xr.open_dataset(written.path, engine="h5netcdf") as ds:
+        _same(ds.load(), expected)
+        assert ds.encoding["unlimited_dims"] == {"t"}
+        assert ds["pressure"].encoding["chunksizes"] == (1, 16, 16) and ds["pressure"].encoding["zlib"]
+    assert expected.attrs["t_gross_sliding"] > 0  # the attribute computed at the end is a real one
+
+
+def test_clean_stop_ends_the_file_with_complete_0(tmp_path):
+    problem = _partial_slip()
+    out = tmp_path / "r.nc"
+    steps = []
+    with pytest.raises(RunInterrupted) as info:
+        api.run_to_file(problem, out, should_stop=lambda: "SIGTERM" if steps.append(1) or len(steps) == 4 else None)
+    assert info.value.saved == (out, 4)
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        assert ds.sizes["t"] == 4 and ds.attrs["complete"] == 0 and ds.attrs["stopped_by"] == "SIGTERM"
+        xr.testing.assert_identical(ds["pressure"].load(), vc.run(problem)["pressure"].isel(t=slice(0, 4)))
+
+
+def test_stop_never_replaces_a_complete_result(tmp_path):
+    """An OUT replaced under --force is kept until the new result is complete: a stopped run leaves
+    its steps in OUT.partial."""
+    problem = _partial_slip()
+    out = tmp_path / "r.nc"
+    api.run_to_file(problem, out)
+    before = out.read_bytes()
+    with pytest.raises(RunInterrupted) as info:
+        api.run_to_file(problem, out, should_stop=lambda: "SIGINT")
+    assert info.value.saved == (partial_path(out), 1)
+    assert out.read_bytes() == before and is_complete_result(out)
+    assert not is_complete_result(partial_path(out))
+
+
+def test_reopen_drops_the_records_after_the_checkpoint_and_continues(tmp_path):
+    """What --resume does with a streamed file that ran ahead of its checkpoint: truncate, append."""
+    problem = _partial_slip()
+    records = [rec for _, rec in transient.steps(problem)]
+    path = tmp_path / "s.nc"
+    stream = ResultStream.create(path, problem)
+    writer = StreamWriter(problem, stream)
+    for rec in records[:9]:
+        writer.on_step(None, rec)
+    stream.close()  # as a kill leaves it
+    stream = ResultStream.reopen(path, problem, 5)
+    writer = StreamWriter(problem, stream)
+    for rec in records[5:]:
+        writer.on_step(None, rec)
+    stream.finish()
+    with xr.open_dataset(path, engine="h5netcdf") as ds:
+        _same(ds.load(), to_dataset(records, problem))
+
+
+def _peak_bytes(run) -> int:
+    tracemalloc.start()
+    try:
+        run()
+        return tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+
+
+def test_memory_does_not_grow_with_the_number_of_steps(tmp_path):
+    """Peak (traced) memory of a 100-step and a 20-step run: streamed, the difference is under 10 %
+    of the 80 extra records; in memory (``viscontact.run``, which must hold them: 20 and 60 steps)
+    it is over 80 % of its 40 extra records."""
+    n, dt = 32, 2.5e-4
+    per_record = 3 * n * n * 8 + n * n  # pressure, shear_x, displacement_z (float64), stick (1 byte)
+
+    def problem(steps):
+        return sphere_problem(seed_material(), n, 2e-3, t_end=(steps - 1) * dt, dt=dt, scheme="linear",
+                              fields=("pressure", "shear_x", "stick", "displacement_z"))
+
+    out = tmp_path / "r.nc"
+    streamed = [_peak_bytes(lambda: api.run_to_file(problem(s), out.with_suffix(f".{s}.nc"))) for s in (20, 100)]
+    in_memory = [_peak_bytes(lambda: vc.run(problem(s))) for s in (20, 60)]
+    assert in_memory[1] - in_memory[0] > 0.8 * 40 * per_record, in_memory  # the measure sees records
+    assert streamed[1] - streamed[0] < 0.1 * 80 * per_record, streamed
+
+
+def test_the_steps_of_a_killed_run_are_not_overwritten_without_resume_or_force(tmp_path, capsys):
+    from viscontact import cli
+
+    case = tmp_path / "case.toml"
+    case.write_text((Path(__file__).resolve().parents[2] / "cases" / "creep_indentation.toml").read_text()
+                    .replace("\nn = 128", "\nn = 32").replace("t_end = 0.04", "t_end = 0.001"))
+    out = tmp_path / "r.nc"
+    partial_path(out).write_bytes(b"steps of a killed run")
+    code = cli.main(["run", str(case), "--out", str(out), "--quiet"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and "--resume" in err[0] and "r.nc.partial" in err[0]
+    assert partial_path(out).read_bytes() == b"steps of a killed run" and not out.exists()
+    assert cli.main(["run", str(case), "--out", str(out), "--quiet", "--force"]) == 0
+    assert is_complete_result(out) and not partial_path(out).exists()
