@@ -137,3 +137,16 @@ def test_the_steps_of_a_killed_run_are_not_overwritten_without_resume_or_force(t
     assert partial_path(out).read_bytes() == b"steps of a killed run" and not out.exists()
     assert cli.main(["run", str(case), "--out", str(out), "--quiet", "--force"]) == 0
     assert is_complete_result(out) and not partial_path(out).exists()
+
+
+def test_streamed_subsurface_stresses_are_the_in_memory_ones(tmp_path):
+    """[output] subsurface_depths: the stresses at the recorded steps nearest to subsurface_times are
+    computed at the end from the fields read back from the streamed file (none held in memory)."""
+    case = vc.load_case(vc.shipped_case("creep_subsurface_stress")).with_overrides(
+        {"grid.n": 16, "time.t_end": 0.006, "output.subsurface_times": [0.0021, 0.006], "output.every": 2})
+    expected = vc.run(case)
+    written = api.run_to_file(case, tmp_path / "r.nc")
+    with xr.open_dataset(written.path, engine="h5netcdf") as ds:
+        _same(ds.load(), expected)
+        assert ds["von_mises_stress"].dims == ("t_sub", "z", "x") and ds.sizes["t_sub"] == 2
+        assert float(ds["von_mises_stress"].max()) > 0
