@@ -11,7 +11,8 @@
 * :class:`StreamWriter`: the same records, appended to a streamed result file instead of kept
   (:func:`viscontact.api.run_to_file`: memory does not grow with the number of steps);
 * :class:`WakeWarning`: warns once when the dropped wake biases the result by over 1 %;
-* :class:`Checkpointer`: saves the solver state every N steps and on a stop;
+* :class:`Checkpointer`: saves the solver state (with the record count of a streamed run, or the
+  records so far of an in-memory one) every N steps and on a stop;
 * :class:`StopRequest`: asks a callable after each step whether to stop.
 """
 from __future__ import annotations
@@ -98,7 +99,7 @@ class WakeWarning(Observer):
 class Checkpointer(Observer):
     """Writes the solver state to ``path`` every ``every`` steps (0: never) and when the run stops
     cleanly (:func:`viscontact.checkpoint.save_checkpoint`, atomic), with the arrays ``extra()``
-    returns then (e.g. how many records the streamed file holds)."""
+    returns then (how many records the streamed file holds, or the records so far)."""
 
     def __init__(self, path: str | Path, problem: Problem, every: int = 0,
                  extra: Callable[[], dict[str, np.ndarray]] | None = None) -> None:

@@ -24,6 +24,9 @@ _FIELD_BYTES = {"pressure": 8, "shear_x": 8, "stick": 1, "displacement_z": 8}
 SECONDS_PER_CELL_STEP = 19.0 / (201 * 256**2 * math.log2(512))
 #: runs estimated to take longer than this [s] are refused unless forced
 MAX_RUN_SECONDS = 24 * 3600.0
+#: a run's memory before its arrays [bytes]: the interpreter with numpy, scipy, xarray, h5py and the
+#: solver imported (175 MiB measured for a 32^2 run, 2026-11-23; BENCHMARKS.md)
+BASE_MEMORY = 180e6
 #: HDF5 bookkeeping one streamed record may add (chunk index entries, flushed metadata) [bytes]
 RECORD_OVERHEAD = 4096
 #: a node of the chunk index of an HDF5 variable (B-tree; about 2 KiB measured) [bytes], an upper bound
@@ -60,7 +63,8 @@ def estimate(problem: Problem) -> Estimate:
     file's layout. Memory (``viscontact run`` streams its records: it does not grow with the number
     of steps): the record being written (and its compressed copy), plus the solver's own arrays: the
     history (2 x retardation modes), a dozen n x n work fields, and per influence kernel its
-    (2n)^2 real-space copy, its (2n)(n + 1) complex spectrum and the FFT work arrays. Checkpoint:
+    (2n)^2 real-space copy, its (2n)(n + 1) complex spectrum, the FFT work arrays and a step's
+    padded temporaries (8 (2n)^2 fields), on top of :data:`BASE_MEMORY`. Checkpoint:
     the solver state only (history and the last step's fields).
     """
     n = problem.grid.n
@@ -71,10 +75,10 @@ def estimate(problem: Problem) -> Estimate:
     modes = problem.material.creep.retardation_times.size
     kernels = 4 if problem.tangential.mode in ("partial_slip", "gross_sliding") else 1
     solver = (2 * 2 * modes + 16) * 8 * n * n + kernels * (4 * n * n * 8 + 2 * n * (n + 1) * 16) \
-        + 6 * 4 * n * n * 8
+        + 8 * 4 * n * n * 8
     state = (2 * modes + 8) * 8 * n * n
     seconds = steps * SECONDS_PER_CELL_STEP * n * n * math.log2(2 * n)
-    return Estimate(int(result), int(2 * per_record + solver + 150e6), int(records), int(state), seconds)
+    return Estimate(int(result), int(2 * per_record + solver + BASE_MEMORY), int(records), int(state), seconds)
 
 
 def recorded_steps(problem: Problem) -> int:

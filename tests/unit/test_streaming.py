@@ -150,3 +150,41 @@ def test_streamed_subsurface_stresses_are_the_in_memory_ones(tmp_path):
         _same(ds.load(), expected)
         assert ds["von_mises_stress"].dims == ("t_sub", "z", "x") and ds.sizes["t_sub"] == 2
         assert float(ds["von_mises_stress"].max()) > 0
+
+
+def test_the_claimed_space_bounds_what_the_file_takes(tmp_path):
+    """The disk space a streamed run claims (viscontact.resources.stream_bytes) is an upper bound of
+    what its records and its finishing really add to the file (blocks allocated on disk)."""
+    from viscontact.resources import stream_bytes
+
+    problem = _partial_slip(every=1)
+    out = tmp_path / "r.nc"
+    stream = ResultStream.create(out, problem)
+    layout = out.stat().st_blocks * 512
+    stream.close()
+    written = api.run_to_file(problem, out)
+    grown = written.path.stat().st_blocks * 512 - layout
+    assert 0 < grown <= stream_bytes(problem, written.records)
+
+
+def test_space_claim_holds_the_space_until_handed_back(tmp_path):
+    """A real claim: the free space of the folder drops by its size, comes back piece by piece, and
+    the claim leaves no file behind; a claim the disk cannot hold is one ENOSPC naming the file."""
+    import errno
+    import shutil
+
+    from viscontact.output_files import SpaceClaim
+
+    size = 64 * 2**20
+    free = shutil.disk_usage(tmp_path).free
+    claim = SpaceClaim(tmp_path / "r.nc", size, reserve=2**20)
+    if claim.claimed == 0:
+        pytest.skip("this filesystem makes no unnamed allocated files")
+    assert free - shutil.disk_usage(tmp_path).free >= 0.9 * size
+    claim.take(size)  # everything but the reserve
+    assert claim.claimed == 2**20
+    claim.close()
+    assert abs(free - shutil.disk_usage(tmp_path).free) < 0.1 * size and list(tmp_path.iterdir()) == []
+    with pytest.raises(OSError, match="needs about") as info:
+        SpaceClaim(tmp_path / "r.nc", 2 * free + 2**30)
+    assert info.value.errno == errno.ENOSPC and info.value.filename == str(tmp_path / "r.nc")
