@@ -13,6 +13,7 @@ exit with 130 / 143. ``run`` streams its records to ``RESULT.nc.partial`` and re
 from __future__ import annotations
 
 import argparse
+import errno
 import logging
 import shlex
 import signal
@@ -355,7 +356,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
     case = _prepare(args)
     partial = partial_path(args.out)
     if partial.exists() and not (args.force or args.resume):
-        raise FileExistsError(17, "holds the steps of an interrupted run: --resume continues it (with its "
+        raise FileExistsError(errno.EEXIST, "holds the steps of an interrupted run: --resume continues it (with its "
                               "checkpoint), --force starts over", str(partial))
     problem, _ = api.prepare(case)
     estimate = check_resources(problem, args.out, force=args.force, checkpoints=bool(args.checkpoint_every))

@@ -39,7 +39,8 @@ from typing import BinaryIO
 
 from .resources import format_size
 
-__all__ = ["SpaceClaim", "check_output_path", "disk_full_error", "move_atomically", "remove_temporaries", "signals_deferred", "write_atomically"]
+__all__ = ["SpaceClaim", "check_output_path", "disk_full_error", "move_atomically", "remove_temporaries",
+           "signals_deferred", "write_atomically"]
 
 #: first bytes of the files a result may be: netCDF-4 (HDF5) and classic netCDF
 RESULT_SIGNATURES = (b"\x89HDF\r\n\x1a\n", b"CDF\x01", b"CDF\x02")

@@ -102,8 +102,8 @@ def stream_bytes(problem: Problem, records: int, *, first: int = 0, finishing: b
     """Upper bound of what the records ``first .. first + records - 1`` add to a streamed result file
     [bytes]: :func:`record_bytes` each, a new chunk of every time series each
     :data:`~viscontact.results.SERIES_CHUNK` records (and, the first time, the root node of the
-    chunk index of every variable along ``t``: :data:`INDEX_NODE_BYTES` each), and with ``finishing`` :data:`FINISH_BYTES`
-    and the subsurface stresses."""
+    chunk index of every variable along ``t``: :data:`INDEX_NODE_BYTES` each), and with
+    ``finishing`` :data:`FINISH_BYTES` and the subsurface stresses."""
     from .records import StepRecord
     from .results import SERIES_CHUNK
 

@@ -192,7 +192,8 @@ class ResultStream:
                     f[name][k] = getattr(record, name)
                 for name in self.fields:
                     value, var = getattr(record, name), f[name]
-                    var[k] = np.zeros(var.shape[1:], dtype=var.dtype) if value is None else np.asarray(value, dtype=var.dtype)
+                    var[k] = (np.zeros(var.shape[1:], dtype=var.dtype) if value is None
+                              else np.asarray(value, dtype=var.dtype))
                 self.count = k + 1
                 self.flush()
             except (OSError, RuntimeError) as exc:  # HDF5 reports a failed write as RuntimeError

@@ -182,7 +182,8 @@ def test_forced_run_on_a_disk_too_small_stops_between_two_records(mount_point, t
     the steps done stay in r.nc, readable, complete = 0 (never an HDF5 crash inside a write)."""
     folder = mount_point("small", "size=1m")
     out = folder / "r.nc"
-    big = ("--set", "grid.n=64", "--set", "time.t_end=0.02", "--set", "output.fields=[\"pressure\", \"displacement_z\"]")
+    big = ("--set", "grid.n=64", "--set", "time.t_end=0.02",
+           "--set", "output.fields=[\"pressure\", \"displacement_z\"]")
     code = subprocess.run([sys.executable, "-m", "viscontact.cli", "run", str(CREEP), "--out", str(out), *big],
                           capture_output=True, text=True)
     assert code.returncode == 2 and "result needs about" in code.stderr and "--force" in code.stderr
