@@ -9,7 +9,7 @@ creep      creep indentation (seed material, W = 0.15 N held), n^2 x 200 steps: 
 history    the hereditary sum of the same run: recursive Prony update against the direct sum of seed
            Eq. 5 (both replaying the run's pressure history), time per run and ratio.
 table1     seed Table 1, v = 0.8 a0/tau, +-2.56 a0, T = 4 tau (160 steps at n = 256), CG iterations.
-steady     the steady solver at the same speed on the same grid.
+steady     the steady solver at the same speed on the same grid (more in bench_steady.py).
 case4      seed Table 3 case 4 (partial slip at 0.017 a0/tau, then sliding), to 1.5 tau: coupling iterations.
 """
 from __future__ import annotations
@@ -114,7 +114,7 @@ def main() -> None:
         start = time.perf_counter()
         rec = solve_steady(pb)
         wall = time.perf_counter() - start
-        rows.append(("steady", f"{n}^2, 1 speed", f"{wall:.1f} s", f"{rec.iterations} active-set rounds",
+        rows.append(("steady", f"{n}^2, 1 speed", f"{wall:.1f} s", f"{rec.iterations} GMRES it",
                      f"mu_app {rec.mu_app:.4f}"))
     if "case4" not in skip:
         v4 = 1.2 * A0 / TAU

@@ -98,13 +98,49 @@ def rectangle_influence(dx: np.ndarray, dy: np.ndarray, half_x: float, half_y: f
             xi2_r3 += sign * f2
             if odd:
                 xi_r2 += sign * f3
+    return _components(inv_r, xi2_r3, xi_r2, nu, components)
+
+
+def _components(inv_r: np.ndarray, xi2_r3: np.ndarray, xi_r2: np.ndarray, nu: float,
+                components: tuple[str, ...]) -> dict[str, np.ndarray]:
+    """The displacement components from the corner sums of the three primitives (at G = 1)."""
     out = {
-        "zz": (1 - nu) / (2 * np.pi) * inv_r,
-        "xx": ((1 - nu) * inv_r + nu * xi2_r3) / (2 * np.pi),
-        "xz": -(1 - 2 * nu) / (4 * np.pi) * xi_r2,
-        "zx": (1 - 2 * nu) / (4 * np.pi) * xi_r2,
+        "zz": lambda: (1 - nu) / (2 * np.pi) * inv_r,
+        "xx": lambda: ((1 - nu) * inv_r + nu * xi2_r3) / (2 * np.pi),
+        "xz": lambda: -(1 - 2 * nu) / (4 * np.pi) * xi_r2,
+        "zx": lambda: (1 - 2 * nu) / (4 * np.pi) * xi_r2,
     }
-    return {c: out[c] for c in components}
+    return {c: out[c]() for c in components}
+
+
+def lattice_rectangle_influence(x_first: float, count: int, spacing: float, dy: np.ndarray, poisson_ratio: float,
+                                components: tuple[str, ...] = COMPONENTS) -> dict[str, np.ndarray]:
+    """:func:`rectangle_influence` of a square cell of side ``spacing`` [m] at the x offsets
+    ``x_first + k spacing`` (k < ``count``) and the y offsets ``dy`` (multiples of ``spacing``) [m],
+    shape (count, dy.size), indexed [x offset, y offset] (the layout of the steady kernels' recursion
+    over x offsets, :mod:`viscontact.steady_kernels`).
+
+    The corners of neighbouring cells coincide on these lattices, so each corner primitive is
+    evaluated once, on the (count + 1) x (rows + 1) lattice of corners, and shared by the four cells
+    around it: a quarter of the transcendental evaluations, the same sums (corner positions differ
+    from :func:`rectangle_influence`'s by round-off in the offsets)."""
+    dy = np.asarray(dy, dtype=float)
+    half = 0.5 * spacing
+    rows = np.rint(dy / spacing).astype(int)
+    low = int(rows.min())
+    xi = x_first - half + spacing * np.arange(count + 1)
+    eta = spacing * (np.arange(low, int(rows.max()) + 2) - 0.5)  # the lower corner of row i is eta[i - low]
+    odd = "xz" in components or "zx" in components
+    prims = _corner_primitives(xi[:, None], eta[None, :], odd)
+    top, bottom = rows - low + 1, rows - low
+
+    def corner_sum(f: np.ndarray | None) -> np.ndarray:
+        if f is None:
+            return np.zeros((count, dy.size))
+        across = f[1:] - f[:-1]  # the two x corners of every cell, then the two y corners
+        return across[:, top] - across[:, bottom]
+
+    return _components(*(corner_sum(f) for f in prims), poisson_ratio, components)
 
 
 def influence_coefficients(grid: Grid, poisson_ratio: float) -> Mapping[str, np.ndarray]:

@@ -38,7 +38,8 @@ from typing import Sequence
 import numpy as np
 
 from .grid import Grid
-from .kernels import influence_coefficients, offset_columns_to_kernels, rectangle_influence
+from .kernels import (influence_coefficients, lattice_rectangle_influence, offset_columns_to_kernels,
+                      rectangle_influence)
 
 #: exp(-45) ~ 3e-20: beyond 45 decay lengths a mode's weight is below double precision
 _DECAY_CUTOFF = 45.0
@@ -174,7 +175,9 @@ class SteadyKernelBuilder:
             d = self._x_offsets[:-1]
             values = np.empty((d.size, len(positions), len(self.components) * dy.size))
             for q, x in enumerate(positions):
-                values[:, q, :] = self._ic(d[None, :] + x, dy).reshape(-1, d.size).T
+                ic = lattice_rectangle_influence(d[0] + x, d.size, dx, dy[:, 0], self.poisson_ratio, self.components)
+                for ci, c in enumerate(self.components):  # [x offset, component * 2n + y offset]
+                    values[:, q, ci * dy.size: (ci + 1) * dy.size] = ic[c]
             self._local = (list(zip(breaks[:-1], breaks[1:])), index, values)
         return self._local
 
