@@ -64,9 +64,10 @@ def worker(row: str, n: int) -> dict:
     if row == "cli":
         with tempfile.TemporaryDirectory() as tmp:
             start = time.perf_counter()
-            subprocess.run([str(Path(sys.executable).parent / "viscontact"), "steady", str(ROOT / "cases" / "seed_table1_v0.8.toml"),
-                            "--set", f"grid.n={n}", "--out", str(Path(tmp) / "s.nc"), "--quiet"], check=True,
-                           env=os.environ.copy(), capture_output=True)
+            command = [str(Path(sys.executable).parent / "viscontact"), "steady",
+                       str(ROOT / "cases" / "seed_table1_v0.8.toml"), "--set", f"grid.n={n}",
+                       "--out", str(Path(tmp) / "s.nc"), "--quiet"]
+            subprocess.run(command, check=True, env=os.environ.copy(), capture_output=True)
             return {"wall": time.perf_counter() - start}
     if row == "curve":
         sys.path.insert(0, str(Path(__file__).parent))

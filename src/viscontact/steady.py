@@ -25,6 +25,8 @@ What makes it fast:
 * the Fourier preconditioner is the operator's own symbol, the elastic one times the complex
   compliance J*(k_x v) (:func:`steady_preconditioner`): ~20 GMRES iterations per solve to 1e-10
   instead of ~65 with the symmetric part alone;
+* under load control a round is one solve of the bordered system for (p, delta), preconditioned by
+  the same block system with the Fourier preconditioner (:func:`_solve_bordered`), not two solves;
 * until the set first settles the solves stop at 1e-6 (:func:`solve_contact_active_set`), then the
   settled set is solved to the tolerance and checked again (the answer is that of exact rounds);
 * the first set comes from the steady state on the grid with half the cells per side
@@ -93,6 +95,49 @@ def _solve_on_set(apply_k, rhs: np.ndarray, active: np.ndarray, x0: np.ndarray, 
     return out, sol.iterations
 
 
+def _solve_bordered(apply_k, gap: np.ndarray, active: np.ndarray, p0: np.ndarray, delta0: float,
+                    mean_pressure: float, row_scale: float, tol: float, maxiter: int,
+                    preconditioner=None) -> tuple[np.ndarray, float, int]:
+    """The load-controlled system on the active set in one GMRES solve: the bordered system
+
+        [K_AA  -e] [p    ]   [-gap_A         ]
+        [s e^T/m 0] [delta] = [s mean_pressure]
+
+    (m points, e = ones, s = ``row_scale`` [m/Pa] making the load row a displacement), right
+    preconditioned by the same block system with K_AA replaced by the Fourier preconditioner's M
+    (without one, by s I): x = M^-1 r + delta M^-1 e with delta from the load row (M^-1 e made once
+    per set). Returns
+    (p on the grid, delta [m], Krylov iterations)."""
+    idx = np.flatnonzero(active)
+    shape = active.shape
+    m = idx.size
+    op = _restricted(apply_k, idx, shape)
+    if preconditioner is not None:
+        inv = _restricted(preconditioner, idx, shape)
+    else:  # the scalar compliance: keeps pressures and displacements in their units
+        def inv(r: np.ndarray) -> np.ndarray:
+            return r / row_scale
+    inv_e = inv(np.ones(m))
+    inv_e_mean = float(inv_e.mean())
+
+    def bordered(z: np.ndarray) -> np.ndarray:
+        return np.concatenate([op(z[:m]) - z[m], [row_scale * z[:m].mean()]])
+
+    def precondition(z: np.ndarray) -> np.ndarray:
+        x = inv(z[:m])
+        delta = (z[m] / row_scale - x.mean()) / inv_e_mean
+        return np.concatenate([x + delta * inv_e, [delta]])
+
+    rhs = np.concatenate([-gap.ravel()[idx], [row_scale * mean_pressure]])
+    sol = gmres(bordered, rhs, np.concatenate([p0.ravel()[idx], [delta0]]), rtol=tol, max_iterations=maxiter,
+                preconditioner=precondition)
+    if not sol.converged:
+        raise ConvergenceError("steady-state GMRES", maxiter, sol.residual, tol)
+    out = np.zeros(shape)
+    out.ravel()[idx] = sol.x[:m]
+    return out, float(sol.x[m]), sol.iterations
+
+
 #: relative GMRES tolerance of the active-set rounds before the set first settles (then ``tolerance``)
 SETTLING_TOLERANCE = 1e-6
 
@@ -105,7 +150,9 @@ def solve_contact_active_set(apply_k, gap: np.ndarray, *, control: str, value: f
     """Primal-dual active set for p >= 0, h = K p + gap - delta >= 0, p h = 0, with a general
     (non-symmetric) K. Returns (p [Pa], delta [m], Krylov (GMRES) iterations of all solves,
     number of active-set rounds). Raises ConvergenceError with the number of points that still
-    changed set after ``max_sets`` rounds.
+    changed set after ``max_sets`` rounds. Under load control each round is one solve of the
+    bordered system (p and delta together, :func:`_solve_bordered`), under displacement control
+    one solve for p.
 
     Inexact rounds: until the set first stays the same, the linear solves stop at the relative
     residual ``settling_tolerance`` (the set only needs the sign of p and h); the set is then solved
@@ -118,19 +165,19 @@ def solve_contact_active_set(apply_k, gap: np.ndarray, *, control: str, value: f
     p = initial.copy() if initial is not None else np.zeros_like(gap)
     delta = 0.0
     seen: list[np.ndarray] = []
-    a_prev = np.zeros_like(gap)
-    b_prev = np.zeros_like(gap)
     krylov = 0
     changed = 0
     tol = max(tolerance, settling_tolerance)
     for it in range(1, max_sets + 1):
         if control == "load":
-            a, ka = _solve_on_set(apply_k, np.ones_like(gap), active, a_prev, tol, max_iterations, preconditioner)
-            b, kb = _solve_on_set(apply_k, -gap, active, b_prev, tol, max_iterations, preconditioner)
-            krylov += ka + kb
-            a_prev, b_prev = a, b
-            delta = (value / cell_area - b.sum()) / a.sum()
-            p = b + delta * a
+            if it == 1:  # the load row in displacement units: the mean K 1_A over the first set [m/Pa]
+                row_scale = float(apply_k(active.astype(float))[active].mean()) if active.any() else 1.0
+            mean_pressure = value / (cell_area * max(int(active.sum()), 1))  # [Pa] on the set
+            if it == 1 and not np.any(p[active] > 0):
+                p = np.where(active, mean_pressure, 0.0)
+            p, delta, kp = _solve_bordered(apply_k, gap, active, p, delta, mean_pressure, row_scale, tol,
+                                           max_iterations, preconditioner)
+            krylov += kp
         else:
             delta = value
             p, kp = _solve_on_set(apply_k, delta - gap, active, p, tol, max_iterations, preconditioner)
