@@ -19,7 +19,8 @@ at 128^2      ``solve_steady`` at 128^2 on the Table 1 cases and on the v = 0.8 
               before/after differences (mu_app, peak pressure, contact area, shift, approach).
 
 Each measurement runs in its own process (``--worker``): the baseline with ``PYTHONPATH`` set to
-its source tree.
+its source tree. The CPU column is the process time of the solve (all threads), the last run of each
+tree: on a loaded machine it is closer to what an idle one needs than the wall time.
 """
 from __future__ import annotations
 
@@ -58,9 +59,9 @@ def worker(row: str, n: int) -> dict:
 
     if row.startswith("table1"):
         pb = problem(f"seed_table1_v{row.split()[1]}", n)
-        start = time.perf_counter()
+        start, cpu = time.perf_counter(), time.process_time()
         rec = solve_steady(pb)
-        return {"wall": time.perf_counter() - start, **_summary(rec)}
+        return {"wall": time.perf_counter() - start, "cpu": time.process_time() - cpu, **_summary(rec)}
     if row == "cli":
         with tempfile.TemporaryDirectory() as tmp:
             start = time.perf_counter()
@@ -74,12 +75,12 @@ def worker(row: str, n: int) -> dict:
         from bench_materials import material, sliding
 
         pb = sliding(material(30), 128, 1, "frictionless_sliding", 0.0)
-        start = time.perf_counter()
+        start, cpu = time.perf_counter(), time.process_time()
         records = speed_sweep(pb, np.geomspace(1e-6, 1e2, 30))
         wall = time.perf_counter() - start
         mu = np.array([r.mu_app for r in records])
-        return {"wall": wall, "mu_app": float(mu.max()), "iterations": sum(r.iterations for r in records),
-                "mu_curve": mu.tolist()}
+        return {"wall": wall, "cpu": time.process_time() - cpu, "mu_app": float(mu.max()),
+                "iterations": sum(r.iterations for r in records), "mu_curve": mu.tolist()}
     if row == "results":
         out = {}
         for v in ("0.4", "0.8", "1.2"):
@@ -124,8 +125,8 @@ def main() -> None:
     print(f"# steady benchmark, {platform.machine()}, {os.cpu_count()} cores, python {platform.python_version()}, "
           f"{time.strftime('%Y-%m-%d %H:%M')}, load average {_load()}")
     trees = ([("baseline", args.baseline)] if args.baseline else []) + [("this tree", None)]
-    print("| row | " + " | ".join(f"{name} wall [s]" for name, _ in trees) + " | GMRES it | load before |")
-    print("|---|" + "---|" * (len(trees) + 2))
+    print("| row | " + " | ".join(f"{name} wall [s]" for name, _ in trees) + " | CPU [s] | GMRES it | load before |")
+    print("|---|" + "---|" * (len(trees) + 3))
     results = {}
     for row in filter(None, args.rows.split(",")):
         if row == "results":
@@ -138,10 +139,12 @@ def main() -> None:
                 walls[name].append(res["wall"])
                 results[(row, name)] = res
         its = " / ".join(str(results[(row, name)].get("iterations", "-")) for name, _ in trees)
+        cpu = " / ".join(f"{results[(row, name)]['cpu']:.1f}" if "cpu" in results[(row, name)] else "-"
+                         for name, _ in trees)
         cells = " | ".join(f"{statistics.median(w):.2f} ({', '.join(f'{x:.1f}' for x in w)})"
                            for w in walls.values())
         label = f"{row} ({args.n}^2)" if row.startswith(("table1", "cli")) else row
-        print(f"| {label} | {cells} | {its} | {load} |", flush=True)
+        print(f"| {label} | {cells} | {cpu} | {its} | {load} |", flush=True)
     if args.baseline and "curve" in args.rows:
         old, new = (results[("curve", name)]["mu_curve"] for name, _ in trees)
         diff = max(abs(a - b) / abs(a) for a, b in zip(old, new))
