@@ -1,6 +1,7 @@
 """The ``viscontact`` console command. Its first act is to make SIGINT during start-up (importing the
 command line and its libraries takes a noticeable fraction of a second) one line and exit status
-130 instead of a traceback; :func:`viscontact.cli.main` handles it from then on."""
+130 instead of a traceback; :func:`viscontact.cli.main` handles it from then on. Its second is the
+allocator setting of :mod:`viscontact.allocator`."""
 from __future__ import annotations
 
 import signal
@@ -15,6 +16,9 @@ def _interrupted_at_start_up(signum: int, frame: object) -> None:  # noqa: ARG00
 def main() -> int:
     """Entry point of the ``viscontact`` console script."""
     previous = signal.signal(signal.SIGINT, _interrupted_at_start_up)
+    from .allocator import tune_allocator
+
+    tune_allocator()  # glibc settings for the solvers' temporaries (opt-out: VISCONTACT_MALLOC=default)
     from .cli import main as cli_main
 
     signal.signal(signal.SIGINT, previous)

@@ -24,6 +24,7 @@ from typing import Callable, Iterator, Protocol
 
 import numpy as np
 
+from .allocator import tune_allocator
 from .constrained import constrained_cg
 from .errors import ConvergenceError, NumericalGuardError, ParameterError, ViscontactWarning
 from .history import History
@@ -389,7 +390,8 @@ def steps(problem: Problem, *, progress: Callable[[int, int], None] | None = Non
 
     Stopping the iteration between two steps leaves a consistent state (what checkpoints and
     interruptions rely on); what is kept, warned or saved is up to the caller's observers
-    (:mod:`viscontact.observers`).
+    (:mod:`viscontact.observers`). The first call sets the C allocator for the solver's temporaries
+    (:func:`viscontact.allocator.tune_allocator`).
 
     Parameters
     ----------
@@ -400,6 +402,7 @@ def steps(problem: Problem, *, progress: Callable[[int, int], None] | None = Non
     state, substrate
         Resume from a state (e.g. a checkpoint) / reuse a substrate.
     """
+    tune_allocator()  # reuse freed temporaries instead of faulting them in again (glibc; opt-out documented)
     substrate = substrate or substrate_for(problem)
     state = state or init(problem, substrate)
     total = problem.time.n_steps
