@@ -100,21 +100,30 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         g = apply_k(x) - b
         return ConstrainedSolution(x, g, 0.0, 0, 0.0)
 
-    direction = np.zeros_like(x)
+    # work arrays, allocated once per solve: the iteration itself allocates only what the operator,
+    # the preconditioner and the sparse corrections return (BENCHMARKS.md: the freed temporaries
+    # were a fifth of the run's CPU time)
+    direction, x_old, x_linear, g, work = (np.zeros_like(x) for _ in range(5))
+    free, bound, mask, mask2 = (np.empty(x.shape, dtype=bool) for _ in range(4))
+    movable = ~fixed
+    b_scale = float(np.max(np.abs(b)))
     g_norm_old = 1.0
     conjugate = False
     multiplier = 0.0
     residual = np.inf
-    kx = apply_k(x)
+    kx = np.array(apply_k(x), dtype=float)  # own copy: updated in place below
     for it in range(1, max_iterations + 1):
-        free = (x > lower) & (x < upper)
+        np.greater(x, lower, out=free)
+        free &= np.less(x, upper, out=mask)
         if it % 25 == 0:  # refresh the incrementally updated K x against round-off drift
-            kx = apply_k(x)
-        g = kx - b
+            kx = np.array(apply_k(x), dtype=float)
+        np.subtract(kx, b, out=g)
+        n_free = int(np.count_nonzero(free))
         if total is not None:
-            multiplier = float(g[free].mean()) if free.any() else float(g.min())
-            g = g - multiplier
-        if not free.any() or np.max(np.abs(g[free])) <= ROUNDOFF * max(np.max(np.abs(kx)), np.max(np.abs(b))):
+            multiplier = _free_mean(g, free, n_free) if n_free else float(g.min())
+            g -= multiplier
+        if not n_free or float(np.abs(g, out=work).max(where=free, initial=0.0)) <= ROUNDOFF * max(
+                float(np.abs(kx, out=work).max()), b_scale):
             # nothing free, or converged on the free set to round-off (an exact preconditioner does it
             # in one iteration: another step would divide round-off by round-off): release the bound
             # points whose gradient points inwards, or stop
@@ -122,51 +131,65 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             inward &= ~fixed & ~free
             if not inward.any():
                 return ConstrainedSolution(x, g, multiplier, it, 0.0)
-            free = free | inward
+            free |= inward
+            n_free = int(np.count_nonzero(free))
             conjugate = False
+        np.logical_not(free, out=bound)
+        np.copyto(work, g)
+        np.copyto(work, 0.0, where=bound)  # the gradient on the free set
         if preconditioner is not None:
-            z = preconditioner(np.where(free, g, 0.0))
+            z = np.array(preconditioner(work), dtype=float, copy=None)
             if total is not None:
-                z = z - z[free].mean()
-            z = np.where(free, z, 0.0)
+                z -= _free_mean(z, free, n_free)
+            np.copyto(z, 0.0, where=bound)
         else:
-            z = np.where(free, g, 0.0)
-        g_norm = float(np.sum(g[free] * z[free]))
+            z = work
+        g_norm = _dot(g, z)  # z vanishes off the free set
         if conjugate:
-            direction = np.where(free, z + (g_norm / g_norm_old) * direction, 0.0)
+            direction *= g_norm / g_norm_old
+            direction += z
+            np.copyto(direction, 0.0, where=bound)
         else:
-            direction = z
+            np.copyto(direction, z)
         g_norm_old = g_norm if g_norm > 0 else 1.0
         k_direction = apply_k(direction)
-        r = k_direction - k_direction[free].mean() if total is not None else k_direction
-        denom = float(np.sum(r[free] * direction[free]))
+        if total is not None:
+            denom = _dot(np.subtract(k_direction, _free_mean(k_direction, free, n_free), out=work), direction)
+        else:
+            denom = _dot(k_direction, direction)
         if denom <= 0 or g_norm <= 0:
             return ConstrainedSolution(x, g, multiplier, it, 0.0)
-        step = float(np.sum(g[free] * direction[free])) / denom
-        x_old = x.copy()
-        x = np.where(free, x - step * direction, x)
-        x_linear = x
-        clipped = (x < lower) | (x > upper)
-        x = np.clip(x, lower, upper)
-        release = ((x <= lower) & (g < 0)) | ((x >= upper) & (g > 0))
-        release &= ~free & ~fixed
-        if release.any():
-            x = np.where(release, np.clip(x - step * g, lower, upper), x)
-        conjugate = not (release.any() or clipped.any())
-        kx = kx - step * k_direction  # exact for the move x -> x - step * direction
+        step = _dot(g, direction) / denom
+        np.copyto(x_old, x)
+        x -= np.multiply(direction, step, out=work)  # the direction vanishes off the free set
+        np.copyto(x_linear, x)
+        clipped = bool(np.less(x, lower, out=mask).any() or np.greater(x, upper, out=mask).any())
+        np.clip(x, lower, upper, out=x)
+        # release: bound points (not fixed) whose gradient points inwards
+        release = np.less_equal(x, lower, out=mask)
+        release &= np.less(g, 0.0, out=mask2)
+        release |= np.greater_equal(x, upper, out=mask2) & (g > 0)
+        release &= bound
+        release &= movable
+        released = bool(release.any())
+        if released:
+            np.subtract(x, np.multiply(g, step, out=work), out=work)
+            np.copyto(x, np.clip(work, lower, upper, out=work), where=release)
+        conjugate = not (released or clipped)
+        kx -= np.multiply(k_direction, step, out=k_direction)  # exact for the move x -> x - step * direction
         if not conjugate:  # bound corrections at a few points: add their effect
-            correction = x - x_linear
+            correction = np.subtract(x, x_linear, out=work)
             if apply_k_sparse is not None and np.count_nonzero(correction) <= sparse_limit:
-                kx = kx + apply_k_sparse(correction)
+                kx += apply_k_sparse(correction)
             else:
-                kx = apply_k(x)
+                kx = np.array(apply_k(x), dtype=float)
         if total is not None:
             s = x.sum()
             if s > 0:
                 x *= total / (cell_area * s)
                 kx *= total / (cell_area * s)
-        scale = float(np.sum(np.abs(x)))
-        residual = float(np.sum(np.abs(x - x_old))) / scale if scale > 0 else 0.0
+        scale = float(np.abs(x, out=work).sum())
+        residual = float(np.abs(np.subtract(x, x_old, out=work), out=work).sum()) / scale if scale > 0 else 0.0
         if residual < tolerance:
             g = kx - b  # K x kept exactly up to round-off (refreshed every 25 iterations)
             if total is not None:
@@ -176,3 +199,15 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             return ConstrainedSolution(x, g, multiplier, it, residual)
     raise ConvergenceError(what, max_iterations, residual, tolerance,
                            hint="raise solver.max_iterations or refine the grid")
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> float:
+    """sum(a * b) without a temporary (and without BLAS threads: an ``np.vdot`` in this loop made a
+    run 5x slower on a loaded machine, BENCHMARKS.md)."""
+    axes = "ijklmn"[:a.ndim]
+    return float(np.einsum(f"{axes},{axes}->", a, b))
+
+
+def _free_mean(field: np.ndarray, free: np.ndarray, n_free: int) -> float:
+    """Mean of ``field`` over the ``n_free`` points of the mask ``free``, without a masked copy."""
+    return float(np.sum(field, where=free)) / n_free
