@@ -134,6 +134,7 @@ class TermSubstrate:
         #: the history of the normal self-term (what leaves the frame as the wake)
         self.normal_history = self._terms("z", "z")[0].history
         self._coefficients = {first: self._step_coefficients(first) for first in (True, False)}
+        self._operators: dict[tuple[str, bool], ElasticOperator] = {}
 
     @property
     def xp(self) -> ModuleType:
@@ -204,16 +205,28 @@ class TermSubstrate:
 
     # --- the step's elastic operators -------------------------------------------------------------
     def elastic_operator(self, component: str, first: bool) -> ElasticOperator:
-        """K x = sum over the (component, component) terms of J_inst K_term x, for ``"z"`` or ``"x"``."""
+        """K x = sum over the (component, component) terms of J_inst K_term x, for ``"z"`` or ``"x"``
+        (made once per component and kind of step, then kept)."""
+        key = (component, first)
+        if key not in self._operators:
+            self._operators[key] = self._elastic_operator(component, first)
+        return self._operators[key]
+
+    def _elastic_operator(self, component: str, first: bool) -> ElasticOperator:
         terms = self._terms(component, component)
         coef = self.coefficients(first)
         conv = self.convolver
         if len(terms) == 1:
             kernel, j_inst = terms[0].kernel, coef[terms[0].history].instantaneous
-            precond = self.preconditioners[kernel]
-            return ElasticOperator(lambda x: j_inst * conv.apply(kernel, x),
-                                   lambda r: precond(r) / j_inst,
-                                   lambda x: j_inst * conv.apply_sparse(kernel, x))
+            base = self.preconditioners[kernel]
+            precond = FourierPreconditioner(base.inverse_symbol / j_inst, base.workers, base.fft)
+
+            def apply(x: Array) -> Array:
+                out = conv.apply(kernel, x)
+                out *= j_inst
+                return out
+
+            return ElasticOperator(apply, precond, lambda x: j_inst * conv.apply_sparse(kernel, x))
         factors = [(t.kernel, coef[t.history].instantaneous) for t in terms]
         symbol = sum(j / self.preconditioners[k].inverse_symbol for k, j in factors)
         precond = FourierPreconditioner(1.0 / symbol, conv.workers, conv.fft)
@@ -291,7 +304,7 @@ class HalfSpace(TermSubstrate):
             conv = PeriodicConvolver.for_grid(grid, material.poisson_ratio, workers, comps)
             precond = {c: conv.preconditioner(c) for c in ("zz", "xx") if c in comps}
         else:
-            ics = influence_coefficients(grid, material.poisson_ratio)
+            ics = influence_coefficients(grid, material.poisson_ratio, comps)
             conv = Convolver.from_kernels(grid.n, {c: ics[c] for c in comps}, workers, xp=np, fft=scipy.fft,
                                           transforms=dcfft_transforms(fft, grid.n, workers))
             precond = {c: FourierPreconditioner.for_kernel(ics[c], 1.0, workers, fft=scipy.fft)
