@@ -68,6 +68,9 @@ class ZeroBlockTransforms:
         self.workers = workers
         self.fft = fft
         self._kw = {"workers": workers} if fft is scipy.fft else {}
+        self._overwrite = {"overwrite_x": True} if fft is scipy.fft else {}
+        self._rows: np.ndarray | None = None      # (n, 2n) real, right half zero: the padded rows
+        self._spectrum: np.ndarray | None = None  # (2n, n+1) complex
 
     def forward(self, field: np.ndarray) -> np.ndarray:
         n, fft = self.n, self.fft
@@ -76,12 +79,22 @@ class ZeroBlockTransforms:
 
     def inverse(self, spectrum: np.ndarray) -> np.ndarray:
         n, fft = self.n, self.fft
-        extra = {"overwrite_x": True} if fft is scipy.fft else {}
-        columns = fft.ifft(spectrum, axis=0, **self._kw, **extra)[:n]  # (n, n+1): the kept rows
+        columns = fft.ifft(spectrum, axis=0, **self._kw, **self._overwrite)[:n]  # (n, n+1): the kept rows
         return fft.irfft(columns, n=2 * n, axis=1, **self._kw)[:, :n]
 
     def convolve(self, kernel_spectrum: np.ndarray, field: np.ndarray) -> np.ndarray:
-        spectrum = self.forward(field)
+        """As :meth:`inverse` of ``kernel_spectrum * forward(field)``, bit for bit, in two work arrays
+        kept from call to call (scipy.fft's column transforms run in place in them): only the
+        returned (n, n) block is new. Not re-entrant (one convolution at a time per object)."""
+        n, fft = self.n, self.fft
+        if self._rows is None:
+            self._rows = np.zeros_like(field, shape=(n, 2 * n))
+            self._spectrum = np.zeros_like(kernel_spectrum, shape=(2 * n, n + 1))
+        rows, spectrum = self._rows, self._spectrum
+        rows[:, :n] = field
+        spectrum[:n] = fft.rfft(rows, axis=1, **self._kw)
+        spectrum[n:] = 0.0
+        spectrum = fft.fft(spectrum, axis=0, **self._kw, **self._overwrite)  # in place with scipy.fft
         spectrum *= kernel_spectrum
         return self.inverse(spectrum)
 
