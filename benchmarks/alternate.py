@@ -5,7 +5,8 @@ subprocesses, for measuring a change on a shared machine.
     .venv/bin/python benchmarks/alternate.py --tree plain=src --tree tuned=src:VISCONTACT_MALLOC=off
 
 Each ``--tree NAME=PATH[:VAR=VALUE,...]`` puts PATH first on ``PYTHONPATH`` (a ``src`` folder, e.g.
-from ``git archive``) and sets the given environment variables. The runs alternate (A, B, A, B...),
+from ``git archive``) and sets the given environment variables (``ALTERNATE_WORKERS=1``: ``solver.workers`` of the run,
+default -1). The runs alternate (A, B, A, B...),
 so the load of the machine falls on both alike; the table gives medians of the process CPU time
 (user + sys, from ``os.wait4``: less sensitive to the load than the wall time), the sys time, the
 wall time and the child's own peak RSS (VmHWM), and the ratios against the first tree. The final
@@ -23,13 +24,13 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
+from compare_tamaas import peak_rss_mib, run_child
 
 A0, TAU, RADIUS = 588.7e-6, 0.01, 0.01
 
@@ -52,7 +53,8 @@ def problem(case: str, n: int, steps: int | None):
     x, y = grid.mesh()
     return vc.Problem(material=material, grid=grid, gap=(x**2 + y**2) / (2 * RADIUS),
                       normal=vc.NormalLoading("load", vc.PiecewiseLinear.constant(load)), tangential=tangential,
-                      time=vc.TimeStepping(t_end, dt), radius=RADIUS)
+                      time=vc.TimeStepping(t_end, dt), radius=RADIUS,
+                      solver=vc.SolverSettings(workers=int(os.environ.get("ALTERNATE_WORKERS", "-1"))))
 
 
 def child(args: argparse.Namespace) -> None:
@@ -68,8 +70,6 @@ def child(args: argparse.Namespace) -> None:
         for state, record in transient.steps(pb):
             iterations.append(record.iterations)
     wall = time.perf_counter() - wall
-    from compare_tamaas import peak_rss_mib
-
     np.savez(args.result, pressure=state.pressure, iterations=np.asarray(iterations), solve_wall=wall,
              own_rss_mib=peak_rss_mib())
 
@@ -82,16 +82,7 @@ def run_tree(spec: tuple[str, str, dict], args: argparse.Namespace, workdir: Pat
     cmd = [sys.executable, __file__, "--child", "--case", args.case, "--n", str(args.n), "--result", str(result)]
     if args.steps:
         cmd += ["--steps", str(args.steps)]
-    start = time.perf_counter()
-    proc = subprocess.Popen(cmd, env=env)
-    _, status, usage = os.wait4(proc.pid, 0)
-    wall = time.perf_counter() - start
-    if os.waitstatus_to_exitcode(status) != 0:
-        sys.exit(f"alternate: tree {name} failed (exit {os.waitstatus_to_exitcode(status)})")
-    with np.load(result) as data:
-        out = {key: data[key] for key in data.files}
-    out.update(wall=wall, cpu=usage.ru_utime + usage.ru_stime, sys=usage.ru_stime, faults=usage.ru_minflt)
-    return out
+    return run_child(cmd, result, f"alternate: tree {name}", env)
 
 
 def parse_tree(text: str) -> tuple[str, str, dict]:

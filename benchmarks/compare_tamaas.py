@@ -261,15 +261,23 @@ def run_half(python: str, half: str, args: argparse.Namespace, workdir: Path) ->
     result = workdir / f"{half}.npz"
     cmd = [python, __file__, "--half", half, "--n", str(args.n), "--steps", str(args.steps),
            "--tamaas-tolerance", str(args.tamaas_tolerance), "--result", str(result)]
+    out = run_child(cmd, result, f"compare_tamaas: the {half} half")
+    out["rss_mib"] = float(out["own_rss_mib"])
+    return out
+
+
+def run_child(cmd: list[str], result: Path, what: str, env: dict | None = None) -> dict:
+    """Run ``cmd`` (which writes the npz ``result``) and return its arrays plus the child's wall,
+    CPU (user + sys), sys time and minor page faults from ``os.wait4``; exit with ``what`` failed."""
     start = time.perf_counter()
-    proc = subprocess.Popen(cmd)
+    proc = subprocess.Popen(cmd, env=env)
     _, status, usage = os.wait4(proc.pid, 0)
     wall = time.perf_counter() - start
     if os.waitstatus_to_exitcode(status) != 0:
-        sys.exit(f"compare_tamaas: the {half} half failed (exit {os.waitstatus_to_exitcode(status)})")
+        sys.exit(f"{what} failed (exit {os.waitstatus_to_exitcode(status)})")
     with np.load(result) as data:
         out = {k: data[k] for k in data.files}
-    out.update(wall=wall, cpu=usage.ru_utime + usage.ru_stime, sys=usage.ru_stime, rss_mib=float(out["own_rss_mib"]))
+    out.update(wall=wall, cpu=usage.ru_utime + usage.ru_stime, sys=usage.ru_stime, faults=usage.ru_minflt)
     return out
 
 
