@@ -30,6 +30,14 @@ from viscontact.steady import solve_steady
 CASE = Path(__file__).resolve().parents[1] / "cases" / "rough_periodic_sliding.toml"
 
 
+def rough_problem(n: int, steps: int):
+    """The shipped rough case at n^2 in frictionless sliding, one cell per step, ``steps`` steps."""
+    case = load_case(CASE)
+    dt = 2 * case.grid.half_width / n / case.tangential.sliding_speed
+    return case.with_overrides({"grid.n": n, "tangential.mode": "frictionless_sliding",
+                                "time.t_end": (steps - 0.5) * dt, "output.fields": []}).to_problem()
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--n", type=int, default=512, help="cells per side (default 512)")
@@ -37,13 +45,8 @@ def main() -> None:
     parser.add_argument("--no-steady", action="store_true", help="skip the steady-state row")
     args = parser.parse_args()
 
-    case = load_case(CASE)
-    speed = case.tangential.sliding_speed
-    dt = 2 * case.grid.half_width / args.n / speed
-    case = case.with_overrides({"grid.n": args.n, "tangential.mode": "frictionless_sliding",
-                                "time.t_end": (args.steps - 0.5) * dt, "output.fields": []})
     load_start = os.getloadavg()[0]
-    problem = case.to_problem()
+    problem = rough_problem(args.n, args.steps)
 
     start = time.perf_counter()
     periodic_influence_coefficients(problem.grid, problem.material.poisson_ratio, ("zz",))
