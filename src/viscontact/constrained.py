@@ -176,7 +176,7 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             np.subtract(x, np.multiply(g, step, out=work), out=work)
             np.copyto(x, np.clip(work, lower, upper, out=work), where=release)
         conjugate = not (released or clipped)
-        kx -= np.multiply(k_direction, step, out=k_direction)  # exact for the move x -> x - step * direction
+        kx -= np.multiply(k_direction, step, out=work)  # exact for the move x -> x - step * direction
         if not conjugate:  # bound corrections at a few points: add their effect
             correction = np.subtract(x, x_linear, out=work)
             if apply_k_sparse is not None and np.count_nonzero(correction) <= sparse_limit:
