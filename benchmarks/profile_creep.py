@@ -44,7 +44,7 @@ def creep_problem(n: int, steps: int) -> vc.Problem:
     return vc.Problem(material=vc.Material.zener(1.93e6, 0.193e6, 0.01, 0.3), grid=grid,
                       gap=(x**2 + y**2) / (2 * RADIUS),
                       normal=vc.NormalLoading("load", vc.PiecewiseLinear.constant(LOAD)),
-                      tangential=vc.TangentialLoading(), time=vc.TimeStepping((steps - 1) * DT, DT),
+                      tangential=vc.TangentialLoading(), time=vc.TimeStepping((steps - 1) * DT, DT, scheme="constant"),
                       radius=RADIUS)
 
 
