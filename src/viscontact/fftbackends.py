@@ -69,8 +69,6 @@ class ZeroBlockTransforms:
         self.fft = fft
         self._kw = {"workers": workers} if fft is scipy.fft else {}
         self._overwrite = {"overwrite_x": True} if fft is scipy.fft else {}
-        self._rows: np.ndarray | None = None      # (n, 2n) real, right half zero: the padded rows
-        self._spectrum: np.ndarray | None = None  # (2n, n+1) complex
 
     def forward(self, field: np.ndarray) -> np.ndarray:
         n, fft = self.n, self.fft
@@ -83,15 +81,15 @@ class ZeroBlockTransforms:
         return fft.irfft(columns, n=2 * n, axis=1, **self._kw)[:, :n]
 
     def convolve(self, kernel_spectrum: np.ndarray, field: np.ndarray) -> np.ndarray:
-        """As :meth:`inverse` of ``kernel_spectrum * forward(field)``, bit for bit, in two work arrays
-        kept from call to call (scipy.fft's column transforms run in place in them): only the
-        returned (n, n) block is new. Not re-entrant (one convolution at a time per object)."""
+        """As :meth:`inverse` of ``kernel_spectrum * forward(field)``, bit for bit, with the padding
+        written into two work arrays instead of copied by the transforms, and the column transforms
+        in place in the second (scipy.fft's ``overwrite_x``): the (n, n) block returned is the only
+        array that outlives the call."""
         n, fft = self.n, self.fft
-        if self._rows is None:
-            self._rows = np.zeros_like(field, shape=(n, 2 * n))
-            self._spectrum = np.zeros_like(kernel_spectrum, shape=(2 * n, n + 1))
-        rows, spectrum = self._rows, self._spectrum
+        rows = np.empty_like(field, shape=(n, 2 * n))
         rows[:, :n] = field
+        rows[:, n:] = 0.0
+        spectrum = np.empty_like(kernel_spectrum, shape=(2 * n, n + 1))
         spectrum[:n] = fft.rfft(rows, axis=1, **self._kw)
         spectrum[n:] = 0.0
         spectrum = fft.fft(spectrum, axis=0, **self._kw, **self._overwrite)  # in place with scipy.fft

@@ -55,8 +55,8 @@ def test_convolve_equals_direct_sum(name: str, n: int) -> None:
     tr.forward(np.zeros((n, n)))
     assert np.array_equal(spectrum, first)
     assert _rel(tr.inverse(kernel_hat * spectrum), reference) < 1e-12
-    # convolve keeps work arrays between calls: a second field (non-zero to every edge), then the
-    # first again, each against its own direct sum; earlier results stay the caller's
+    # repeated convolutions: a second field (non-zero to every edge), then the first again, each
+    # against its own direct sum; earlier results stay the caller's
     result = tr.convolve(kernel_hat, field)
     other = rng.standard_normal((n, n))
     assert _rel(tr.convolve(kernel_hat, other), direct_convolution(kernel, other)) < 1e-12
