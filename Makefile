@@ -26,11 +26,12 @@ $(STAMP_DOCS): pyproject.toml | $(PY)
 demo: $(STAMP_RUN)
 	$(VENV)/bin/viscontact run cases/creep_indentation.toml --out demo/creep_indentation.nc --plots demo/ --force
 
+# one pytest worker per core (pytest-xdist): the tests are independent processes' worth of work
 test: $(STAMP_TEST)
-	$(PY) -m pytest -q -m "not slow"
+	$(PY) -m pytest -q -n auto -m "not slow"
 
 test-all: $(STAMP_TEST)
-	$(PY) -m pytest -q
+	$(PY) -m pytest -q -n auto
 
 # the HTML site in docs/_build/html; any Sphinx warning fails the build; the gallery examples run
 docs: $(STAMP_DOCS)
