@@ -15,11 +15,14 @@ spectra; a layer (:mod:`viscontact.layers`) brings its own kernels.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Iterable
+from typing import TYPE_CHECKING, Iterable
 
 import numpy as np
 
 from .materials import CreepSpectrum
+
+if TYPE_CHECKING:
+    from .steady_kernels import SteadyShape
 
 
 @dataclass(frozen=True)
@@ -39,6 +42,13 @@ class ComplianceTerm:
         Time response phi(t) [1/Pa] of this term.
     name
         Label (e.g. ``"zz"``, ``"xx:poisson"``).
+    steady
+        How its kernel enters steady sliding on the DC-FFT grid
+        (:class:`~viscontact.steady_kernels.SteadyShape`); None where it is not built (periodic
+        grids need none: the periodic steady state is exact in Fourier space).
+
+    On a periodic grid (``grid.periodic``) ``kernel`` is the periodic kernel on the n x n grid in
+    wrap-around order (zero mean where the mean compliance is unbounded, :mod:`viscontact.periodic`).
     """
 
     displacement: str
@@ -46,6 +56,7 @@ class ComplianceTerm:
     kernel: np.ndarray
     response: CreepSpectrum
     name: str = ""
+    steady: SteadyShape | None = None
 
 
 def carson_transform(spectrum: CreepSpectrum, s: np.ndarray | float) -> np.ndarray:
@@ -79,6 +90,12 @@ def linear_combination(parts: Iterable[tuple[float, CreepSpectrum]]) -> CreepSpe
     return CreepSpectrum(float(inst), summed[keep], uniq[keep])
 
 
+def complex_compliance(spectrum: CreepSpectrum, omega: np.ndarray | float) -> np.ndarray:
+    """phi*(omega) = J_0 + sum_m J_m / (1 + i omega lambda_m) [1/Pa] at angular frequencies omega
+    [rad/s] (exp(i omega t) convention): the Carson transform at s = i omega."""
+    return carson_transform(spectrum, 1j * np.asarray(omega, dtype=float))
+
+
 def history_key(term: ComplianceTerm) -> str:
     """Key of the hereditary history a term reads: its traction component and response label
     (``"zz:bulk"`` and ``"xz:bulk"`` both read p through L(t): ``"z:bulk"``; an unlabelled term
@@ -89,13 +106,16 @@ def history_key(term: ComplianceTerm) -> str:
 
 def term_substrate(grid, terms: Iterable[ComplianceTerm], scheme, dt: float, *, workers: int = -1,
                    direct: bool = False):
-    """A :class:`~viscontact.substrate.TermSubstrate` of compliance terms (DC-FFT kernels): each term
-    a kernel named after it, terms with the same :func:`history_key` sharing one history (they must
-    share the response), Fourier preconditioners for the self (zz, xx) kernels. For the solvers'
+    """A :class:`~viscontact.substrate.TermSubstrate` of compliance terms: each term a kernel named
+    after it, terms with the same :func:`history_key` sharing one history (they must share the
+    response), Fourier preconditioners for the self (zz, xx) kernels, the terms' steady shapes. On
+    a periodic grid the kernels are periodic (n x n) and the convolver is the unpadded
+    :class:`~viscontact.periodic.PeriodicConvolver`; otherwise DC-FFT. For the solvers'
     ``substrate=`` argument (e.g. :func:`viscontact.transient.steps`)."""
     import scipy.fft
 
     from .convolution import Convolver, FourierPreconditioner
+    from .periodic import PeriodicConvolver
     from .substrate import Term, TermSubstrate
 
     terms = list(terms)
@@ -106,8 +126,14 @@ def term_substrate(grid, terms: Iterable[ComplianceTerm], scheme, dt: float, *, 
             raise ValueError(f"terms reading history {key!r} have different responses")
         responses[key] = term.response
     kernels = {t.name: t.kernel for t in terms}
-    conv = Convolver.from_kernels(grid.n, kernels, workers, xp=np, fft=scipy.fft)
-    precond = {t.name: FourierPreconditioner.for_kernel(t.kernel, 1.0, workers, fft=scipy.fft)
-               for t in terms if t.displacement == t.traction}
+    selves = [t.name for t in terms if t.displacement == t.traction]
+    if grid.periodic:
+        conv = PeriodicConvolver.from_kernels(grid.n, kernels, workers, xp=np, fft=scipy.fft)
+        precond = {name: conv.preconditioner(name) for name in selves}
+    else:
+        conv = Convolver.from_kernels(grid.n, kernels, workers, xp=np, fft=scipy.fft)
+        precond = {name: FourierPreconditioner.for_kernel(kernels[name], 1.0, workers, fft=scipy.fft)
+                   for name in selves}
     core_terms = [Term(t.displacement, t.traction, t.name, history_key(t)) for t in terms]
-    return TermSubstrate(grid, core_terms, responses, conv, precond, scheme, dt, direct)
+    return TermSubstrate(grid, core_terms, responses, conv, precond, scheme, dt, direct, periodic=grid.periodic,
+                         steady_shapes={t.name: t.steady for t in terms if t.steady is not None})

@@ -83,8 +83,9 @@ from .compliance_terms import ComplianceTerm
 from .errors import ParameterError
 from .grid import Grid
 from .kernels import rectangle_influence
-from .materials import Material
+from .materials import CreepSpectrum, Material
 from .poisson import prony_creep_spectra, prony_creep_spectrum
+from .steady_kernels import SteadyKernelBuilder, SteadyShape
 
 SUBSTRATES = ("rigid", "elastic")
 INTERFACES = ("bonded", "frictionless")
@@ -394,10 +395,13 @@ def _half_space_near(ox: np.ndarray, oy: np.ndarray, cell: float, layer: Layer, 
 
 
 def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: float, cells: int,
-                  low: dict[str, dict[int, float]] | None, max_fine: int) -> dict[str, np.ndarray]:
+                  low: dict[str, dict[int, float]] | None, max_fine: int,
+                  shifts: np.ndarray | None = None) -> dict[str, np.ndarray]:
     """Cell kernels [m/Pa] on a periodic box of ``cells`` x ``cells`` grid cells (real space,
     wrap-around order) of the spectrum M - c_high (1 - e^{-kH})/k - c_low e^{-kH}/k, sampled on a
-    refined grid, times the cell footprint, folded onto the box wavevectors.
+    refined grid, times the cell footprint, folded onto the box wavevectors. ``shifts`` [m]: the
+    same at the offsets moved by each shift along x (phase exp(i q_x shift) on the refined grid,
+    before folding), shape (shifts, cells, cells).
 
     ``low`` None (periodic kernels): c_low = 0 and the q = 0 term makes the kernel's mean the
     uniform compliance (0 where unbounded). Otherwise (non-periodic) the remainder is bounded at
@@ -443,9 +447,19 @@ def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: 
             ring2 = 0.25 * (full[0, 2] + full[0, -2] + full[2, 0] + full[-2, 0]).real
             spec[0, 0] = (2 * ring1 - ring2) * dx**2
             tail = (ring2 - ring1) / q1 * _LATTICE_ZETA3 * dx**2 / (2 * np.pi * (cells * dx) ** 3)
-        folded = spec.reshape(refine, cells, refine, cells).sum(axis=(0, 2))
-        out[name] = scipy.fft.ifft2(folded).real / dx**2 + tail
+        if shifts is None:
+            folded = spec.reshape(refine, cells, refine, cells).sum(axis=(0, 2))
+            out[name] = scipy.fft.ifft2(folded).real / dx**2 + tail
+            continue
+        out[name] = np.stack([scipy.fft.ifft2((spec * np.exp(1j * qx * xi)).reshape(refine, cells, refine, cells)
+                                              .sum(axis=(0, 2))).real / dx**2 + tail for xi in shifts])
     return out
+
+
+def _box_cells(grid: Grid, layer: Layer, big_h: float, box: int) -> int:
+    """Cells per side of the periodic box of the non-periodic remainder: ``box`` domain widths, at
+    least 8 max(H, h)."""
+    return max(box * grid.n, 2 * int(np.ceil(4 * max(big_h, layer.thickness) / grid.spacing)))
 
 
 def influence_coefficients(grid: Grid, layer: Layer, components: tuple[str, ...] = COMPONENTS,
@@ -468,7 +482,7 @@ def influence_coefficients(grid: Grid, layer: Layer, components: tuple[str, ...]
     off = grid.offsets()
     ox, oy = np.meshgrid(off, off, indexing="xy")
     out = _half_space_near(ox, oy, dx, layer, big_h, components, low)
-    cells = max(box * n, 2 * int(np.ceil(4 * max(big_h, layer.thickness) / dx)))
+    cells = _box_cells(grid, layer, big_h, box)
     remainder = _fourier_part(grid, layer, components, big_h, cells, low, max_fine)
     idx = np.concatenate([np.arange(0, n + 1), np.arange(cells - n + 1, cells)])
     for name in components:
@@ -516,6 +530,55 @@ def periodic_spectra(grid: Grid, layer: Layer, components: tuple[str, ...] = COM
     return out
 
 
+def unit_kernels(grid: Grid, layer: Layer, components: tuple[str, ...] = COMPONENTS) -> dict[str, np.ndarray]:
+    """The layer's kernels at unit modulus (times G [Pa]: displacement = kernel * traction / G for an
+    elastic layer) on ``grid``: DC-FFT (2n, 2n) (:func:`influence_coefficients`) or, on a periodic
+    grid, the periodic n x n kernels in wrap-around order (:func:`periodic_spectra`)."""
+    if grid.periodic:
+        spectra = periodic_spectra(grid, layer, components)
+        return {c: scipy.fft.irfft2(spectra[c], s=(grid.n, grid.n)) * layer.shear_modulus for c in components}
+    kernels = influence_coefficients(grid, layer, components)
+    return {c: kernels[c] * layer.shear_modulus for c in components}
+
+
+def steady_shapes(grid: Grid, layer: Layer, components: tuple[str, ...] = ("zz", "zx"), box: int = 4,
+                  max_fine: int = 8192) -> dict[str, SteadyShape]:
+    """Steady shapes (:class:`~viscontact.steady_kernels.SteadyShape`) of the layer's unit-modulus
+    DC-FFT kernels (:func:`unit_kernels`), by component: for steady sliding at speed v each
+    retardation mode needs F_m(d) = int_0^inf exp(-xi/L_m)/L_m K(d + xi) dxi, L_m = v lambda_m,
+    over the whole past of the material, far beyond the grid.
+
+    The kernel is split as in :func:`influence_coefficients`: the near part (half-space kernels of
+    the layer material and the depth-smoothed kernels, closed form at any offset, long-range tail
+    included) goes through the product integration of
+    :class:`~viscontact.steady_kernels.SteadyKernelBuilder` (``point_kernel``); the remainder,
+    smooth and decaying as 1/r^3, is sampled on its periodic box at the sub-cell shifts of the
+    integration nodes (phase exp(i q_x xi) before folding) and integrated by the same recursion
+    from half a box ahead of the domain (``smooth``), where it has decayed. Empty on a periodic
+    grid (the periodic steady state is exact in Fourier space)."""
+    if grid.periodic:
+        return {}
+    n = grid.n
+    big_h = _smoothing_depth(grid, layer, None)
+    low = _long_wave_coefficients(layer)
+    cells = _box_cells(grid, layer, big_h, box)
+    g = layer.shear_modulus
+    rows = np.concatenate([np.arange(0, n + 1), np.arange(cells - n + 1, cells)])
+    cols = np.concatenate([np.arange(cells - n + 1, cells), np.arange(0, cells // 2)])
+    out = {}
+    for comp in components:
+        def point(ox: np.ndarray, oy: np.ndarray, comp: str = comp) -> dict[str, np.ndarray]:
+            return {comp: g * _half_space_near(ox, oy, grid.spacing, layer, big_h, (comp,), low)[comp]}
+
+        def smooth(shifts: np.ndarray, comp: str = comp) -> np.ndarray:
+            box_values = _fourier_part(grid, layer, (comp,), big_h, cells, low, max_fine, shifts)[comp]
+            return g * box_values[:, rows][:, :, cols][:, None]
+
+        builder = SteadyKernelBuilder(grid, layer.poisson_ratio, (comp,), point_kernel=point, smooth=smooth)
+        out[comp] = SteadyShape(((builder, comp, 1.0),))
+    return out
+
+
 # --- viscoelastic layer on a rigid base: one term per component ---------------------------------
 
 def rigid_base_terms(grid: Grid, layer: Layer, shear: Material, components: tuple[str, ...] = ("zz", "xx", "xz", "zx")
@@ -530,9 +593,18 @@ def rigid_base_terms(grid: Grid, layer: Layer, shear: Material, components: tupl
     if layer.substrate != "rigid":
         raise ParameterError("layer.substrate", "kernel x J(t) terms exist for a rigid substrate only; an elastic "
                              "substrate needs one term per relaxation mode (viscoelastic_periodic_modes)")
-    kernels = influence_coefficients(grid, layer, components)
-    creep = prony_creep_spectrum(shear.g_inf, shear.g, shear.tau)
-    return [ComplianceTerm(c[0], c[1], kernels[c] * layer.shear_modulus, creep, c) for c in components]
+    return factored_terms(grid, layer, prony_creep_spectrum(shear.g_inf, shear.g, shear.tau), components)
+
+
+def factored_terms(grid: Grid, layer: Layer, response: CreepSpectrum, components: tuple[str, ...] = COMPONENTS
+                   ) -> list[ComplianceTerm]:
+    """One term per component: the unit-modulus kernel (:func:`unit_kernels`, periodic on a periodic
+    grid) times ``response`` [1/Pa], with its steady shape (:func:`steady_shapes`, DC-FFT grids):
+    exact wherever the layer's compliance is 1/G times a function of the geometry (a rigid base, or
+    an elastic layer whose response is 1/G)."""
+    kernels = unit_kernels(grid, layer, components)
+    shapes = steady_shapes(grid, layer, components)
+    return [ComplianceTerm(c[0], c[1], kernels[c], response, c, shapes.get(c)) for c in components]
 
 
 # --- viscoelastic layer on an elastic substrate: modes per wavevector -----------------------------

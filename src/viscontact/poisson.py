@@ -50,6 +50,8 @@ from .errors import ParameterError
 from .grid import Grid
 from .kernels import influence_coefficients
 from .materials import CreepSpectrum, Material
+from .periodic import periodic_influence_coefficients
+from .steady_kernels import SteadyKernelBuilder, SteadyShape
 
 #: the factor names of :meth:`BulkElasticMaterial.factor`
 FACTORS = ("normal", "tangential", "tangential_poisson", "coupling")
@@ -226,23 +228,39 @@ def half_space_terms(grid: Grid, material: BulkElasticMaterial,
         u_x = (S_xx + D_xx/2) (J (*) dq) - 3 D_xx/2 (L (*) dq) + 3 S_xz (L (*) dp)
 
     The kernels of :mod:`viscontact.kernels` are affine in nu, IC(nu) = IC(0) + nu (IC(1) - IC(0)):
-    ``S = IC(0)`` and ``D = IC(1) - IC(0)`` are the shape parts. Terms whose response vanishes
+    ``S = IC(0)`` and ``D = IC(1) - IC(0)`` are the shape parts (on a periodic grid those of
+    :func:`~viscontact.periodic.periodic_influence_coefficients`, affine in nu too). Each term's
+    steady shape (:class:`~viscontact.steady_kernels.SteadyShape`, DC-FFT grids) is the same
+    combination of :class:`~viscontact.steady_kernels.SteadyKernelBuilder` kernels at nu = 0 and 1,
+    so steady sliding integrates each part with its own spectrum. Terms whose response vanishes
     (every L term when K = inf) are left out.
     """
-    at0 = influence_coefficients(grid, 0.0)
-    d_xx = influence_coefficients(grid, 1.0)["xx"] - at0["xx"] if "xx" in components else None
+    kernels_at = periodic_influence_coefficients if grid.periodic else influence_coefficients
+    at0 = kernels_at(grid, 0.0)
+    d_xx = kernels_at(grid, 1.0)["xx"] - at0["xx"] if "xx" in components else None
     shear, bulk = material.shear_creep, material.bulk_shear_creep
+    # (kernel, response, steady shape: (nu of the half-space kernel, factor) pairs)
     parts = {
-        "zz": [(0.5 * at0["zz"], shear), (1.5 * at0["zz"], bulk)],
-        "xx": [(at0["xx"] + 0.5 * d_xx, shear), (-1.5 * d_xx, bulk)] if d_xx is not None else [],
-        "xz": [(3.0 * at0["xz"], bulk)],
-        "zx": [(3.0 * at0["zx"], bulk)],
+        "zz": [(0.5 * at0["zz"], shear, ((0.0, 0.5),)), (1.5 * at0["zz"], bulk, ((0.0, 1.5),))],
+        "xx": [(at0["xx"] + 0.5 * d_xx, shear, ((0.0, 0.5), (1.0, 0.5))),
+               (-1.5 * d_xx, bulk, ((0.0, 1.5), (1.0, -1.5)))] if d_xx is not None else [],
+        "xz": [(3.0 * at0["xz"], bulk, ((0.0, 3.0),))],
+        "zx": [(3.0 * at0["zx"], bulk, ((0.0, 3.0),))],
     }
+    builders: dict[tuple[float, str], SteadyKernelBuilder] = {}
+
+    def shape(comp: str, pieces: tuple[tuple[float, float], ...]) -> SteadyShape | None:
+        if grid.periodic:
+            return None
+        for nu, _ in pieces:
+            builders.setdefault((nu, comp), SteadyKernelBuilder(grid, nu, (comp,)))
+        return SteadyShape(tuple((builders[(nu, comp)], comp, factor) for nu, factor in pieces))
+
     terms: list[ComplianceTerm] = []
     for comp in components:
-        for kernel, response in parts[comp]:
+        for kernel, response, pieces in parts[comp]:
             if response.instantaneous == 0.0 and not np.any(response.amplitudes):
                 continue
             label = "shear" if response is shear else "bulk"
-            terms.append(ComplianceTerm(comp[0], comp[1], kernel, response, f"{comp}:{label}"))
+            terms.append(ComplianceTerm(comp[0], comp[1], kernel, response, f"{comp}:{label}", shape(comp, pieces)))
     return terms

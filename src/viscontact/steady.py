@@ -57,8 +57,9 @@ def steady_convolver(problem: Problem, speed: float, substrate: TermSubstrate | 
                      ) -> tuple[Convolver, dict[str, np.ndarray]]:
     """The substrate's effective steady kernels at ``speed`` [m/s] (``zz``, and ``zx`` when sliding with
     friction and coupling): ``apply("zz", p)`` is u_z [m] of the pressure p [Pa]."""
-    substrate = substrate or substrate_for(problem, ("zz",))
-    return substrate.steady_convolver(speed, steady_components(problem))
+    components = steady_components(problem)
+    substrate = substrate or substrate_for(problem, components)
+    return substrate.steady_convolver(speed, components)
 
 
 def steady_components(problem: Problem) -> list[str]:
@@ -296,11 +297,12 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
     if grid.periodic:
         from .steady_periodic import solve_periodic_steady
 
-        conv = substrate_for(problem, steady_components(problem)).convolver
-        state = solve_periodic_steady(conv, problem.material, grid, problem.gap,
+        body = substrate_for(problem, steady_components(problem))
+        state = solve_periodic_steady(body.convolver, problem.material, grid, problem.gap,
                                       speed=v, control=problem.normal.control, value=value, friction=mu,
                                       initial=initial, tolerance=tolerance,
-                                      max_iterations=problem.solver.max_iterations)
+                                      max_iterations=problem.solver.max_iterations,
+                                      spectrum=body.steady_spectrum(v, mu))
         p, delta, krylov, u_z = state.pressure, state.delta_z, state.iterations, state.displacement_z
     else:
         substrate = substrate or substrate_for(problem, ("zz",))
@@ -339,7 +341,7 @@ def speed_sweep(problem: Problem, speeds: Sequence[float]) -> list[StepRecord]:
     one substrate serves them all (its kernel builder keeps what does not depend on the speed)."""
     out: list[StepRecord] = []
     previous = None
-    substrate = substrate_for(problem, ("zz",))
+    substrate = substrate_for(problem, steady_components(problem))
     for v in speeds:
         rec = solve_steady(problem, v, initial=previous, substrate=substrate)
         previous = rec.pressure

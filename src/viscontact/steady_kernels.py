@@ -33,7 +33,7 @@ partition of [0, dx] is graded geometrically towards dx/2 from both sides.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Sequence
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -130,6 +130,18 @@ class SteadyKernelBuilder:
     grading
         Geometric refinement levels towards the cell edge xi = dx/2 on each side.
 
+    point_kernel
+        Another kernel than the half-space's: ``point_kernel(dx, dy)`` gives the cell kernels (by
+        component) at any offsets dx, dy [m] (broadcast arrays), e.g. the part of a layer's kernel
+        known in closed form (:func:`viscontact.layers.steady_shapes`); ``poisson_ratio`` is then
+        not used.
+    smooth
+        A further smooth part known only on a grid: ``smooth(shifts)`` gives its values at the
+        x offsets -(n-1) dx + shift ... (-(n-1) + X - 1) dx + shift [m] for each shift in [0, dx],
+        shape (shifts, components, 2n y offsets in wrap order, X), X >= 2n - 1, and nothing beyond
+        (it must have decayed there). Its F_m are integrated over those X offsets only, by the same
+        recursion, with product weights on a two-interval partition of [0, dx].
+
     The IC values at the local nodes (``len(components)`` x nodes x (2n)^2 doubles) are computed on
     first use and kept, so a speed sweep pays for them once.
     """
@@ -139,15 +151,22 @@ class SteadyKernelBuilder:
     components: tuple[str, ...] = ("zz", "zx")
     degree: int = 6
     grading: int = 2
+    point_kernel: Callable[[np.ndarray, np.ndarray], Mapping[str, np.ndarray]] | None = None
+    smooth: Callable[[np.ndarray], np.ndarray] | None = None
     _local: tuple | None = field(default=None, init=False, repr=False)
     _tail_ic: dict = field(default_factory=dict, init=False, repr=False)
     _base_ic: dict | None = field(default=None, init=False, repr=False)
+    _smooth_values: tuple | None = field(default=None, init=False, repr=False)
 
     # --- IC on the offset grid ------------------------------------------------------------
     def _ic(self, dx_offsets: np.ndarray, dy_offsets: np.ndarray) -> np.ndarray:
-        h = 0.5 * self.grid.spacing
-        res = rectangle_influence(dx_offsets, dy_offsets, h, h, self.poisson_ratio, self.components)
-        return np.stack([res[c] for c in self.components])
+        if self.point_kernel is not None:
+            res = self.point_kernel(dx_offsets, dy_offsets)
+        else:
+            h = 0.5 * self.grid.spacing
+            res = rectangle_influence(dx_offsets, dy_offsets, h, h, self.poisson_ratio, self.components)
+        return np.stack([np.broadcast_to(res[c], np.broadcast(dx_offsets, dy_offsets).shape)
+                         for c in self.components])
 
     @property
     def _x_offsets(self) -> np.ndarray:
@@ -182,7 +201,9 @@ class SteadyKernelBuilder:
         return self._local
 
     def _base(self) -> dict[str, np.ndarray]:
-        """IC at the integer offsets (``kernels.influence_coefficients``), kept."""
+        """IC at the integer offsets (``kernels.influence_coefficients``), kept (half-space only)."""
+        if self.point_kernel is not None or self.smooth is not None:
+            raise ValueError("effective() is for the half-space kernels; add the term's own kernel to history()")
         if self._base_ic is None:
             ics = influence_coefficients(self.grid, self.poisson_ratio)
             self._base_ic = {c: ics[c] for c in self.components}
@@ -216,7 +237,34 @@ class SteadyKernelBuilder:
         for i in range(2 * n - 3, -1, -1):
             running = weights @ local_ic[i] + decay * running
             values[i] = amps @ running
+        if self.smooth is not None:
+            values += self._smooth_history(amps, lengths)
         return offset_columns_to_kernels(values.T.reshape(n_comp, 2 * n, 2 * n - 1), self.components)
+
+    def _smooth_history(self, amps: np.ndarray, lengths: np.ndarray) -> np.ndarray:
+        """sum_m J_m F_m of the ``smooth`` part at the offsets -(n-1) dx ... (n-1) dx, shape
+        (2n - 1, C * 2n): the backward recursion from its last offset (F = 0 beyond it)."""
+        n, dx = self.grid.n, self.grid.spacing
+        if self._smooth_values is None:
+            breaks = (0.0, 0.5 * dx, dx)
+            unit, _ = _lobatto(self.degree)
+            shifts = np.unique(np.concatenate([a + (b - a) * unit for a, b in zip(breaks[:-1], breaks[1:])]))
+            index = [np.searchsorted(shifts, a + (b - a) * unit) for a, b in zip(breaks[:-1], breaks[1:])]
+            sampled = np.asarray(self.smooth(shifts), dtype=float)  # (S, C, 2n, X)
+            sampled = sampled.reshape(shifts.size, -1, sampled.shape[-1]).transpose(2, 0, 1)  # (X, S, C * 2n)
+            self._smooth_values = (list(zip(breaks[:-1], breaks[1:])), index, np.ascontiguousarray(sampled))
+        intervals, index, sampled = self._smooth_values
+        weights = np.zeros((lengths.size, sampled.shape[1]))
+        for (a, b), idx in zip(intervals, index):
+            np.add.at(weights, (slice(None), idx), product_weights(a, b, self.degree, lengths))
+        decay = np.exp(-dx / lengths)[:, None]
+        running = np.zeros((lengths.size, sampled.shape[2]))
+        out = np.empty((2 * n - 1, sampled.shape[2]))
+        for i in range(sampled.shape[0] - 1, -1, -1):
+            running = weights @ sampled[i] + decay * running
+            if i < 2 * n - 1:
+                out[i] = amps @ running
+        return out
 
     def _tail(self, lengths: np.ndarray) -> np.ndarray:
         """F_m at the largest offset d_max = (n-1) dx, shape (M, C * 2n): int_0^inf on intervals
@@ -246,6 +294,32 @@ class SteadyKernelBuilder:
         base = self._base()
         hist = self.history(amplitudes, speed * np.asarray(retardation_times, dtype=float))
         return {c: instantaneous * base[c] + hist[c] for c in self.components}
+
+
+@dataclass(frozen=True)
+class SteadyShape:
+    """The kernel of a compliance term (:class:`~viscontact.compliance_terms.ComplianceTerm`) as
+    builders know it: K = sum_i factor_i K_i, K_i the kernel ``component_i`` of ``builder_i``, so
+    that its steady history kernel is sum_i factor_i (sum_m J_m F_m[K_i]) with the term's own
+    spectrum J_m (e.g. the nu = 0 and nu = 1 half-space kernels of :mod:`viscontact.poisson`, or a
+    layer's kernel, :func:`viscontact.layers.steady_shapes`).
+
+    Attributes
+    ----------
+    parts
+        (builder, component, factor) triples; builders shared between shapes keep their node values
+        for all of them.
+    """
+
+    parts: tuple[tuple[SteadyKernelBuilder, str, float], ...]
+
+    def history(self, amplitudes: Sequence[float], lengths: Sequence[float]) -> np.ndarray:
+        """sum_m J_m F_m[K](d) [m/Pa per Pa] on the (2n, 2n) DC-FFT offset grid; J_m [1/Pa], L_m [m]."""
+        out = None
+        for builder, component, factor in self.parts:
+            part = factor * builder.history(amplitudes, lengths)[component]
+            out = part if out is None else out + part
+        return out
 
 
 def steady_history_kernels(grid: Grid, poisson_ratio: float, amplitudes: Sequence[float],

@@ -24,6 +24,8 @@ non-symmetric operator and is solved by the active-set method of :mod:`viscontac
 periodic operator has no q = 0 mode (zero-mean displacement, see :mod:`viscontact.periodic`): under
 load control it is given the compliance c of the lowest non-zero mode there, which only shifts the
 multiplier, and the approach is reported in the zero-mean convention, delta_z = delta_c - c mean(p).
+A body whose uniform compliance is bounded (a layer on a rigid base, :mod:`viscontact.layers`) keeps
+its own q = 0 mode, and its approach is the plain one, as in its transient.
 """
 from __future__ import annotations
 
@@ -95,7 +97,7 @@ class PeriodicSteadyState:
 def solve_periodic_steady(conv: PeriodicConvolver, material: Material, grid: Grid, gap: np.ndarray, *,
                           speed: float, control: str, value: float, friction: float = 0.0,
                           initial: np.ndarray | None = None, tolerance: float = 1e-10,
-                          max_iterations: int = 2000) -> PeriodicSteadyState:
+                          max_iterations: int = 2000, spectrum: np.ndarray | None = None) -> PeriodicSteadyState:
     """Steady state of sliding at ``speed`` [m/s] on a periodic domain.
 
     Parameters
@@ -112,14 +114,20 @@ def solve_periodic_steady(conv: PeriodicConvolver, material: Material, grid: Gri
         mu_f for gross sliding (q_x = mu_f p), 0 for frictionless sliding.
     initial
         Pressure to start the active set from (e.g. the previous speed's).
+    spectrum
+        The steady operator's spectrum when the body is not the half-space of ``material``
+        (:meth:`viscontact.substrate.TermSubstrate.steady_spectrum`; ``material`` is then not used).
     """
     if not speed > 0:
         raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s for a steady state, got {speed}")
     if control == "displacement":
         check_approach(value, gap)
-    spec = steady_spectrum(conv, material, grid, speed, friction)
+    spec = steady_spectrum(conv, material, grid, speed, friction) if spectrum is None else spectrum
     load_control = control == "load"
-    offset = float(spec[0, 1].real) if load_control else 0.0  # q = 0 compliance (see module docstring)
+    # q = 0 compliance (module docstring); a body with a bounded uniform compliance (a layer on a rigid
+    # base: h/M) keeps its own and reports the approach in that convention, as its transient does
+    bounded = abs(spec[0, 0].real) > 1e-9 * abs(spec[0, 1].real)
+    offset = float(spec[0, 0].real) if bounded else float(spec[0, 1].real) if load_control else 0.0
     spec_solve = spec.copy()
     spec_solve[0, 0] = offset
 
@@ -138,7 +146,7 @@ def solve_periodic_steady(conv: PeriodicConvolver, material: Material, grid: Gri
                                                       cell_area=grid.cell_area, initial=initial, tolerance=tolerance,
                                                       max_iterations=max_iterations, preconditioner=precondition)
     u_z = apply(spec)(p)
-    delta = delta - offset * float(p.mean())
+    delta = delta - (0.0 if bounded else offset) * float(p.mean())
     load = float(p.sum() * grid.cell_area)
     f_t = hysteresis_force(p, u_z, grid, periodic=True)
     return PeriodicSteadyState(p, u_z, float(delta), load, f_t, f_t / load if load > 0 else 0.0,

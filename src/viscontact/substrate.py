@@ -54,7 +54,7 @@ from .kernels import influence_coefficients
 from .materials import CreepSpectrum, Material
 from .periodic import PeriodicConvolver
 from .schemes import StepCoefficients, TimeScheme, get_scheme
-from .steady_kernels import SteadyKernelBuilder
+from .steady_kernels import SteadyKernelBuilder, SteadyShape
 
 Array = np.ndarray
 Operator = Callable[[Array], Array]
@@ -115,11 +115,16 @@ class TermSubstrate:
     periodic
         The domain is one period: a frame shift wraps the material history around (nothing is
         dropped, no wake) instead of losing it at the trailing edge.
+    steady_shapes
+        Steady shape (:class:`~viscontact.steady_kernels.SteadyShape`) of each kernel, by name, for
+        :meth:`steady_convolver` on DC-FFT grids (kernels whose response has no retardation modes
+        need none).
     """
 
     def __init__(self, grid: Grid, terms: Sequence[Term], responses: Mapping[str, CreepSpectrum],
                  convolver: Convolver, preconditioners: Mapping[str, FourierPreconditioner],
-                 scheme: str | TimeScheme, dt: float, direct: bool = False, periodic: bool = False) -> None:
+                 scheme: str | TimeScheme, dt: float, direct: bool = False, periodic: bool = False,
+                 steady_shapes: Mapping[str, SteadyShape] | None = None) -> None:
         self.grid = grid
         self.terms = tuple(terms)
         self.responses = dict(responses)
@@ -129,6 +134,7 @@ class TermSubstrate:
         self.dt = float(dt)
         self.direct = direct
         self.periodic = periodic
+        self.steady_shapes = dict(steady_shapes or {})
         #: traction component each history carries
         self.history_traction = {t.history: t.traction for t in self.terms}
         #: the history of the normal self-term (what leaves the frame as the wake)
@@ -261,15 +267,56 @@ class TermSubstrate:
     # --- steady sliding ---------------------------------------------------------------------------
     def steady_convolver(self, speed: float, components: Sequence[str] = ("zz",)
                          ) -> tuple[Convolver, dict[str, Array]]:
-        """Convolver of the effective steady kernels at ``speed`` [m/s] (1/Pa included) and the kernels.
+        """Convolver of the effective steady kernels at ``speed`` [m/s] (1/Pa included) and the kernels,
+        by component (``zz``, ``zx``, ...): the sum over the component's terms of
 
-        Not built for general terms (it needs each term's history kernels of its own shape, not only
-        those of the half-space in :func:`~viscontact.kernels.history_kernels`): a
-        :class:`~viscontact.errors.ParameterError` that sends the user to the transient solver.
+            K_term(d) = J_0 K(d) + sum_m J_m F_m(d),   F_m(d) = int_0^inf exp(-xi/L_m)/L_m K(d + xi) dxi,
+
+        L_m = v lambda_m, each term with its own spectrum (J_0, J_m, lambda_m) and the F_m of its own
+        kernel shape (:attr:`steady_shapes`, all modes in one pass: :mod:`viscontact.steady_kernels`);
+        ``apply("zz", p)`` is u_z [m] of p [Pa]. DC-FFT grids; a periodic steady state is exact in
+        Fourier space (:meth:`steady_spectrum`).
         """
-        raise ParameterError("steady", "the steady solver supports the homogeneous half-space with constant "
-                             "material.poisson_ratio only (no [layer], no material.bulk_modulus); "
-                             "use `viscontact run` (transient)")
+        if self.periodic:
+            raise NotImplementedError("a periodic steady state is exact in Fourier space: steady_spectrum")
+        n = self.grid.n
+        kernels: dict[str, Array] = {}
+        for term in self.terms:
+            name = term.displacement + term.traction
+            if name not in components:
+                continue
+            spectrum = self.responses[term.history]
+            # the convolver keeps its kernels centred (offset 0 at n - 1): back to wrap-around order
+            kernel = spectrum.instantaneous * np.roll(self.convolver.kernels[term.kernel], (1 - n, 1 - n), axis=(0, 1))
+            if np.any(spectrum.amplitudes):
+                shape = self.steady_shapes.get(term.kernel)
+                if shape is None:
+                    raise ParameterError("steady", f"no steady kernel for the compliance term {term.kernel!r}; "
+                                         "use `viscontact run` (transient)")
+                kernel = kernel + shape.history(spectrum.amplitudes, speed * spectrum.retardation_times)
+            kernels[name] = kernel if name not in kernels else kernels[name] + kernel
+        return Convolver.from_kernels(n, kernels, self.convolver.workers, xp=self.xp, fft=self.fft,
+                                      transforms=self.convolver.transforms), kernels
+
+    def steady_spectrum(self, speed: float, friction: float = 0.0) -> Array:
+        """Spectrum (n, n//2 + 1) of the steady operator p -> u_z [m per Pa] on a periodic grid: the sum
+        over the ``zz`` terms (and ``friction`` x the ``zx`` terms: q_x = mu_f p) of K^_term
+        phi*_term(-k_x v), phi* the term's complex compliance
+        (:func:`~viscontact.compliance_terms.complex_compliance`): in the frame of the indenter a
+        Fourier mode exp(i k.x) of the material is seen at the angular frequency -k_x v
+        (:mod:`viscontact.steady_periodic`)."""
+        from .compliance_terms import complex_compliance
+
+        if not self.periodic:
+            raise NotImplementedError("steady_spectrum is for periodic grids: steady_convolver")
+        omega = -2 * np.pi * np.fft.rfftfreq(self.grid.n, self.grid.spacing)[None, :] * speed
+        out = None
+        for term in self._terms("z", "z") + (self._terms("z", "x") if friction > 0 else []):
+            factor = 1.0 if term.traction == "z" else friction
+            part = (factor * self.convolver.spectra[term.kernel]) * complex_compliance(self.responses[term.history],
+                                                                                      omega)
+            out = part if out is None else out + part
+        return out
 
 
 class HalfSpace(TermSubstrate):
@@ -333,6 +380,15 @@ class HalfSpace(TermSubstrate):
         return Convolver.from_kernels(self.grid.n, kernels, self.workers, xp=self.xp, fft=self.fft,
                                       transforms=self.convolver.transforms), kernels
 
+    def steady_spectrum(self, speed: float, friction: float = 0.0) -> Array:
+        """(K^_zz + mu_f K^_zx) / G*(-k_x v) on a periodic grid
+        (:func:`viscontact.steady_periodic.steady_spectrum`)."""
+        from .steady_periodic import steady_spectrum
+
+        if not self.periodic:
+            raise NotImplementedError("steady_spectrum is for periodic grids: steady_convolver")
+        return steady_spectrum(self.convolver, self.material, self.grid, speed, friction)
+
 
 def substrate_for(problem, components: Sequence[str] | None = None) -> TermSubstrate:
     """The substrate of a :class:`~viscontact.problem.Problem` (the one place that chooses it).
@@ -391,8 +447,7 @@ def layer_terms(grid: Grid, settings, material: Material, components: Sequence[s
     there needs one kernel per relaxation mode, built by :mod:`viscontact.layers` for periodic
     domains only, so it is refused (:class:`~viscontact.errors.ParameterError`).
     """
-    from .compliance_terms import ComplianceTerm
-    from .layers import Layer, influence_coefficients, rigid_base_terms
+    from .layers import Layer, factored_terms, rigid_base_terms
 
     layer = Layer(settings.thickness, material.shear_modulus_instantaneous, material.poisson_ratio,
                   settings.substrate, settings.interface, settings.substrate_shear_modulus,
@@ -404,6 +459,4 @@ def layer_terms(grid: Grid, settings, material: Material, components: Sequence[s
         raise ParameterError("layer.substrate", "'elastic' needs an elastic [material] (type = 'elastic'): a "
                              "viscoelastic layer on an elastic substrate needs one kernel per relaxation mode, "
                              "not built for the non-periodic grid; use substrate = 'rigid'")
-    kernels = influence_coefficients(grid, layer, comps)
-    g = layer.shear_modulus
-    return [ComplianceTerm(c[0], c[1], kernels[c] * g, material.creep, c) for c in comps]
+    return factored_terms(grid, layer, material.creep, comps)

@@ -137,12 +137,15 @@ def test_viscoelastic_layer_on_an_elastic_substrate_is_refused():
              "layer.substrate_shear_modulus": G0, "layer.substrate_poisson_ratio": 0.3})
 
 
-def test_steady_refuses_terms_substrates():
-    case = BASE.with_overrides({"grid.n": 16, "tangential.mode": "frictionless_sliding",
-                                "tangential.sliding_speed": 0.01, "time.dt": None,
-                                "material.poisson_ratio": None, "material.bulk_modulus": 2 * G0})
-    with pytest.raises(ParameterError, match="^steady: the steady solver supports"):
-        vc.run_steady(case)
+def test_steady_case_with_a_layer_slides_slowly_as_the_relaxed_elastic_layer():
+    """``viscontact steady`` takes [layer] and material.bulk_modulus: at v tau / a0 = 1e-4 the
+    steady approach is the elastic one at G(inf) (tests/validation/test_steady_bodies.py)."""
+    layer = {"layer.thickness": 0.5e-3}
+    steady = vc.run_steady(BASE.with_overrides({"grid.n": 16, "tangential.mode": "frictionless_sliding",
+                                                "tangential.sliding_speed": 1e-4 * 0.59e-3 / 0.01, "time.dt": None,
+                                                **layer}))
+    relaxed = run({**ELASTIC, "grid.n": 16, "material.shear_modulus": G0 / 10, **layer})
+    assert float(steady["delta_z"].values.ravel()[-1]) == pytest.approx(relaxed["delta_z"].values[-1], rel=0.01)
 
 
 def test_subsurface_maximum_shear_of_hertz(tmp_path):
