@@ -37,6 +37,9 @@ def problem_fingerprint(problem: Problem) -> str:
     h.update(repr((problem.material, problem.grid, problem.normal, problem.tangential, problem.time,
                    problem.solver, problem.radius, problem.output)).encode())
     h.update(np.ascontiguousarray(problem.gap).tobytes())
+    body = {"bulk_modulus": problem.bulk_modulus, "layer": problem.layer}
+    if any(v is not None for v in body.values()):  # the half-space's fingerprint stays what it was
+        h.update(repr(body).encode())
     return h.hexdigest()
 
 

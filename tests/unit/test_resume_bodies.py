@@ -1,0 +1,80 @@
+"""Checkpoint and resume on the bodies built from compliance terms: nu(t) (``bulk_modulus``, two
+histories per traction component), a layer on a rigid base and an elastic layer on an elastic
+substrate (their own kernels), on DC-FFT and periodic grids. A run stopped after a few steps (as
+by a signal: its checkpoint written) and resumed gives the uninterrupted result bit for bit, as
+the half-space's does (tests/unit/test_reliability.py); a checkpoint of another body is refused."""
+from __future__ import annotations
+
+import warnings
+from contextlib import contextmanager
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from viscontact import api
+from viscontact.case import load_case
+from viscontact.errors import ParameterError, RunInterrupted, ViscontactWarning
+
+ROOT = Path(__file__).resolve().parents[2]
+G0 = 1.93e6
+SLIDING = {"grid.n": 16, "tangential.sliding_speed": 0.05, "tangential.friction_coefficient": 0.3, "time.dt": None,
+           "time.scheme": "linear", "tangential.steps_per_cell": 4, "time.t_end": 10 * 2e-3 / 8 / 0.05 / 4}
+BULK = {"material.poisson_ratio": None, "material.bulk_modulus": 2 * G0}
+LAYER = {"layer.thickness": 0.5e-3}
+ELASTIC_ON_ELASTIC = {"material.type": "elastic", "material.shear_modulus_instantaneous": None,
+                      "material.shear_modulus_long_term": None, "material.retardation_time": None,
+                      "material.shear_modulus": G0, "layer.thickness": 0.5e-3, "layer.substrate": "elastic",
+                      "layer.substrate_shear_modulus": 5 * G0, "layer.substrate_poisson_ratio": 0.3}
+BODIES = {
+    "bulk_modulus gross sliding": {**SLIDING, "tangential.mode": "gross_sliding", **BULK},
+    "bulk_modulus periodic": {**SLIDING, "tangential.mode": "gross_sliding", "grid.periodic": True, **BULK},
+    "layer partial slip": {**SLIDING, "tangential.mode": "partial_slip", "tangential.displacement_rate": 0.01, **LAYER},
+    "layer periodic": {**SLIDING, "tangential.mode": "frictionless_sliding", "grid.periodic": True, **LAYER},
+    "elastic layer on elastic substrate": {**SLIDING, "tangential.mode": "gross_sliding", **ELASTIC_ON_ELASTIC},
+}
+
+
+def case(overrides):
+    return load_case(ROOT / "cases" / "creep_indentation.toml").with_overrides(overrides)
+
+
+@contextmanager
+def quiet():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ViscontactWarning)  # dt above the shortest material time
+        yield
+
+
+def stopped(overrides, checkpoint: Path, after: int = 4) -> None:
+    """Run ``overrides`` with checkpoints every 3 steps, stopped after step ``after`` (a signal)."""
+    calls = []
+
+    def stop() -> str | None:
+        calls.append(1)
+        return "SIGTERM" if len(calls) == after else None
+
+    with quiet(), pytest.raises(RunInterrupted):
+        api.run(case(overrides), checkpoint=checkpoint, checkpoint_every=3, should_stop=stop)
+    assert checkpoint.exists()
+
+
+@pytest.mark.parametrize("body", list(BODIES))
+def test_stop_and_resume_equals_uninterrupted(tmp_path, body):
+    overrides = BODIES[body]
+    ckpt = tmp_path / "r.nc.checkpoint.npz"
+    stopped(overrides, ckpt)
+    with quiet():
+        resumed = api.run(case(overrides), checkpoint=ckpt, resume=True)
+        full = api.run(case(overrides))
+    assert full["t"].size >= 8 and resumed.sizes == full.sizes
+    for name in full.data_vars:
+        np.testing.assert_array_equal(resumed[name].values, full[name].values, err_msg=name)
+
+
+def test_resume_refuses_a_checkpoint_of_another_body(tmp_path):
+    ckpt = tmp_path / "r.nc.checkpoint.npz"
+    stopped(BODIES["layer periodic"], ckpt)
+    other = {**BODIES["layer periodic"], "layer.thickness": 0.6e-3}
+    with pytest.raises(ParameterError, match="^--resume: checkpoint .* different case"):
+        api.run(case(other), checkpoint=ckpt, resume=True)
