@@ -73,19 +73,20 @@ and component, M (1 + number of poles) modes for an M-term Prony series.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from typing import Callable
 
 import numpy as np
 import scipy.fft
 import scipy.linalg
 
-from .compliance_terms import ComplianceTerm
+from .compliance_terms import ComplianceTerm, linear_combination
 from .errors import ParameterError
 from .grid import Grid
 from .kernels import rectangle_influence
 from .materials import CreepSpectrum, Material
 from .poisson import prony_creep_spectra, prony_creep_spectrum
-from .steady_kernels import SteadyKernelBuilder, SteadyShape
+from .steady_kernels import SteadyKernelBuilder, SteadyShape, _lagrange, _lobatto
 
 SUBSTRATES = ("rigid", "elastic")
 INTERFACES = ("bonded", "frictionless")
@@ -252,22 +253,48 @@ def fourier_compliance(layer: Layer, qx: np.ndarray, qy: np.ndarray,
     qx, qy = np.broadcast_arrays(np.asarray(qx, dtype=float), np.asarray(qy, dtype=float))
     k = np.hypot(qx, qy)
     uniq, inverse = np.unique(k, return_inverse=True)
-    return _rotate(layer, qx / k, uniq, inverse.reshape(k.shape), components)
+    return _rotate(_layer_spectral(layer), qx / k, uniq, inverse.reshape(k.shape), components)
 
 
-def _rotate(layer: Layer, cosine: np.ndarray, k_unique: np.ndarray, inverse: np.ndarray,
+@dataclass(frozen=True)
+class _Spectral:
+    """A Fourier-space surface compliance to turn into kernels (the layer's, or a part of it).
+
+    ``planes(k)``: the in-plane A_zz, A_ze, A_ez, A_ee (coupling ones imaginary) and anti-plane
+    A_pp [m/Pa] at wavenumbers k [1/m]; ``high``/``low``: its 1/k coefficients at large/small k by
+    component and angular order (:func:`_half_space_coefficients`); ``half_space``: the large-k
+    part is the half-space of the layer material (closed-form cell kernels in the near part);
+    ``uniform``: the q = 0 compliance of the periodic kernels (0 where unbounded)."""
+
+    planes: Callable[[np.ndarray], dict[str, np.ndarray]]
+    high: dict[str, dict[int, float]]
+    low: dict[str, dict[int, float]]
+    uniform: dict[str, float]
+    half_space: bool = True
+
+
+def _layer_spectral(layer: Layer) -> _Spectral:
+    """The layer's own compliance (:func:`in_plane_compliance`, :func:`anti_plane_compliance`)."""
+    def planes(k: np.ndarray) -> dict[str, np.ndarray]:
+        return {**in_plane_compliance(layer, k), "pp": anti_plane_compliance(layer, k)}
+
+    return _Spectral(planes, _half_space_coefficients(layer.shear_modulus, layer.poisson_ratio),
+                     _long_wave_coefficients(layer), uniform_compliance(layer))
+
+
+def _rotate(spectral: _Spectral, cosine: np.ndarray, k_unique: np.ndarray, inverse: np.ndarray,
             components: tuple[str, ...]) -> dict[str, np.ndarray]:
     """M from the in-plane and anti-plane compliances at the distinct wavenumbers ``k_unique``
     (``inverse`` maps each wavevector to its |q|; ``cosine`` = q_x/|q|)."""
-    a = {key: v[inverse] for key, v in in_plane_compliance(layer, k_unique).items()}
+    a = {key: v[inverse] for key, v in spectral.planes(k_unique).items()}
     c = cosine
     out = {"zz": a["zz"], "xz": c * a["ez"], "zx": c * a["ze"]}
     if "xx" in components:
-        out["xx"] = c**2 * a["ee"] + (1 - c**2) * anti_plane_compliance(layer, k_unique)[inverse]
+        out["xx"] = c**2 * a["ee"] + (1 - c**2) * a["pp"]
     return {name: out[name] for name in components}
 
 
-def _lattice_compliance(layer: Layer, size: int, spacing: float, components: tuple[str, ...]
+def _lattice_compliance(spectral: _Spectral, size: int, spacing: float, components: tuple[str, ...]
                         ) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
     """M on the wavevectors of a size x size transform with cells ``spacing`` [m] (fft order,
     q = 0 excluded: returned as 0), solving once per distinct i^2 + j^2 (no sort). Returns
@@ -283,7 +310,7 @@ def _lattice_compliance(layer: Layer, size: int, spacing: float, components: tup
     qx = np.broadcast_to(dq * idx[None, :].astype(float), keys.shape)
     k = dq * np.sqrt(keys.astype(float))
     k_safe = np.where(keys == 0, 1.0, k)
-    m = _rotate(layer, qx / k_safe, k_unique, np.where(keys == 0, 0, lookup[keys]), components)
+    m = _rotate(spectral, qx / k_safe, k_unique, np.where(keys == 0, 0, lookup[keys]), components)
     for name in m:
         m[name] = np.where(keys == 0, 0.0, m[name])
     return m, qx, k
@@ -374,17 +401,20 @@ def _refinement(grid: Grid, layer: Layer, big_h: float) -> int:
 
 def _half_space_near(ox: np.ndarray, oy: np.ndarray, cell: float, layer: Layer, big_h: float,
                      components: tuple[str, ...], coefficients: dict[str, dict[int, float]] | None = None,
-                     points: int = 6) -> dict[str, np.ndarray]:
+                     points: int = 6, spectral: _Spectral | None = None) -> dict[str, np.ndarray]:
     """Cell-integrated real-space part [m/Pa] at offsets (ox, oy) [m]: the half-space kernels of the
     layer material plus, for each angular order, (c_low - c_high) times the kernels smoothed to
     depth H (module docstring). ``coefficients`` None: c_low = 0 (the periodic near part).
     ``points``: Gauss-Legendre points per direction in each cell (6: the smoothed kernels vary on
-    the scale H >= 2 dx; 2 is plenty for far periodic images)."""
-    high = _half_space_coefficients(layer.shear_modulus, layer.poisson_ratio)
-    hs = rectangle_influence(ox, oy, cell / 2, cell / 2, layer.poisson_ratio, components)
+    the scale H >= 2 dx; 2 is plenty for far periodic images). ``spectral``: the compliance
+    (default the layer's; without a half-space part, c_high = 0 and only the smoothed kernels)."""
+    spectral = spectral or _layer_spectral(layer)
+    high = spectral.high
+    hs = rectangle_influence(ox, oy, cell / 2, cell / 2, layer.poisson_ratio, components) if spectral.half_space \
+        else None
     out = {}
     for name in components:
-        kern = hs[name] / layer.shear_modulus
+        kern = hs[name] / layer.shear_modulus if hs is not None else np.zeros(np.broadcast(ox, oy).shape)
         for order, c_high in high[name].items():
             delta = (coefficients[name][order] if coefficients is not None else 0.0) - c_high
             if delta != 0.0:
@@ -396,12 +426,12 @@ def _half_space_near(ox: np.ndarray, oy: np.ndarray, cell: float, layer: Layer, 
 
 def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: float, cells: int,
                   low: dict[str, dict[int, float]] | None, max_fine: int,
-                  shifts: np.ndarray | None = None) -> dict[str, np.ndarray]:
+                  shifts: np.ndarray | None = None, spectral: _Spectral | None = None) -> dict[str, np.ndarray]:
     """Cell kernels [m/Pa] on a periodic box of ``cells`` x ``cells`` grid cells (real space,
     wrap-around order) of the spectrum M - c_high (1 - e^{-kH})/k - c_low e^{-kH}/k, sampled on a
     refined grid, times the cell footprint, folded onto the box wavevectors. ``shifts`` [m]: the
     same at the offsets moved by each shift along x (phase exp(i q_x shift) on the refined grid,
-    before folding), shape (shifts, cells, cells).
+    before folding), shape (shifts, cells, cells). ``spectral``: the compliance (default the layer's).
 
     ``low`` None (periodic kernels): c_low = 0 and the q = 0 term makes the kernel's mean the
     uniform compliance (0 where unbounded). Otherwise (non-periodic) the remainder is bounded at
@@ -415,7 +445,8 @@ def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: 
                              f"kernels (limit {max_fine}^2) with cells of {dx:.4g} m: thinner than the cells "
                              "needs refinement, thicker than the domain a larger box; change grid.n or half_width")
     ds = dx / refine
-    m, qx, k = _lattice_compliance(layer, fine, ds, components)
+    spectral = spectral or _layer_spectral(layer)
+    m, qx, k = _lattice_compliance(spectral, fine, ds, components)
     q1 = 2 * np.pi / (fine * ds)
     nonzero = k > 0
     m = {name: v[nonzero] for name, v in m.items()}
@@ -423,8 +454,7 @@ def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: 
     qy = np.broadcast_to(2 * np.pi * scipy.fft.fftfreq(fine, ds)[:, None], k.shape)
     footprint = np.sinc(qx * dx / (2 * np.pi)) * np.sinc(qy * dx / (2 * np.pi)) * dx**2
     decay = np.exp(-kk * big_h)
-    high = _half_space_coefficients(layer.shear_modulus, layer.poisson_ratio)
-    uniform = uniform_compliance(layer)
+    high, uniform = spectral.high, spectral.uniform
     out = {}
     for name in components:
         rem = m[name].astype(complex)
@@ -463,27 +493,29 @@ def _box_cells(grid: Grid, layer: Layer, big_h: float, box: int) -> int:
 
 
 def influence_coefficients(grid: Grid, layer: Layer, components: tuple[str, ...] = COMPONENTS,
-                           depth: float | None = None, box: int = 4, max_fine: int = 8192
-                           ) -> dict[str, np.ndarray]:
+                           depth: float | None = None, box: int = 4, max_fine: int = 8192,
+                           spectral: _Spectral | None = None) -> dict[str, np.ndarray]:
     """Influence coefficients [m per Pa of cell traction] of the layer on the DC-FFT offset grid
     (2n, 2n), wrap-around order, row/column n zeroed, like
     :func:`viscontact.kernels.influence_coefficients` but in physical units (at the layer's G).
 
     ``depth`` is the smoothing depth H [m] (default max(2h, 2dx)); ``box`` the periodic box of
     the remainder in domain widths (at least 8 max(H, h)); ``max_fine`` caps the refined
-    transform (ParameterError beyond it).
+    transform (ParameterError beyond it). ``spectral``: another compliance than the layer's (the
+    parts of :func:`elastic_substrate_terms`).
     """
     n, dx = grid.n, grid.spacing
+    spectral = spectral or _layer_spectral(layer)
     if not layer.tangential_bounded and "xx" in components:
         raise ParameterError("layer.interface", "a frictionless interface leaves the tangential compliance "
                              "unbounded at long wavelengths (the layer slides); use interface = \"bonded\"")
     big_h = _smoothing_depth(grid, layer, depth)
-    low = _long_wave_coefficients(layer)
+    low = spectral.low
     off = grid.offsets()
     ox, oy = np.meshgrid(off, off, indexing="xy")
-    out = _half_space_near(ox, oy, dx, layer, big_h, components, low)
+    out = _half_space_near(ox, oy, dx, layer, big_h, components, low, spectral=spectral)
     cells = _box_cells(grid, layer, big_h, box)
-    remainder = _fourier_part(grid, layer, components, big_h, cells, low, max_fine)
+    remainder = _fourier_part(grid, layer, components, big_h, cells, low, max_fine, spectral=spectral)
     idx = np.concatenate([np.arange(0, n + 1), np.arange(cells - n + 1, cells)])
     for name in components:
         out[name] = out[name] + remainder[name][np.ix_(idx, idx)]
@@ -493,7 +525,8 @@ def influence_coefficients(grid: Grid, layer: Layer, components: tuple[str, ...]
 
 
 def periodic_spectra(grid: Grid, layer: Layer, components: tuple[str, ...] = COMPONENTS,
-                     depth: float | None = None, images: int = 3, max_fine: int = 8192) -> dict[str, np.ndarray]:
+                     depth: float | None = None, images: int = 3, max_fine: int = 8192,
+                     spectral: _Spectral | None = None) -> dict[str, np.ndarray]:
     """Spectra (n, n//2 + 1) of the layer's kernels on the periodic n x n grid (rfft2 layout):
     u = irfft2(K^ rfft2(t)) [m] for cell tractions t [Pa].
 
@@ -503,8 +536,10 @@ def periodic_spectra(grid: Grid, layer: Layer, components: tuple[str, ...] = COM
     field, through the near part's known integral c_0 H); the rest, whose spectrum decays as
     exp(-k min(H, 2h)), is sampled in Fourier space on a refined grid and folded (no aliasing).
     The mean (q = 0) is the uniform compliance (:func:`uniform_compliance`), 0 where unbounded.
+    ``spectral``: another compliance than the layer's (the parts of :func:`elastic_substrate_terms`).
     """
     n, dx = grid.n, grid.spacing
+    spectral = spectral or _layer_spectral(layer)
     big_h = _smoothing_depth(grid, layer, depth)
     period = n * dx
     off = np.where(np.arange(n) <= n // 2, np.arange(n), np.arange(n) - n) * dx
@@ -513,11 +548,11 @@ def periodic_spectra(grid: Grid, layer: Layer, components: tuple[str, ...] = COM
     for mx in range(-images, images + 1):
         for my in range(-images, images + 1):
             part = _half_space_near(ox - mx * period, oy - my * period, dx, layer, big_h, components,
-                                    points=6 if mx == my == 0 else 2)
+                                    points=6 if mx == my == 0 else 2, spectral=spectral)
             for name in components:
                 near[name] += part[name]
-    far = _fourier_part(grid, layer, components, big_h, n, None, max_fine)
-    high = _half_space_coefficients(layer.shear_modulus, layer.poisson_ratio)
+    far = _fourier_part(grid, layer, components, big_h, n, None, max_fine, spectral=spectral)
+    high = spectral.high
     out = {}
     for name in components:
         # images beyond the summed ones: a nearly uniform field that completes the near part's
@@ -530,19 +565,20 @@ def periodic_spectra(grid: Grid, layer: Layer, components: tuple[str, ...] = COM
     return out
 
 
-def unit_kernels(grid: Grid, layer: Layer, components: tuple[str, ...] = COMPONENTS) -> dict[str, np.ndarray]:
+def unit_kernels(grid: Grid, layer: Layer, components: tuple[str, ...] = COMPONENTS,
+                 spectral: _Spectral | None = None) -> dict[str, np.ndarray]:
     """The layer's kernels at unit modulus (times G [Pa]: displacement = kernel * traction / G for an
     elastic layer) on ``grid``: DC-FFT (2n, 2n) (:func:`influence_coefficients`) or, on a periodic
     grid, the periodic n x n kernels in wrap-around order (:func:`periodic_spectra`)."""
     if grid.periodic:
-        spectra = periodic_spectra(grid, layer, components)
+        spectra = periodic_spectra(grid, layer, components, spectral=spectral)
         return {c: scipy.fft.irfft2(spectra[c], s=(grid.n, grid.n)) * layer.shear_modulus for c in components}
-    kernels = influence_coefficients(grid, layer, components)
+    kernels = influence_coefficients(grid, layer, components, spectral=spectral)
     return {c: kernels[c] * layer.shear_modulus for c in components}
 
 
 def steady_shapes(grid: Grid, layer: Layer, components: tuple[str, ...] = ("zz", "zx"), box: int = 4,
-                  max_fine: int = 8192) -> dict[str, SteadyShape]:
+                  max_fine: int = 8192, spectral: _Spectral | None = None) -> dict[str, SteadyShape]:
     """Steady shapes (:class:`~viscontact.steady_kernels.SteadyShape`) of the layer's unit-modulus
     DC-FFT kernels (:func:`unit_kernels`), by component: for steady sliding at speed v each
     retardation mode needs F_m(d) = int_0^inf exp(-xi/L_m)/L_m K(d + xi) dxi, L_m = v lambda_m,
@@ -559,8 +595,9 @@ def steady_shapes(grid: Grid, layer: Layer, components: tuple[str, ...] = ("zz",
     if grid.periodic:
         return {}
     n = grid.n
+    spectral = spectral or _layer_spectral(layer)
     big_h = _smoothing_depth(grid, layer, None)
-    low = _long_wave_coefficients(layer)
+    low = spectral.low
     cells = _box_cells(grid, layer, big_h, box)
     g = layer.shear_modulus
     rows = np.concatenate([np.arange(0, n + 1), np.arange(cells - n + 1, cells)])
@@ -568,10 +605,11 @@ def steady_shapes(grid: Grid, layer: Layer, components: tuple[str, ...] = ("zz",
     out = {}
     for comp in components:
         def point(ox: np.ndarray, oy: np.ndarray, comp: str = comp) -> dict[str, np.ndarray]:
-            return {comp: g * _half_space_near(ox, oy, grid.spacing, layer, big_h, (comp,), low)[comp]}
+            return {comp: g * _half_space_near(ox, oy, grid.spacing, layer, big_h, (comp,), low,
+                                               spectral=spectral)[comp]}
 
         def smooth(shifts: np.ndarray, comp: str = comp) -> np.ndarray:
-            box_values = _fourier_part(grid, layer, (comp,), big_h, cells, low, max_fine, shifts)[comp]
+            box_values = _fourier_part(grid, layer, (comp,), big_h, cells, low, max_fine, shifts, spectral)[comp]
             return g * box_values[:, rows][:, :, cols][:, None]
 
         builder = SteadyKernelBuilder(grid, layer.poisson_ratio, (comp,), point_kernel=point, smooth=smooth)
@@ -764,3 +802,175 @@ def viscoelastic_periodic_modes(grid: Grid, layer: Layer, shear: Material, compo
                                   np.array([place(a, 0.0) for a in amps]).reshape((len(amps),) + k.shape),
                                   np.array([place(t, 1.0) for t in times]).reshape((len(times),) + k.shape))
     return out
+
+
+# --- viscoelastic layer on an elastic substrate: terms with fixed retardation times ---------------
+
+def _shift_factor(u: np.ndarray, modulus: np.ndarray, reference: float) -> np.ndarray:
+    """h(u; G) = (s + G_ref)/(G + s) written in u = G_ref/(G_ref + s) in [0, 1]: G_ref/(G_ref + u (G - G_ref))."""
+    return reference / (reference + u * (modulus - reference))
+
+
+@dataclass(frozen=True)
+class ShiftNodes:
+    """Interpolation nodes in the pole shift s of an elastic-substrate layer (:func:`shift_nodes`).
+
+    Attributes
+    ----------
+    nodes
+        u_p = G_ref/(G_ref + s_p) [-], Chebyshev-Lobatto on [0, 1] (u = 0: s = inf, u = 1: s = 0).
+    reference
+        G_ref = sqrt(G(0) G(inf)) [Pa].
+    error
+        Largest relative interpolation error of (s + G_ref)/(G + s) over u in [0, 1] and G on the
+        complex modulus curve G*(omega) [-].
+    """
+
+    nodes: np.ndarray
+    reference: float
+    error: float
+
+    @property
+    def shifts(self) -> np.ndarray:
+        """s_p = G_ref (1 - u_p)/u_p [Pa] (inf at u = 0)."""
+        with np.errstate(divide="ignore"):
+            return np.where(self.nodes > 0, self.reference * (1 - self.nodes) / self.nodes, np.inf)
+
+    def response(self, shear: Material, p: int) -> CreepSpectrum:
+        """Time response [1/Pa] of node p: the creep function whose Carson transform is
+        (s_p + G_ref) / (G_ref (G~(s) + s_p)); 1/G_ref (elastic) at u = 0, J(t) at u = 1."""
+        u, ref = float(self.nodes[p]), self.reference
+        if u == 0.0:
+            return CreepSpectrum(1.0 / ref, np.zeros(0), np.zeros(0))
+        shift = ref * (1 - u) / u
+        spectrum = prony_creep_spectrum(shear.g_inf, shear.g, shear.tau, shift)
+        return linear_combination([((shift + ref) / ref, spectrum)])
+
+
+def shift_nodes(shear: Material, tolerance: float = 1e-4, max_degree: int = 40) -> ShiftNodes:
+    """The fewest Chebyshev-Lobatto nodes u_p in [0, 1] (u = G_ref/(G_ref + s)) for which
+    h(u; G) = (s + G_ref)/(G + s) is interpolated within ``tolerance`` (relative) for every u and every
+    G = G~(s) on the right half-plane: an analytic function of G there (its pole G = G_ref (1 - 1/u)
+    is negative), so the error is largest on the boundary, the complex modulus curve G*(omega),
+    sampled from omega = 0 (G(inf)) to infinity (G(0)). Wide spectra (G(0)/G(inf) >> 10) need more
+    nodes. ParameterError when ``max_degree`` is not enough."""
+    g0, ginf = shear.shear_modulus_instantaneous, shear.shear_modulus_long_term
+    reference = float(np.sqrt(g0 * ginf))
+    tau = np.asarray(shear.tau, dtype=float)
+    omega = np.logspace(np.log10(1e-3 / tau.max()), np.log10(1e3 / tau.min()), 60 * max(1, int(np.log10(
+        tau.max() / tau.min())) + 6))
+    moduli = np.concatenate([[ginf, g0], shear.storage_modulus(omega) + 1j * shear.loss_modulus(omega)])
+    u = np.linspace(0.0, 1.0, 801)
+    exact = _shift_factor(u[:, None], moduli[None, :], reference)
+    for degree in range(2, max_degree + 1):
+        nodes, bary = _lobatto(degree)
+        approx = _lagrange(u, nodes, bary) @ _shift_factor(nodes[:, None], moduli[None, :], reference)
+        error = float(np.max(np.abs(approx - exact) / np.abs(exact)))
+        if error <= tolerance:
+            return ShiftNodes(nodes, reference, error)
+    raise ParameterError("material", f"a layer on an elastic substrate needs more than {max_degree + 1} shift "
+                         f"nodes for this material (G(0)/G(inf) = {g0 / ginf:.3g}); use layer.substrate = 'rigid'")
+
+
+class _LogInterpolant:
+    """f(k) from samples: a cubic spline of k f(k) in log k; below the samples k f = a + b k through
+    the two smallest (a: the 1/k coefficient at k -> 0), above them f = 0 (decayed)."""
+
+    def __init__(self, k: np.ndarray, values: np.ndarray) -> None:
+        from scipy.interpolate import CubicSpline
+
+        scaled = k * values
+        self.k_min, self.k_max = float(k[0]), float(k[-1])
+        self.spline = CubicSpline(np.log(k), scaled, axis=-1)
+        self.slope = (scaled[..., 1] - scaled[..., 0]) / (k[1] - k[0])
+        self.limit = scaled[..., 0] - self.slope * k[0]
+
+    def __call__(self, k: np.ndarray) -> np.ndarray:
+        k = np.asarray(k, dtype=float)
+        inside = self.spline(np.log(np.clip(k, self.k_min, self.k_max)))
+        below = self.limit[..., None] + self.slope[..., None] * k
+        return np.where(k < self.k_min, below, np.where(k > self.k_max, 0.0, inside)) / k
+
+
+def _node_spectra(layer: Layer, nodes: ShiftNodes, samples_per_decade: int = 40) -> list[_Spectral]:
+    """The compliance of each node (:func:`elastic_substrate_terms`) as a :class:`_Spectral` at the
+    layer's G: c_p(k)/G with c_p = G_ref sum_j beta_j(k) l_p(u_j(k)), beta_j = alpha_j/(shift_j + G_ref)
+    (:func:`modulus_poles`), sampled at k h from 1e-2 to 18 (beyond, alpha_j < exp(-36)) and
+    interpolated (:class:`_LogInterpolant`)."""
+    h, g = layer.thickness, layer.shear_modulus
+    kh = np.logspace(-2, np.log10(18.0), int(samples_per_decade * np.log10(1800)) + 1)
+    k = kh / h
+    bary = _lobatto(nodes.nodes.size - 1)[1]
+    ref = nodes.reference
+    tables = {}
+    for key in ("zz", "ze", "ez", "ee", "pp"):
+        poles = modulus_poles(layer, k, key)
+        u = ref / (ref + poles.shift)
+        beta = poles.alpha / (poles.shift + ref)
+        basis = _lagrange(u.ravel(), nodes.nodes, bary).reshape(u.shape + (nodes.nodes.size,))
+        tables[key] = _LogInterpolant(k, ref * np.einsum("kj,kjp->pk", beta, basis) / g)
+    zero = {"zz": {0: 0.0}, "xx": {0: 0.0, 2: 0.0}, "xz": {1: 0.0}, "zx": {1: 0.0}}
+    # periodic kernels: the rigid-base term's bounded mean (h/M, h/G) is cancelled by the node it is
+    # merged with (u = 1, the same J(t)): on an elastic substrate the mean compliance is unbounded (0)
+    rigid_mean = {c: -v for c, v in uniform_compliance(replace(layer, substrate="rigid")).items()}
+    no_mean = {"zz": 0.0, "xx": 0.0, "xz": 0.0, "zx": 0.0}
+    out = []
+    for p in range(nodes.nodes.size):
+        def planes(kq: np.ndarray, p: int = p) -> dict[str, np.ndarray]:
+            vals = {key: table(kq)[p] for key, table in tables.items()}
+            return {"zz": vals["zz"], "ze": 1j * vals["ze"], "ez": 1j * vals["ez"], "ee": vals["ee"], "pp": vals["pp"]}
+
+        a = {key: float(table.limit[p]) for key, table in tables.items()}
+        low = {"zz": {0: a["zz"]}, "xx": {0: 0.5 * (a["ee"] + a["pp"]), 2: 0.5 * (a["ee"] - a["pp"])},
+               "xz": {1: a["ez"]}, "zx": {1: a["ze"]}}
+        out.append(_Spectral(planes, zero, low, rigid_mean if p == nodes.nodes.size - 1 else no_mean, half_space=False))
+    return out
+
+
+def elastic_substrate_terms(grid: Grid, layer: Layer, shear: Material, components: tuple[str, ...] = ("zz",),
+                            tolerance: float = 1e-4) -> list[ComplianceTerm]:
+    """Compliance terms of a viscoelastic layer (Prony shear modulus ``shear``, constant
+    nu = ``layer.poisson_ratio``) on an elastic substrate, on DC-FFT or periodic grids.
+
+    With the partial fractions of :func:`modulus_poles`,
+
+        A(k; G) = alpha0(k)/G + sum_j beta_j(k) h(u_j(k); G),   h(u; G) = (s + G_ref)/(G + s),
+
+    u = G_ref/(G_ref + s) in (0, 1) for the shifts s = shift_j(k) > 0 and beta_j = alpha_j/(s + G_ref).
+    The shifts move with |q|, so the creep functions of G(t) + shift_j(k) have |q|-dependent times
+    (exact per wavevector: :func:`viscoelastic_periodic_modes`) and no real-space kernel. Here h is
+    interpolated in u at fixed nodes u_p (:func:`shift_nodes`, relative error <= ``tolerance`` for
+    every G on the material's complex modulus curve, hence for the whole time response):
+
+        A(k; G) ~ alpha0(k)/G + sum_p c_p(k) h(u_p; G)/G_ref,   c_p = G_ref sum_j beta_j l_p(u_j),
+
+    so that every term has a kernel of q and a response of t with fixed times: alpha0 G is the
+    layer on a rigid base (same interface) with J(t) (:func:`factored_terms`); node p has the kernel
+    of c_p (built like the layer's, :func:`unit_kernels` with its own :class:`_Spectral`: no
+    half-space part, the substrate's 1/k at small k) and the creep function whose Carson transform is
+    h(u_p; G~(s))/G_ref (:meth:`ShiftNodes.response`): 1/G_ref (elastic) at u = 0 (s = inf, the
+    substrate), J(t) at u = 1 (merged into the rigid-base term), the creep function of G(t) + s_p
+    scaled in between.
+
+    Cost: with D + 1 nodes (D = 4 to 8 for G(0)/G(inf) = 10 at 1e-4; more for wider spectra) and M
+    Prony terms, each component has D + 1 kernels instead of one and each traction component D
+    histories of M fields each (D M fields against M on a rigid base); every kernel costs one layer
+    kernel build, and every step one more spectrum product per kernel.
+    """
+    nodes = shift_nodes(shear, tolerance)
+    creep = prony_creep_spectrum(shear.g_inf, shear.g, shear.tau)
+    rigid = factored_terms(grid, replace(layer, substrate="rigid"), creep, components)
+    terms: list[ComplianceTerm] = []
+    last = nodes.nodes.size - 1
+    for p, spectral in enumerate(_node_spectra(layer, nodes)):
+        kernels = unit_kernels(grid, layer, components, spectral)
+        shapes = steady_shapes(grid, layer, components, spectral=spectral)
+        if p == last:  # u = 1: the response is J(t), that of the rigid-base terms
+            rigid = [replace(t, kernel=t.kernel + kernels[t.name],
+                             steady=None if t.steady is None else SteadyShape(t.steady.parts + shapes[t.name].parts))
+                     for t in rigid]
+            continue
+        response = nodes.response(shear, p)
+        label = "elastic" if p == 0 else f"node{p}"
+        terms += [ComplianceTerm(c[0], c[1], kernels[c], response, f"{c}:{label}", shapes.get(c)) for c in components]
+    return rigid + terms

@@ -428,13 +428,19 @@ def stability_responses(problem) -> list[CreepSpectrum]:
     """Time responses [1/Pa] whose step stability bounds dt (:func:`~viscontact.schemes.stable_step_limit`):
     the shear creep J(t), and with ``problem.bulk_modulus`` the normal (1 - nu)/G and tangential
     1/G factors of :class:`~viscontact.poisson.BulkElasticMaterial` (the normal one has the extra,
-    shorter retardation time of G(t) + 3K)."""
+    shorter retardation time of G(t) + 3K); a viscoelastic layer on an elastic substrate adds the
+    responses of its shift nodes (:func:`viscontact.layers.shift_nodes`, times of G(t) + s_p)."""
     out = [problem.material.creep]
     if problem.bulk_modulus is not None:
         from .poisson import BulkElasticMaterial
 
         bulk = BulkElasticMaterial(problem.material, problem.bulk_modulus)
         out += [bulk.factor("normal"), bulk.factor("tangential")]
+    if problem.layer is not None and problem.layer.substrate == "elastic" and not problem.material.is_elastic:
+        from .layers import shift_nodes
+
+        nodes = shift_nodes(problem.material)
+        out += [nodes.response(problem.material, p) for p in range(nodes.nodes.size)]
     return out
 
 
@@ -442,12 +448,12 @@ def layer_terms(grid: Grid, settings, material: Material, components: Sequence[s
     """Compliance terms of ``material`` as a layer (``settings``: a
     :class:`~viscontact.problem.LayerSettings`) on its substrate.
 
-    Rigid base: :func:`viscontact.layers.rigid_base_terms` (unit-modulus kernels x J(t)). Elastic
-    substrate: exact for an elastic layer (the kernels at its G, response 1/G); a viscoelastic layer
-    there needs one kernel per relaxation mode, built by :mod:`viscontact.layers` for periodic
-    domains only, so it is refused (:class:`~viscontact.errors.ParameterError`).
+    Rigid base, or an elastic layer: one term per component, the unit-modulus kernel times the
+    creep compliance (:func:`viscontact.layers.factored_terms`). A viscoelastic layer on an elastic
+    substrate: the rigid-base terms and one kernel per shift node, each with its own creep function
+    (:func:`viscontact.layers.elastic_substrate_terms`).
     """
-    from .layers import Layer, factored_terms, rigid_base_terms
+    from .layers import Layer, elastic_substrate_terms, factored_terms, rigid_base_terms
 
     layer = Layer(settings.thickness, material.shear_modulus_instantaneous, material.poisson_ratio,
                   settings.substrate, settings.interface, settings.substrate_shear_modulus,
@@ -456,7 +462,5 @@ def layer_terms(grid: Grid, settings, material: Material, components: Sequence[s
     if layer.substrate == "rigid":
         return rigid_base_terms(grid, layer, material, comps)
     if not material.is_elastic:
-        raise ParameterError("layer.substrate", "'elastic' needs an elastic [material] (type = 'elastic'): a "
-                             "viscoelastic layer on an elastic substrate needs one kernel per relaxation mode, "
-                             "not built for the non-periodic grid; use substrate = 'rigid'")
+        return elastic_substrate_terms(grid, layer, material, comps)
     return factored_terms(grid, layer, material.creep, comps)

@@ -1,6 +1,6 @@
 """Checkpoint and resume on the bodies built from compliance terms: nu(t) (``bulk_modulus``, two
-histories per traction component), a layer on a rigid base and an elastic layer on an elastic
-substrate (their own kernels), on DC-FFT and periodic grids. A run stopped after a few steps (as
+histories per traction component), a layer on a rigid base and on an elastic substrate (one kernel
+and history per shift node), on DC-FFT and periodic grids. A run stopped after a few steps (as
 by a signal: its checkpoint written) and resumed gives the uninterrupted result bit for bit, as
 the half-space's does (tests/unit/test_reliability.py); a checkpoint of another body is refused."""
 from __future__ import annotations
@@ -22,16 +22,16 @@ SLIDING = {"grid.n": 16, "tangential.sliding_speed": 0.05, "tangential.friction_
            "time.scheme": "linear", "tangential.steps_per_cell": 4, "time.t_end": 10 * 2e-3 / 8 / 0.05 / 4}
 BULK = {"material.poisson_ratio": None, "material.bulk_modulus": 2 * G0}
 LAYER = {"layer.thickness": 0.5e-3}
-ELASTIC_ON_ELASTIC = {"material.type": "elastic", "material.shear_modulus_instantaneous": None,
-                      "material.shear_modulus_long_term": None, "material.retardation_time": None,
-                      "material.shear_modulus": G0, "layer.thickness": 0.5e-3, "layer.substrate": "elastic",
-                      "layer.substrate_shear_modulus": 5 * G0, "layer.substrate_poisson_ratio": 0.3}
+ON_ELASTIC = {"layer.thickness": 0.5e-3, "layer.substrate": "elastic", "layer.substrate_shear_modulus": 5 * G0,
+              "layer.substrate_poisson_ratio": 0.3}
 BODIES = {
     "bulk_modulus gross sliding": {**SLIDING, "tangential.mode": "gross_sliding", **BULK},
     "bulk_modulus periodic": {**SLIDING, "tangential.mode": "gross_sliding", "grid.periodic": True, **BULK},
     "layer partial slip": {**SLIDING, "tangential.mode": "partial_slip", "tangential.displacement_rate": 0.01, **LAYER},
     "layer periodic": {**SLIDING, "tangential.mode": "frictionless_sliding", "grid.periodic": True, **LAYER},
-    "elastic layer on elastic substrate": {**SLIDING, "tangential.mode": "gross_sliding", **ELASTIC_ON_ELASTIC},
+    "layer on an elastic substrate": {**SLIDING, "tangential.mode": "gross_sliding", **ON_ELASTIC},
+    "layer on an elastic substrate, periodic": {**SLIDING, "tangential.mode": "frictionless_sliding",
+                                                "grid.periodic": True, **ON_ELASTIC},
 }
 
 

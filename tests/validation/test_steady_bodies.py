@@ -8,19 +8,25 @@ spectrum times its complex compliance at -k_x v (TermSubstrate.steady_spectrum).
 
 References and measured values (seed Zener G(0) = 1.93 MPa, G(inf) = G(0)/10, tau = 10 ms, R = 10 mm):
 
+Bodies: nu(t) with K = 2 G(0); a layer bonded to a rigid base; a viscoelastic layer bonded to an
+elastic substrate (G_s = 3 G(0), nu_s = 0.4: one kernel per shift node, viscontact.layers
+.elastic_substrate_terms).
+
 * slow sliding (v tau/a0 = 1e-4) is the elastic contact at G(inf), nu(inf); fast (1e4) at G(0), nu(0).
   nu(t) with K = 2 G(0), n = 64: Hertz peak pressure and approach within 0.08 % and 0.27 %
   (tolerance 1 %, as for the constant-nu steady limits: the grid resolves the Hertz peak to ~0.1 %
   and v tau/a = 1e4 leaves a viscous residue below 1e-3). Layer h = 0.4 mm bonded to a rigid base,
   n = 32: against the transient solver's elastic layer at G(inf) / G(0) (same kernels, one step),
-  approach within 1e-9 / 4.2e-4 and pressure within 1e-4 / 1.2e-3 of the peak (tolerance 1 %).
+  approach within 1e-9 / 4.2e-4 and pressure within 1e-4 / 1.2e-3 of the peak (tolerance 1 %); on
+  the elastic substrate 1.2e-7 / 3.0e-4 and 1.0e-4 / 1.4e-3.
 * the transient's sliding state after 6 tau tends to the steady state on the same grid (the wake on
   the grid): the remaining difference is the time discretisation of the moving frame (v dt = dx,
   linear scheme), as for the half-space (tests/validation/test_steady.py). DC-FFT, n = 32 (64):
   nu(t) mu_app 0.09 % (0.16 %), load 0.43 % (0.14 %); layer h = 0.5 mm mu_app 0.35 % (0.13 %), load
-  0.51 % (0.17 %); tolerance 1 %. Periodic, n = 32, load control: mu_app and approach within 0.08 %
-  and 0.11 % (nu(t)), 0.14 % and 0.17 % (layer), as the periodic half-space (0.07 %, 0.11 %);
-  tolerance 0.5 %.
+  0.51 % (0.17 %), on the elastic substrate mu_app 0.28 %, load 0.53 %; tolerance 1 %. Periodic,
+  n = 32, load control: mu_app and approach within 0.08 % and 0.11 % (nu(t)), 0.14 % and 0.17 %
+  (layer), 0.10 % and 0.14 % (on the elastic substrate), as the periodic half-space (0.07 %,
+  0.11 %); tolerance 0.5 %.
 * K -> inf (1e15 Pa) is the incompressible half-space, computed by the half-space's own steady
   kernels (one builder at nu = 0.5) and periodic spectrum (the material's complex modulus): the
   term route (nu = 0 and nu = 1 kernels with the J and L spectra) agrees to 1e-8.
@@ -82,10 +88,15 @@ def test_bulk_modulus_steady_limits_are_hertz(speed_ratio):
     assert abs(other.approach / rec.delta_z - 1) > 0.05
 
 
+# on an elastic substrate (3 G(0), nu_s = 0.4) a viscoelastic layer has one kernel per shift node
+ON_RIGID, ON_ELASTIC = LayerSettings(0.4e-3), LayerSettings(0.4e-3, "elastic", "bonded", 3 * SEED_G0, 0.4)
+
+
 # on a periodic domain the modes uniform along x (k_x = 0) relax fully at any speed: no fast limit
-@pytest.mark.parametrize("speed_ratio, periodic", [(1e-4, False), (1e4, False), (1e-4, True)])
-def test_layer_steady_limits_are_the_elastic_layer(speed_ratio, periodic):
-    layer = LayerSettings(0.4e-3)
+@pytest.mark.parametrize("speed_ratio, periodic, layer", [(1e-4, False, ON_RIGID), (1e4, False, ON_RIGID),
+                                                          (1e-4, True, ON_RIGID), (1e-4, False, ON_ELASTIC),
+                                                          (1e4, False, ON_ELASTIC)])
+def test_layer_steady_limits_are_the_elastic_layer(speed_ratio, periodic, layer):
     g = seed_material().shear_modulus_long_term if speed_ratio < 1 else SEED_G0
     elastic = with_body(sphere_problem(Material.elastic(g, 0.3), 32, 1.6e-3, value=LOAD, t_end=1e-3, dt=1e-3),
                         periodic, layer=layer)
@@ -117,10 +128,14 @@ def test_huge_bulk_modulus_steady_is_the_incompressible_half_space(periodic):
     assert np.abs(ours.pressure - half.pressure).max() <= 1e-7 * half.pressure.max()
 
 
-@pytest.mark.parametrize("body", ["bulk_modulus", "layer"])
+BODIES = {"half_space": (seed_material(), {}), "bulk_modulus": (ZENER_NU0, {"bulk_modulus": K}),
+          "layer": (seed_material(), {"layer": LayerSettings(0.5e-3)}),
+          "layer on elastic": (seed_material(), {"layer": dataclasses.replace(ON_ELASTIC, thickness=0.5e-3)})}
+
+
+@pytest.mark.parametrize("body", ["bulk_modulus", "layer", "layer on elastic"])
 def test_long_time_sliding_tends_to_the_steady_state(body):
-    material, extra = (ZENER_NU0, {"bulk_modulus": K}) if body == "bulk_modulus" else \
-        (seed_material(), {"layer": LayerSettings(0.5e-3)})
+    material, extra = BODIES[body]
     problem = with_body(sphere_problem(material, 32, 5.12 * SEED_A0, control="displacement", value=30e-6,
                                        mode="frictionless_sliding", speed=0.8 * SEED_A0 / SEED_TAU,
                                        t_end=6 * SEED_TAU, scheme="linear", every=10**6), **extra)
@@ -133,10 +148,9 @@ def test_long_time_sliding_tends_to_the_steady_state(body):
     assert last.load == pytest.approx(ref.load, rel=0.01)
 
 
-@pytest.mark.parametrize("body", ["half_space", "bulk_modulus", "layer"])
+@pytest.mark.parametrize("body", ["half_space", "bulk_modulus", "layer", "layer on elastic"])
 def test_periodic_long_time_sliding_tends_to_the_steady_state(body):
-    material, extra = {"half_space": (seed_material(), {}), "bulk_modulus": (ZENER_NU0, {"bulk_modulus": K}),
-                       "layer": (seed_material(), {"layer": LayerSettings(0.5e-3)})}[body]
+    material, extra = BODIES[body]
     problem = with_body(sphere_problem(material, 32, 2e-3, value=LOAD, mode="frictionless_sliding",
                                        speed=0.8 * SEED_A0 / SEED_TAU, t_end=6 * SEED_TAU, scheme="linear",
                                        every=10**6), True, **extra)
