@@ -47,6 +47,7 @@ from .problem import (
     SolverSettings,
     TangentialLoading,
     TimeStepping,
+    check_subsurface_body,
 )
 from .records import StepRecord
 
@@ -426,7 +427,7 @@ class LayerSection(_Section):
     thickness: float = _num(unit="m", gt=0, description="layer thickness h [m], > 0")
     substrate: Literal["rigid", "elastic"] = Field(
         "rigid", description="what the layer lies on: 'rigid' or 'elastic' (then substrate_shear_modulus, "
-                             "substrate_poisson_ratio; an elastic [material] only)")
+                             "substrate_poisson_ratio; a viscoelastic layer there has one kernel per shift node)")
     interface: Literal["bonded", "frictionless"] = Field(
         "bonded", description="layer/substrate interface: 'bonded' or 'frictionless' (normal contact only)")
     substrate_shear_modulus: float | None = _num(None, unit="Pa", gt=0,
@@ -513,9 +514,8 @@ class Case(_Section):
         if self.time.dt is not None and self.time.dt > self.time.t_end:
             raise ParameterError("time.dt", f"must be <= time.t_end = {self.time.t_end:g} s, got {self.time.dt:g} s")
         if self.output.subsurface_depths:
-            if self.layer is not None or self.material.bulk_modulus is not None:
-                raise ParameterError("output.subsurface_depths", "needs a homogeneous half-space with "
-                                     "material.poisson_ratio (no [layer], no material.bulk_modulus)")
+            check_subsurface_body(self.output.subsurface_depths, self.layer is not None,
+                                  self.material.bulk_modulus is not None)
             needs = ["pressure"] + (["shear_x"] if self.tangential.mode in ("gross_sliding", "partial_slip") else [])
             missing = [f for f in needs if f not in self.output.fields]
             if missing:

@@ -69,7 +69,15 @@ and does not factor: for each q the response to a traction step is a sum of expo
 move with |q| (:func:`modulus_poles`: A(k; G) = alpha0/G + sum_j alpha_j/(G + shift_j(k)), so each
 pole j brings the creep function of G(t) + shift_j(k)). :func:`viscoelastic_periodic_modes` gives
 that data per wavevector and states the cost: one kernel (spectrum) and one history field per mode
-and component, M (1 + number of poles) modes for an M-term Prony series.
+and component, M (1 + number of poles) modes for an M-term Prony series. The solvers need fixed
+times: :func:`elastic_substrate_terms` interpolates h = (s + G_ref)/(G + s) in u = G_ref/(G_ref + s)
+at fixed nodes (:func:`shift_nodes`), so each node is a real-space kernel (DC-FFT or periodic) with
+one creep function: D + 1 kernels per component and D M history fields per traction component for
+D + 1 nodes.
+
+Steady sliding (:func:`steady_shapes`): the near part through the product integration of
+:class:`~viscontact.steady_kernels.SteadyKernelBuilder`, the remainder sampled at sub-cell shifts
+and integrated by the same recursion over its box.
 """
 from __future__ import annotations
 
@@ -756,8 +764,9 @@ def viscoelastic_periodic_modes(grid: Grid, layer: Layer, shear: Material, compo
     substrate, 3M + 3M c^2 / s^2 parts for xx), against M on a rigid substrate; each costs one
     multiply-add per wavevector and step, no extra transforms. This is exact on a periodic domain. For
     the non-periodic DC-FFT domain the same spectra on the 2n x 2n padded grid give the convolution
-    with period 2 x domain (error: the kernel's tail beyond one domain width), or each mode's times
-    must be frozen to fixed values to keep real-space kernels; neither is wired yet.
+    with period 2 x domain (error: the kernel's tail beyond one domain width); the solvers use
+    instead fixed-time terms that interpolate the pole shifts (:func:`elastic_substrate_terms`),
+    on both grids.
     """
     n, dx = grid.n, grid.spacing
     qy = 2 * np.pi * scipy.fft.fftfreq(n, dx)[:, None]

@@ -202,6 +202,17 @@ class LayerSettings:
     substrate_poisson_ratio: float = 0.3
 
 
+def check_subsurface_body(depths, layered: bool, bulk_modulus: bool) -> None:
+    """Subsurface stresses (:mod:`viscontact.subsurface`) are the elastic fields of the current
+    tractions, true for the homogeneous half-space with constant nu only: raise
+    :class:`~viscontact.errors.ParameterError` when ``depths`` are asked for with a layer or a bulk
+    modulus."""
+    if depths and (layered or bulk_modulus):
+        raise ParameterError("output.subsurface_depths", "needs a homogeneous half-space with material.poisson_ratio "
+                             "(no [layer], no material.bulk_modulus): the stresses are the elastic fields of the "
+                             "current tractions only there")
+
+
 @dataclass(frozen=True)
 class Problem:
     """Everything the transient and steady solvers need.
@@ -225,6 +236,9 @@ class Problem:
     bulk_modulus: float | None = None
     #: the material is a layer on a substrate (None: a half-space)
     layer: LayerSettings | None = None
+
+    def __post_init__(self) -> None:
+        check_subsurface_body(self.output.subsurface_depths, self.layer is not None, self.bulk_modulus is not None)
 
     @cached_property
     def _gap_is_sphere(self) -> bool:

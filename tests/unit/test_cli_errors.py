@@ -40,12 +40,14 @@ BAD = {
     "layer_substrate": ({"[time]": '[layer]\nthickness = 1e-3\nsubstrate = "steel"\n\n[time]'}, "layer.substrate"),
     "layer_needs_substrate_modulus": ({"[time]": '[layer]\nthickness = 1e-3\nsubstrate = "elastic"\n\n[time]'},
                                       "layer.substrate_shear_modulus"),
-    "layer_viscoelastic_on_elastic": ({"[time]": '[layer]\nthickness = 1e-3\nsubstrate = "elastic"\n'
-                                                 'substrate_shear_modulus = 1e9\nsubstrate_poisson_ratio = 0.3\n\n[time]'},
-                                      "layer.substrate"),
+    "layer_substrate_poisson_ratio": ({"[time]": '[layer]\nthickness = 1e-3\nsubstrate = "elastic"\n'
+                                                 'substrate_shear_modulus = 1e9\nsubstrate_poisson_ratio = 0.6\n\n[time]'},
+                                      "layer.substrate_poisson_ratio"),
     "subsurface_depth": ({"[time]": "[output]\nsubsurface_depths = [-1e-4]\n\n[time]"}, "output.subsurface_depths[0]"),
     "subsurface_with_bulk": ({"poisson_ratio = 0.3": "bulk_modulus = 4e6",
                               "[time]": "[output]\nsubsurface_depths = [1e-4]\n\n[time]"}, "output.subsurface_depths"),
+    "subsurface_with_layer": ({"[time]": "[layer]\nthickness = 1e-3\n\n[output]\nsubsurface_depths = [1e-4]\n\n[time]"},
+                              "output.subsurface_depths"),
 }
 
 

@@ -227,3 +227,15 @@ def test_prony_material_takes_a_bulk_modulus_but_not_tensile_moduli():
     assert problem.material.poisson_ratio == pytest.approx((12e6 - 2 * 1.93e6) / (2 * (12e6 + 1.93e6)))
     with pytest.raises(ParameterError, match="^material.modulus: 'tensile' converts E to G"):
         BASE.with_overrides({**prony, "material.modulus": "tensile"})
+
+
+def test_subsurface_output_of_a_layer_problem_is_refused_before_the_run():
+    """The Problem itself refuses subsurface depths on a body other than the constant-nu half-space
+    (the API path, not only the case file): one line naming the key."""
+    import dataclasses
+
+    from viscontact.problem import LayerSettings, OutputSettings
+
+    problem = BASE.with_overrides({"grid.n": 16}).to_problem()
+    with pytest.raises(ParameterError, match="^output.subsurface_depths: needs a homogeneous half-space"):
+        dataclasses.replace(problem, layer=LayerSettings(1e-3), output=OutputSettings(subsurface_depths=(1e-4,)))
