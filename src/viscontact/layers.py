@@ -94,7 +94,7 @@ from .grid import Grid
 from .kernels import rectangle_influence
 from .materials import CreepSpectrum, Material
 from .poisson import prony_creep_spectra, prony_creep_spectrum
-from .steady_kernels import SteadyKernelBuilder, SteadyShape, _lagrange, _lobatto
+from .steady_kernels import SteadyKernelBuilder, SteadyShape, lagrange_basis, lobatto_nodes
 
 SUBSTRATES = ("rigid", "elastic")
 INTERFACES = ("bonded", "frictionless")
@@ -872,8 +872,8 @@ def shift_nodes(shear: Material, tolerance: float = 1e-4, max_degree: int = 40) 
     u = np.linspace(0.0, 1.0, 801)
     exact = _shift_factor(u[:, None], moduli[None, :], reference)
     for degree in range(2, max_degree + 1):
-        nodes, bary = _lobatto(degree)
-        approx = _lagrange(u, nodes, bary) @ _shift_factor(nodes[:, None], moduli[None, :], reference)
+        nodes, bary = lobatto_nodes(degree)
+        approx = lagrange_basis(u, nodes, bary) @ _shift_factor(nodes[:, None], moduli[None, :], reference)
         error = float(np.max(np.abs(approx - exact) / np.abs(exact)))
         if error <= tolerance:
             return ShiftNodes(nodes, reference, error)
@@ -909,14 +909,14 @@ def _node_spectra(layer: Layer, nodes: ShiftNodes, samples_per_decade: int = 40)
     h, g = layer.thickness, layer.shear_modulus
     kh = np.logspace(-2, np.log10(18.0), int(samples_per_decade * np.log10(1800)) + 1)
     k = kh / h
-    bary = _lobatto(nodes.nodes.size - 1)[1]
+    bary = lobatto_nodes(nodes.nodes.size - 1)[1]
     ref = nodes.reference
     tables = {}
     for key in ("zz", "ze", "ez", "ee", "pp"):
         poles = modulus_poles(layer, k, key)
         u = ref / (ref + poles.shift)
         beta = poles.alpha / (poles.shift + ref)
-        basis = _lagrange(u.ravel(), nodes.nodes, bary).reshape(u.shape + (nodes.nodes.size,))
+        basis = lagrange_basis(u.ravel(), nodes.nodes, bary).reshape(u.shape + (nodes.nodes.size,))
         tables[key] = _LogInterpolant(k, ref * np.einsum("kj,kjp->pk", beta, basis) / g)
     zero = {"zz": {0: 0.0}, "xx": {0: 0.0, 2: 0.0}, "xz": {1: 0.0}, "zx": {1: 0.0}}
     # periodic kernels: the rigid-base term's bounded mean (h/M, h/G) is cancelled by the node it is
@@ -955,7 +955,7 @@ def elastic_substrate_terms(grid: Grid, layer: Layer, shear: Material, component
 
     so that every term has a kernel of q and a response of t with fixed times: alpha0 G is the
     layer on a rigid base (same interface) with J(t) (:func:`factored_terms`); node p has the kernel
-    of c_p (built like the layer's, :func:`unit_kernels` with its own :class:`_Spectral`: no
+    of c_p (built like the layer's, :func:`unit_kernels` with its own compliance: no
     half-space part, the substrate's 1/k at small k) and the creep function whose Carson transform is
     h(u_p; G~(s))/G_ref (:meth:`ShiftNodes.response`): 1/G_ref (elastic) at u = 0 (s = inf, the
     substrate), J(t) at u = 1 (merged into the rigid-base term), the creep function of G(t) + s_p

@@ -46,7 +46,7 @@ _DECAY_CUTOFF = 45.0
 _FINE_NODES, _FINE_WEIGHTS = np.polynomial.legendre.leggauss(16)
 
 
-def _lobatto(degree: int) -> tuple[np.ndarray, np.ndarray]:
+def lobatto_nodes(degree: int) -> tuple[np.ndarray, np.ndarray]:
     """Chebyshev-Lobatto nodes on [0, 1] (ascending, ends included) and their barycentric weights."""
     j = np.arange(degree + 1)
     nodes = 0.5 * (1.0 - np.cos(np.pi * j / degree))
@@ -55,7 +55,7 @@ def _lobatto(degree: int) -> tuple[np.ndarray, np.ndarray]:
     return nodes, bary
 
 
-def _lagrange(x: np.ndarray, nodes: np.ndarray, bary: np.ndarray) -> np.ndarray:
+def lagrange_basis(x: np.ndarray, nodes: np.ndarray, bary: np.ndarray) -> np.ndarray:
     """Lagrange basis polynomials l_q(x) of ``nodes`` (barycentric formula), shape (x.size, nodes.size)."""
     diff = x[:, None] - nodes[None, :]
     exact = diff == 0.0
@@ -88,7 +88,7 @@ def product_weights(start: float, stop: float, degree: int, lengths: np.ndarray)
     beta = (stop - start)/L, cut at T = min(beta, 45) (the rest is below double precision) and
     done with one composite Gauss-Legendre rule graded towards t = 0, the same for every mode.
     """
-    nodes, bary = _lobatto(degree)
+    nodes, bary = lobatto_nodes(degree)
     lengths = np.asarray(lengths, dtype=float)
     out = np.zeros((lengths.size, degree + 1))
     live = start / lengths < 746.0  # exp(-746) underflows to 0
@@ -99,7 +99,7 @@ def product_weights(start: float, stop: float, degree: int, lengths: np.ndarray)
     cut = np.minimum(beta, _DECAY_CUTOFF)
     t = cut[:, None] * _UNIT_NODES[None, :]
     w = cut[:, None] * _UNIT_WEIGHTS[None, :] * np.exp(-t - (start / lengths)[:, None])
-    basis = _lagrange((t / beta[:, None]).ravel(), nodes, bary).reshape(*t.shape, degree + 1)
+    basis = lagrange_basis((t / beta[:, None]).ravel(), nodes, bary).reshape(*t.shape, degree + 1)
     out[live] = np.einsum("mf,mfq->mq", w, basis)
     return out
 
@@ -179,7 +179,7 @@ class SteadyKernelBuilder:
         if self._local is None:
             dx = self.grid.spacing
             breaks = _local_breaks(dx, self.grading)
-            unit, _ = _lobatto(self.degree)
+            unit, _ = lobatto_nodes(self.degree)
             positions: list[float] = []
             index: list[np.ndarray] = []
             for a, b in zip(breaks[:-1], breaks[1:]):
@@ -247,7 +247,7 @@ class SteadyKernelBuilder:
         n, dx = self.grid.n, self.grid.spacing
         if self._smooth_values is None:
             breaks = (0.0, 0.5 * dx, dx)
-            unit, _ = _lobatto(self.degree)
+            unit, _ = lobatto_nodes(self.degree)
             shifts = np.unique(np.concatenate([a + (b - a) * unit for a, b in zip(breaks[:-1], breaks[1:])]))
             index = [np.searchsorted(shifts, a + (b - a) * unit) for a, b in zip(breaks[:-1], breaks[1:])]
             sampled = np.asarray(self.smooth(shifts), dtype=float)  # (S, C, 2n, X)
@@ -272,7 +272,7 @@ class SteadyKernelBuilder:
         d_max = self._x_offsets[-1]
         scale = max(d_max, self.grid.spacing)
         top = _DECAY_CUTOFF * float(lengths.max())
-        unit, _ = _lobatto(self.degree)
+        unit, _ = lobatto_nodes(self.degree)
         dy = self.grid.offsets()[:, None]
         out = np.zeros((lengths.size, len(self.components) * dy.size))
         k = 0
