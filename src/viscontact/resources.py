@@ -62,7 +62,8 @@ def estimate(problem: Problem) -> Estimate:
     Result: what :mod:`viscontact.streaming` claims on disk for it (:func:`stream_bytes`) plus the
     file's layout. Memory (``viscontact run`` streams its records: it does not grow with the number
     of steps): the record being written (and its compressed copy), plus the solver's own arrays: the
-    history (2 x retardation modes), a dozen n x n work fields, and per influence kernel its
+    history (2 x retardation modes, more for bodies of several terms:
+    :func:`viscontact.substrate.body_size`), a dozen n x n work fields, and per influence kernel its
     (2n)^2 real-space copy, its (2n)(n + 1) complex spectrum, the FFT work arrays and a step's
     padded temporaries (8 (2n)^2 fields), on top of :data:`BASE_MEMORY`. Checkpoint:
     the solver state only (history and the last step's fields).
@@ -72,8 +73,10 @@ def estimate(problem: Problem) -> Estimate:
     records = recorded_steps(problem)
     per_record = record_bytes(problem)
     result = stream_bytes(problem, records) + len(problem.title) + LAYOUT_BYTES
-    modes = problem.material.creep.retardation_times.size
-    kernels = 4 if problem.tangential.mode in ("partial_slip", "gross_sliding") else 1
+    from .substrate import body_size
+
+    modes, per_component = body_size(problem)  # nu(t), layers: more histories and kernels
+    kernels = per_component * (4 if problem.tangential.mode in ("partial_slip", "gross_sliding") else 1)
     solver = (2 * 2 * modes + 16) * 8 * n * n + kernels * (4 * n * n * 8 + 2 * n * (n + 1) * 16) \
         + 8 * 4 * n * n * 8
     state = (2 * modes + 8) * 8 * n * n

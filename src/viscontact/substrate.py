@@ -424,6 +424,23 @@ def substrate_for(problem, components: Sequence[str] | None = None) -> TermSubst
                           workers=problem.solver.workers, direct=problem.solver.history == "direct")
 
 
+def body_size(problem) -> tuple[int, int]:
+    """(history fields per traction component, kernels per kernel component) of the body that
+    :func:`substrate_for` builds, for the memory estimate (:func:`viscontact.resources.estimate`):
+    M (retardation modes) and 1 for the half-space and a layer on a rigid base; 2 M and 2 with
+    ``bulk_modulus`` (J and L histories); D M and D + 1 for a viscoelastic layer on an elastic
+    substrate with D + 1 shift nodes (:func:`viscontact.layers.shift_nodes`)."""
+    modes = problem.material.creep.retardation_times.size
+    if problem.bulk_modulus is not None:
+        return 2 * modes, 2
+    if problem.layer is not None and problem.layer.substrate == "elastic" and not problem.material.is_elastic:
+        from .layers import shift_nodes
+
+        nodes = shift_nodes(problem.material).nodes.size
+        return (nodes - 1) * modes, nodes
+    return modes, 1
+
+
 def stability_responses(problem) -> list[CreepSpectrum]:
     """Time responses [1/Pa] whose step stability bounds dt (:func:`~viscontact.schemes.stable_step_limit`):
     the shear creep J(t), and with ``problem.bulk_modulus`` the normal (1 - nu)/G and tangential

@@ -2,7 +2,8 @@
 histories per traction component), a layer on a rigid base and on an elastic substrate (one kernel
 and history per shift node), on DC-FFT and periodic grids. A run stopped after a few steps (as
 by a signal: its checkpoint written) and resumed gives the uninterrupted result bit for bit, as
-the half-space's does (tests/unit/test_reliability.py); a checkpoint of another body is refused."""
+the half-space's does (tests/unit/test_reliability.py); a checkpoint of another body is refused;
+the memory estimate counts the body's extra histories and kernels."""
 from __future__ import annotations
 
 import warnings
@@ -78,3 +79,20 @@ def test_resume_refuses_a_checkpoint_of_another_body(tmp_path):
     other = {**BODIES["layer periodic"], "layer.thickness": 0.6e-3}
     with pytest.raises(ParameterError, match="^--resume: checkpoint .* different case"):
         api.run(case(other), checkpoint=ckpt, resume=True)
+
+
+def test_memory_estimate_counts_the_histories_and_kernels_of_the_body():
+    """A viscoelastic layer on an elastic substrate holds D M history fields and D + 1 kernels per
+    component (D + 1 shift nodes, layers.shift_nodes): the estimate of its solver state grows by
+    that much over the half-space's (Zener: M = 1, 9 nodes at the default tolerance)."""
+    from viscontact.layers import shift_nodes
+    from viscontact.resources import estimate
+
+    half = case({"grid.n": 64}).to_problem()
+    layer = case({"grid.n": 64, **ON_ELASTIC}).to_problem()
+    nodes = shift_nodes(layer.material).nodes.size
+    n = 64
+    per_field, per_kernel = 2 * 2 * 8 * n * n, 4 * n * n * 8 + 2 * n * (n + 1) * 16
+    grown = estimate(layer).peak_memory_bytes - estimate(half).peak_memory_bytes
+    assert nodes == 9
+    assert grown == (nodes - 2) * per_field + (nodes - 1) * per_kernel
