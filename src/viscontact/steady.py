@@ -305,7 +305,7 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
                                       spectrum=body.steady_spectrum(v, mu))
         p, delta, krylov, u_z = state.pressure, state.delta_z, state.iterations, state.displacement_z
     else:
-        substrate = substrate or substrate_for(problem, ("zz",))
+        substrate = substrate or substrate_for(problem, steady_components(problem))
         conv, kernels = steady_convolver(problem, v, substrate)
         coupled = "zx" in conv.spectra
         precondition = steady_preconditioner(substrate, kernels, v, problem.solver.workers)

@@ -194,6 +194,9 @@ class SteadyKernelBuilder:
             d = self._x_offsets[:-1]
             values = np.empty((d.size, len(positions), len(self.components) * dy.size))
             for q, x in enumerate(positions):
+                if self.point_kernel is not None:  # another kernel than the half-space's, at any offset
+                    values[:, q, :] = self._ic(d[None, :] + x, dy).reshape(-1, d.size).T
+                    continue
                 ic = lattice_rectangle_influence(d[0] + x, d.size, dx, dy[:, 0], self.poisson_ratio, self.components)
                 for ci, c in enumerate(self.components):  # [x offset, component * 2n + y offset]
                     values[:, q, ci * dy.size: (ci + 1) * dy.size] = ic[c]
