@@ -353,8 +353,11 @@ def test_sigint_at_start_up_is_one_line(tmp_path, delay):
     """SIGINT while the command is still importing (xarray and the solvers take about a second here):
     one line, status 130. (Before the interpreter runs the script's first line, about 0.1 s on this
     loaded machine, nothing of viscontact can act.)"""
+    # as from a terminal: a suite started in the background (``&``, nohup) passes SIGINT on ignored,
+    # and a command started with SIGINT ignored rightly ignores it
     proc = subprocess.Popen([str(SCRIPT), "run", str(CREEP), "--out", str(tmp_path / "r.nc")],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     time.sleep(delay)
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=120)
