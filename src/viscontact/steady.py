@@ -42,6 +42,7 @@ from typing import Sequence
 
 import numpy as np
 
+from .compliance_terms import complex_compliance
 from .convolution import Convolver, FourierPreconditioner
 from .errors import ConvergenceError, ParameterError
 from .grid import Grid
@@ -221,11 +222,8 @@ def steady_preconditioner(substrate: TermSubstrate, kernels: dict[str, np.ndarra
     if isinstance(substrate, HalfSpace) and not substrate.periodic and "zz" in substrate.preconditioners:
         elastic = substrate.preconditioners["zz"]
         grid = substrate.grid
-        creep = substrate.material.creep
         k_x = 2.0 * np.pi * np.fft.rfftfreq(grid.n, grid.spacing)
-        lengths = speed * np.asarray(creep.retardation_times, dtype=float)
-        amplitudes = np.asarray(creep.amplitudes, dtype=float)
-        j_star = creep.instantaneous + (amplitudes[:, None] / (1.0 - 1j * k_x[None, :] * lengths[:, None])).sum(axis=0)
+        j_star = complex_compliance(substrate.material.creep, -k_x * speed)
         symbol = j_star.real if symmetric else j_star  # Re K^ = IC^ Re J*: the symmetric part
         return FourierPreconditioner(elastic.inverse_symbol / symbol[None, :], workers, elastic.fft)
     return FourierPreconditioner.for_kernel(kernels["zz"], 1.0, workers)
