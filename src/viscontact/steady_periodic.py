@@ -33,6 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .compliance_terms import complex_compliance
 from .constrained import constrained_cg
 from .convolution import FourierPreconditioner
 from .errors import ParameterError
@@ -43,20 +44,16 @@ from .sliding import hysteresis_force
 from .steady import solve_contact_active_set
 
 
-def complex_compliance(material: Material, omega: np.ndarray | float) -> np.ndarray:
-    """J*(omega) = 1 / (G'(omega) + i G''(omega)) [1/Pa] at angular frequency omega [rad/s] of either
-    sign (exp(i omega t) convention)."""
-    return 1.0 / (material.storage_modulus(omega) + 1j * material.loss_modulus(omega))
-
-
 def steady_spectrum(conv: PeriodicConvolver, material: Material, grid: Grid, speed: float,
                     friction: float = 0.0) -> np.ndarray:
-    """Spectrum (n, n//2 + 1) of the steady operator p -> u_z [m per Pa]: (K^_zz + mu_f K^_zx) / G*(-k_x v)."""
+    """Spectrum (n, n//2 + 1) of the steady operator p -> u_z [m per Pa]: (K^_zz + mu_f K^_zx) J*(-k_x v),
+    with J*(omega) = 1 / G*(omega) the complex creep compliance
+    (:func:`~viscontact.compliance_terms.complex_compliance`)."""
     kx = 2 * np.pi * np.fft.rfftfreq(grid.n, grid.spacing)[None, :]
     spec = conv.spectra["zz"]
     if friction > 0 and "zx" in conv.spectra:
         spec = spec + friction * conv.spectra["zx"]
-    return spec * complex_compliance(material, -kx * speed)
+    return spec * complex_compliance(material.creep, -kx * speed)
 
 
 @dataclass(frozen=True)
