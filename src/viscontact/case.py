@@ -465,7 +465,8 @@ class SolverSection(_Section):
                                      "tangential coupling loop")
     max_coupling_iterations: int = _int(SolverSettings.max_coupling_iterations, ge=1,
                                         description="cap of the coupling loop")
-    workers: int = _int(SolverSettings.workers, ge=-1, description="FFT threads; -1 for all cores (0 is refused)")
+    workers: int = _int(SolverSettings.workers, ge=-1, description="FFT threads; -1 for all cores on grids above "
+                               "512^2 cells and one thread below, where a second one is slower (0 is refused)")
     history: Literal["recursive", "direct"] = Field(SolverSettings.history, description="hereditary sum: "
                                                     "recursive (one field per retardation time) or the direct "
                                                     "sum over all past steps (reference, slow)")

@@ -14,7 +14,7 @@ from typing import Iterable, Mapping
 import numpy as np
 import scipy.fft
 
-from .fftbackends import DCFFTTransforms, ZeroBlockTransforms
+from .fftbackends import DCFFTTransforms, ZeroBlockTransforms, fft_threads
 from .grid import Grid
 from .kernels import influence_coefficients
 
@@ -164,18 +164,12 @@ def coupled_displacements(conv: Convolver, normal: np.ndarray, shear: np.ndarray
     return u["z"], u.get("x")
 
 
-#: fields of up to this many cells are preconditioned with one FFT thread: a second thread costs more
-#: CPU time than it saves on these transforms (256^2: 2.5 against 2.2 ms a pair; 1024^2: 28 against 30 ms)
-SINGLE_THREAD_SIZE = 512 * 512
-
-
 @dataclass(frozen=True)
 class FourierPreconditioner:
     """Approximate inverse of a convolution operator: r -> F^-1[F[r] / K^] on the periodic n x n grid.
 
     K^ is the spectrum of the kernel wrapped periodically on the n x n grid (its symmetric part), so
-    applying it costs a quarter of a DC-FFT convolution (on one thread up to :data:`SINGLE_THREAD_SIZE`
-    cells, else ``workers``). It is the classical Fourier preconditioner of
+    applying it costs a quarter of a DC-FFT convolution (threads: :func:`~viscontact.fftbackends.fft_threads`). It is the classical Fourier preconditioner of
     boundary-element contact solvers: the half-space operator is diagonal in Fourier space,
     ``|k|^-1`` up to a constant, and the preconditioned system has a bounded condition number.
     """
@@ -197,7 +191,7 @@ class FourierPreconditioner:
         return cls(1.0 / symbol, workers, fft)
 
     def __call__(self, residual: np.ndarray) -> np.ndarray:
-        workers = self.workers if residual.size > SINGLE_THREAD_SIZE else 1
+        workers = fft_threads(self.workers, residual.size)
         spectrum = self.fft.rfft2(residual, workers=workers)
         spectrum *= self.inverse_symbol
         return self.fft.irfft2(spectrum, s=residual.shape, workers=workers, overwrite_x=True)

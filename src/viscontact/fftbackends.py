@@ -31,7 +31,21 @@ from typing import Protocol
 import numpy as np
 import scipy.fft
 
-__all__ = ["BACKENDS", "DCFFTTransforms", "FFTWTransforms", "ZeroBlockTransforms", "dcfft_transforms"]
+__all__ = ["BACKENDS", "DCFFTTransforms", "FFTWTransforms", "SINGLE_THREAD_SIZE", "ZeroBlockTransforms",
+           "dcfft_transforms", "fft_threads"]
+
+#: grids of up to this many cells (n x n) transform on one thread when ``workers = -1``: a second pocketfft
+#: thread costs more wall time than it saves below (2-core machine, quiet, padded pair of the DC-FFT:
+#: n = 256 4.6 ms with one thread against 6.2-9.3 ms with two; n = 512 20.5 against 22.0 ms; n = 1024
+#: 95 against 69 ms; the unpadded preconditioner pair: 256^2 2.2 against 2.5 ms CPU; BENCHMARKS.md)
+SINGLE_THREAD_SIZE = 512 * 512
+
+
+def fft_threads(workers: int, cells: int) -> int:
+    """The threads of a transform on a grid of ``cells`` points (n x n) for the ``workers`` setting:
+    ``-1`` (the default, "all cores where they win") is 1 up to :data:`SINGLE_THREAD_SIZE` cells and -1
+    (all cores) above; an explicit count is used as given."""
+    return 1 if workers == -1 and cells <= SINGLE_THREAD_SIZE else workers
 
 
 class DCFFTTransforms(Protocol):
@@ -58,7 +72,8 @@ class ZeroBlockTransforms:
     n
         Cells per side.
     workers
-        Threads of ``scipy.fft`` (-1: all cores; ignored for modules without ``workers``).
+        Threads of ``scipy.fft`` (-1: all cores above :data:`SINGLE_THREAD_SIZE` cells, one below:
+        :func:`fft_threads`; ignored for modules without ``workers``).
     fft
         The 1-D transform module.
     """
@@ -67,7 +82,7 @@ class ZeroBlockTransforms:
         self.n = n
         self.workers = workers
         self.fft = fft
-        self._kw = {"workers": workers} if fft is scipy.fft else {}
+        self._kw = {"workers": fft_threads(workers, n * n)} if fft is scipy.fft else {}
         self._overwrite = {"overwrite_x": True} if fft is scipy.fft else {}
 
     def forward(self, field: np.ndarray) -> np.ndarray:

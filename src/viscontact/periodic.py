@@ -56,6 +56,7 @@ import scipy.fft
 from scipy.special import erfc, gammainc
 
 from .convolution import Convolver, FourierPreconditioner
+from .fftbackends import fft_threads
 from .errors import ParameterError
 from .grid import Grid
 from .kernels import COMPONENTS, rectangle_influence
@@ -205,11 +206,12 @@ class PeriodicConvolver(Convolver):
 
     def spectrum(self, field: np.ndarray) -> np.ndarray:
         """Real FFT (n, n // 2 + 1) of ``field`` (n, n), no padding."""
-        return self.fft.rfft2(field, workers=self.workers)
+        return self.fft.rfft2(field, workers=fft_threads(self.workers, field.size))
 
     def inverse(self, spectrum: np.ndarray) -> np.ndarray:
         """Inverse real FFT (n, n) of a (n, n // 2 + 1) spectrum (which it may overwrite)."""
-        return self.fft.irfft2(spectrum, s=(self.n, self.n), workers=self.workers, overwrite_x=True)
+        return self.fft.irfft2(spectrum, s=(self.n, self.n), workers=fft_threads(self.workers, self.n * self.n),
+                               overwrite_x=True)
 
     def apply(self, name: str, field: np.ndarray) -> np.ndarray:
         """sum_j K_name(x_i - x_j) field_j over the period (unpadded transforms)."""

@@ -146,7 +146,7 @@ class SolverSettings:
     max_iterations: int = 2000        # per constrained CG solve
     coupling_tolerance: float = 1e-8  # relative change between normal/tangential alternations
     max_coupling_iterations: int = 100
-    workers: int = -1                 # scipy.fft workers (-1: all cores)
+    workers: int = -1                 # scipy.fft workers (-1: all cores above 512^2 cells, 1 below)
     history: Literal["recursive", "direct"] = "recursive"  # direct: literal sum of seed Eq. 5 (reference)
     coupling: bool = True             # False: drop the (1 - 2 nu) normal/tangential cross terms
     fft: Literal["scipy", "pyfftw"] = "scipy"  # DC-FFT transforms (viscontact.fftbackends); pyfftw: extra "fast"

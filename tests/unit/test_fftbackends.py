@@ -114,3 +114,17 @@ def test_pyfftw_run_equals_scipy_run() -> None:
     for a, b in zip(runs["scipy"], runs["pyfftw"]):
         assert a.iterations == b.iterations
         assert _rel(b.pressure, a.pressure) < 1e-10
+
+
+def test_default_workers_are_one_thread_up_to_512_squared() -> None:
+    """workers = -1 is one thread up to SINGLE_THREAD_SIZE cells (threads are slower there), all cores
+    above; an explicit count is kept; the transforms use the resolved count."""
+    from viscontact.fftbackends import SINGLE_THREAD_SIZE, ZeroBlockTransforms, fft_threads
+
+    assert SINGLE_THREAD_SIZE == 512 * 512
+    assert fft_threads(-1, 256 * 256) == 1
+    assert fft_threads(-1, 512 * 512) == 1
+    assert fft_threads(-1, 1024 * 1024) == -1
+    assert fft_threads(2, 64 * 64) == 2
+    assert ZeroBlockTransforms(256, -1)._kw == {"workers": 1}
+    assert ZeroBlockTransforms(1024, -1)._kw == {"workers": -1}
