@@ -78,6 +78,17 @@ class Convolver:
             out += field[r, c] * kernel[n - 1 - r: 2 * n - 1 - r, n - 1 - c: 2 * n - 1 - c]
         return out
 
+    def window_kernels(self, m: int, names: Iterable[str]) -> dict[str, np.ndarray]:
+        """The kernels ``names`` on the (2m, 2m) offset grid (wrap-around order) of an m x m window of
+        this n x n grid, m < n: translation invariance makes the offsets -(m-1)..m-1 a window needs a
+        crop of the centred kernels (offset d at index d + n - 1); the one unused offset (+-m) holds
+        the kernel at -m."""
+        n = self.n
+        if not 0 < m < n:
+            raise ValueError(f"window side must be in 1..{n - 1}, got {m}")
+        return {k: self.xp.roll(self.kernels[k][n - 1 - m: n - 1 + m, n - 1 - m: n - 1 + m], (m, m), axis=(0, 1))
+                for k in names}
+
     @classmethod
     def for_grid(cls, grid: Grid, poisson_ratio: float, workers: int = -1,
                  components: Iterable[str] = ("zz", "xx", "xz", "zx")) -> "Convolver":

@@ -82,11 +82,15 @@ class Term:
 
 @dataclass(frozen=True)
 class ElasticOperator:
-    """The step's operator K = sum J_inst K_term for :func:`~viscontact.constrained.constrained_cg`."""
+    """The step's operator K = sum J_inst K_term for :func:`~viscontact.constrained.constrained_cg`.
+
+    ``window``: m -> the same operator restricted to an m x m sub-box of the grid (tractions zero
+    outside it; :mod:`viscontact.support_window`), or None where it has none (periodic grids)."""
 
     apply: Operator
     preconditioner: Operator
     apply_sparse: Operator
+    window: Callable[[int], "ElasticOperator"] | None = None
 
     def cg_options(self) -> dict[str, Operator]:
         """Keyword arguments of :func:`~viscontact.constrained.constrained_cg` besides the action."""
@@ -141,6 +145,7 @@ class TermSubstrate:
         self.normal_history = self._terms("z", "z")[0].history
         self._coefficients = {first: self._step_coefficients(first) for first in (True, False)}
         self._operators: dict[tuple[str, bool], ElasticOperator] = {}
+        self._window_operators: dict[tuple[str, bool, int], ElasticOperator] = {}
 
     @property
     def xp(self) -> ModuleType:
@@ -218,29 +223,29 @@ class TermSubstrate:
             self._operators[key] = self._elastic_operator(component, first)
         return self._operators[key]
 
-    def _elastic_operator(self, component: str, first: bool) -> ElasticOperator:
-        terms = self._terms(component, component)
+    def _factors(self, component: str, first: bool) -> list[tuple[str, float]]:
+        """(kernel name, J_inst [1/Pa]) of each (component, component) term of the step."""
         coef = self.coefficients(first)
-        conv = self.convolver
-        if len(terms) == 1:
-            kernel, j_inst = terms[0].kernel, coef[terms[0].history].instantaneous
-            base = self.preconditioners[kernel]
-            precond = FourierPreconditioner(base.inverse_symbol / j_inst, base.workers, base.fft)
+        return [(t.kernel, coef[t.history].instantaneous) for t in self._terms(component, component)]
 
-            def apply(x: Array) -> Array:
-                out = conv.apply(kernel, x)
-                out *= j_inst
-                return out
+    def _elastic_operator(self, component: str, first: bool) -> ElasticOperator:
+        windowed = not self.periodic and self.convolver.kernels is not None
+        window = (lambda m: self._window_operator(component, first, m)) if windowed else None
+        return _operator(self._factors(component, first), self.convolver, self.preconditioners, window)
 
-            return ElasticOperator(apply, precond, lambda x: j_inst * conv.apply_sparse(kernel, x))
-        factors = [(t.kernel, coef[t.history].instantaneous) for t in terms]
-        symbol = sum(j / self.preconditioners[k].inverse_symbol for k, j in factors)
-        precond = FourierPreconditioner(1.0 / symbol, conv.workers, conv.fft)
-
-        def sparse(x: Array) -> Array:
-            return sum(j * conv.apply_sparse(k, x) for k, j in factors)
-
-        return ElasticOperator(lambda x: conv.combine([(k, j, x) for k, j in factors]), precond, sparse)
+    def _window_operator(self, component: str, first: bool, m: int) -> ElasticOperator:
+        """:meth:`elastic_operator` on an m x m window (kept per side: a window convolver of the cropped
+        kernels, :meth:`~viscontact.convolution.Convolver.window_kernels`, and their preconditioners)."""
+        key = (component, first, m)
+        if key not in self._window_operators:
+            factors = self._factors(component, first)
+            names = [k for k, _ in factors]
+            kernels = self.convolver.window_kernels(m, names)
+            conv = Convolver.from_kernels(m, kernels, self.convolver.workers, xp=self.xp, fft=self.fft)
+            precond = {k: FourierPreconditioner.for_kernel(kernels[k], 1.0, self.convolver.workers, fft=self.fft)
+                       for k in names}
+            self._window_operators[key] = _operator(factors, conv, precond, None)
+        return self._window_operators[key]
 
     def cross_displacement(self, displacement: str, traction: str, field: Array, first: bool,
                            factor: float = 1.0) -> Array | None:
@@ -317,6 +322,30 @@ class TermSubstrate:
                                                                                       omega)
             out = part if out is None else out + part
         return out
+
+
+def _operator(factors: Sequence[tuple[str, float]], conv: Convolver, preconditioners: Mapping[str, FourierPreconditioner],
+              window: Callable[[int], ElasticOperator] | None) -> ElasticOperator:
+    """K x = sum over ``factors`` (kernel name, J_inst [1/Pa]) of J_inst K_name x through ``conv``, with
+    the Fourier preconditioner of the summed symbols (:class:`ElasticOperator`)."""
+    if len(factors) == 1:
+        (kernel, j_inst), = factors
+        base = preconditioners[kernel]
+        precond = FourierPreconditioner(base.inverse_symbol / j_inst, base.workers, base.fft)
+
+        def apply(x: Array) -> Array:
+            out = conv.apply(kernel, x)
+            out *= j_inst
+            return out
+
+        return ElasticOperator(apply, precond, lambda x: j_inst * conv.apply_sparse(kernel, x), window)
+    symbol = sum(j / preconditioners[k].inverse_symbol for k, j in factors)
+    precond = FourierPreconditioner(1.0 / symbol, conv.workers, conv.fft)
+
+    def sparse(x: Array) -> Array:
+        return sum(j * conv.apply_sparse(k, x) for k, j in factors)
+
+    return ElasticOperator(lambda x: conv.combine([(k, j, x) for k, j in factors]), precond, sparse, window)
 
 
 class HalfSpace(TermSubstrate):

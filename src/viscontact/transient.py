@@ -35,6 +35,7 @@ from .roughness import roughness_metrics
 from .schemes import stable_step_limit
 from .sliding import Wake, hysteresis_force, pressure_centroid
 from .substrate import TermSubstrate, stability_responses, substrate_for
+from .support_window import windowed_cg
 
 #: relative margin under mu_f p below which a node counts as stuck
 STICK_MARGIN = 1e-9
@@ -170,17 +171,16 @@ class PhaseSolver(Protocol):
 
 def _solve_normal(ctx: StepContext, known_uz: np.ndarray, warm: np.ndarray):
     """Polonsky-Keer solve of the normal problem (seed Eqs. 7-8, 10) with known displacement
-    ``known_uz`` [m]. Returns (pressure [Pa], approach delta_z [m], iterations, total u_z [m])."""
+    ``known_uz`` [m], on a box around the warm start's support (:mod:`viscontact.support_window`).
+    Returns (pressure [Pa], approach delta_z [m], iterations, total u_z [m])."""
     problem, s, gap = ctx.problem, ctx.problem.solver, ctx.gap
     op = ctx.substrate.elastic_operator("z", ctx.first)
     if problem.normal.control == "load":
-        sol = constrained_cg(op.apply, -(gap + known_uz), warm, 0.0, np.inf, total=ctx.value,
-                             cell_area=problem.grid.cell_area, tolerance=s.tolerance, max_iterations=s.max_iterations,
-                             what="normal contact (load control)", **op.cg_options())
+        sol = windowed_cg(op, -(gap + known_uz), warm, total=ctx.value, cell_area=problem.grid.cell_area,
+                          tolerance=s.tolerance, max_iterations=s.max_iterations, what="normal contact (load control)")
         return sol.x, sol.multiplier, sol.iterations, sol.gradient + sol.multiplier - gap
-    sol = constrained_cg(op.apply, ctx.value - (gap + known_uz), warm, 0.0, np.inf, tolerance=s.tolerance,
-                         max_iterations=s.max_iterations, what="normal contact (displacement control)",
-                         **op.cg_options())
+    sol = windowed_cg(op, ctx.value - (gap + known_uz), warm, tolerance=s.tolerance, max_iterations=s.max_iterations,
+                      what="normal contact (displacement control)")
     return sol.x, ctx.value, sol.iterations, sol.gradient + ctx.value - gap
 
 

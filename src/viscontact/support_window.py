@@ -1,0 +1,123 @@
+"""Support-window solve of the normal contact problem: the constrained CG on a sub-box of the grid.
+
+The normal problem of a step (:func:`~viscontact.constrained.constrained_cg` with x = p >= 0, seed
+Eqs. 7-8, 10) is a convex quadratic programme whose solution vanishes outside the contact. Restricted
+to a box W of the grid (p = 0 outside), it is the same kind of problem with the operator K_WW, which
+is again a DC-FFT convolution (Liu, Wang & Liu 2000) on the smaller m x m box, its kernel a crop of
+the full one (translation invariance): every CG iteration then costs transforms of (2m)^2 points
+instead of (2n)^2. The restricted solution, extended by zero, is the solution of the full problem
+if and only if the gap is non-negative outside W (the Karush-Kuhn-Tucker conditions of the full
+problem: inside W they hold by construction), which one full-domain product checks; the solution
+of the strictly convex programme being unique, it equals the full-domain solve's to the CG tolerance.
+
+The box (:func:`window_side`) holds the support of the warm start (the extrapolated pressure of the
+last steps, :func:`viscontact.transient.step`) plus a margin of :data:`MARGIN_CELLS` cells or
+:data:`MARGIN_FRACTION` of its extent, its side m rounded up so that the padded length 2m is an
+FFT-friendly size (``scipy.fft.next_fast_len``). Where the check finds a penetration outside W, the
+box is enlarged over those points and the solve repeated from the same warm start (not from the last
+box's solution: Polonsky and Keer's stopping test, the relative change of p in an iteration, would
+pass at once from a point that is exact on the old box, with the new points still unloaded); after
+:data:`MAX_ENLARGEMENTS`, or when the box would cover more than :data:`FULL_FRACTION` of the grid's
+side, the full-domain solve runs instead. The window depends only on the warm start, so a resumed
+run repeats the same sequence of windows (bit-exact resume).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import scipy.fft
+
+from .constrained import ConstrainedSolution, constrained_cg
+
+#: margin [cells] at least around the support of the warm start
+MARGIN_CELLS = 4
+#: margin as a fraction of the support's extent (the contact may grow by this much in a step)
+MARGIN_FRACTION = 0.03
+#: a box side above this fraction of the grid's is not worth it: the full-domain solve
+FULL_FRACTION = 0.95
+#: enlargements of the box after a failed check before the full-domain solve
+MAX_ENLARGEMENTS = 3
+
+
+def window_side(extent: int, n: int) -> int | None:
+    """Side m [cells] of the box for a support of ``extent`` cells on an n x n grid: the extent plus two
+    margins, rounded up so that 2m is a ``scipy.fft.next_fast_len`` size; None above
+    :data:`FULL_FRACTION` n (the full grid is then the cheaper box)."""
+    m = extent + 2 * max(MARGIN_CELLS, math.ceil(MARGIN_FRACTION * extent))
+    while scipy.fft.next_fast_len(2 * m, real=True) != 2 * m:
+        m += 1
+    return m if m <= FULL_FRACTION * n else None
+
+
+def _span(mask: np.ndarray, axis: int) -> tuple[int, int]:
+    """[first, last + 1) of the rows (axis 0) or columns (axis 1) where ``mask`` has a True."""
+    hit = np.flatnonzero(mask.any(axis=1 - axis))
+    return int(hit[0]), int(hit[-1]) + 1
+
+
+def _start(span: tuple[int, int], m: int, n: int) -> int:
+    """First index of an m-long range centred on ``span`` and kept inside 0..n."""
+    return min(max((span[0] + span[1] - m) // 2, 0), n - m)
+
+
+def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None, cell_area: float = 1.0,
+                tolerance: float = 1e-10, max_iterations: int = 2000,
+                what: str = "constrained conjugate gradient") -> ConstrainedSolution:
+    """:func:`~viscontact.constrained.constrained_cg` of the normal problem (bounds 0 and inf) on a box
+    around the support of ``x0`` (module docstring), the same solution to the CG tolerance.
+
+    Parameters
+    ----------
+    op
+        The step's :class:`~viscontact.substrate.ElasticOperator` (``op.window(m)``: the operator on an
+        m x m box; None: the full-domain solve).
+    b, x0, total, cell_area, tolerance, max_iterations, what
+        As for :func:`~viscontact.constrained.constrained_cg` (b: minus the gap and the known
+        displacement [m]; x0: the warm start [Pa]).
+
+    Returns
+    -------
+    ConstrainedSolution
+        On the whole grid: x, the gradient K x - b (minus the multiplier under load control) from one
+        full-domain product, and the iterations of every solve done.
+    """
+    n = b.shape[0]
+
+    def full(start: np.ndarray, done: int) -> ConstrainedSolution:
+        sol = constrained_cg(op.apply, b, start, 0.0, np.inf, total=total, cell_area=cell_area, tolerance=tolerance,
+                             max_iterations=max_iterations, what=what, **op.cg_options())
+        return replace(sol, iterations=sol.iterations + done)
+
+    support = x0 > 0
+    if op.window is None or b.shape != (n, n) or (total is not None and total <= 0) or not support.any():
+        return full(x0, 0)
+    rows, cols = _span(support, 0), _span(support, 1)
+    iterations = 0
+    for _ in range(MAX_ENLARGEMENTS + 1):
+        m = window_side(max(rows[1] - rows[0], cols[1] - cols[0]), n)
+        if m is None:
+            break
+        r0, c0 = _start(rows, m, n), _start(cols, m, n)
+        box = (slice(r0, r0 + m), slice(c0, c0 + m))
+        sub = op.window(m)
+        sol = constrained_cg(sub.apply, b[box], x0[box], 0.0, np.inf, total=total, cell_area=cell_area,
+                             tolerance=tolerance, max_iterations=max_iterations, what=what, **sub.cg_options())
+        iterations += sol.iterations
+        x = np.zeros_like(b)
+        x[box] = sol.x
+        gradient = op.apply(x)
+        gradient -= b
+        multiplier = 0.0
+        if total is not None:  # as constrained_cg: the mean gradient over the contact
+            contact = x > 0
+            multiplier = float(gradient[contact].mean()) if contact.any() else sol.multiplier
+            gradient -= multiplier
+        penetrating = gradient < 0
+        penetrating[box] = False
+        if not penetrating.any():
+            return ConstrainedSolution(x, gradient, multiplier, iterations, sol.residual)
+        penetrating[box] = True  # the next box covers this one and the points that penetrate
+        rows, cols = _span(penetrating, 0), _span(penetrating, 1)
+    return full(x0, iterations)

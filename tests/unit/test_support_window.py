@@ -1,0 +1,125 @@
+"""Support-window solve (viscontact.support_window) against the full-domain solve.
+
+* the window operator (cropped kernels on an m x m box) is the full DC-FFT operator restricted to the
+  box, to round-off (1e-12 of the largest value): a wrong crop or wrap-around layout is off by O(1);
+  for the one-term half-space and a two-term nu(t) substrate (``combine``);
+* the windowed constrained CG equals the full-domain Polonsky-Keer solve to the solver tolerance
+  (unique solution of a strictly convex programme), under load and displacement control, from a
+  warm start whose support is far smaller than the contact: the first box is too small, the check
+  finds the penetration outside it and the box is enlarged (asserted: more than one box side used);
+* whole transients (creep indentation, frictionless sliding) give the same records with and
+  without windows, to the solver tolerance, and do use windows.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from vc_testing import SEED_A0, seed_material, sphere_problem
+
+from viscontact import support_window, transient
+from viscontact.constrained import constrained_cg
+from viscontact.grid import Grid
+from viscontact.materials import Material
+from viscontact.problem import SolverSettings
+from viscontact.substrate import HalfSpace
+
+
+def _half_space(n: int = 32, material: Material | None = None) -> HalfSpace:
+    return HalfSpace(Grid(n, 2e-3), material or seed_material(), ("zz",), "linear", 1e-3)
+
+
+def _nu_t_substrate(n: int = 32):
+    from viscontact.compliance_terms import term_substrate
+    from viscontact.poisson import BulkElasticMaterial, half_space_terms
+
+    grid = Grid(n, 2e-3)
+    return term_substrate(grid, half_space_terms(grid, BulkElasticMaterial(seed_material(), 5e6), ("zz",)),
+                          "linear", 1e-3)
+
+
+@pytest.mark.parametrize("make", [_half_space, _nu_t_substrate], ids=["half-space", "nu(t)"])
+@pytest.mark.parametrize("m, r0, c0", [(12, 3, 17), (20, 0, 12), (31, 1, 0)])
+def test_window_operator_is_the_full_operator_on_the_box(make, m, r0, c0):
+    sub = make()
+    op = sub.elastic_operator("z", False)
+    field = np.zeros((32, 32))
+    box = (slice(r0, r0 + m), slice(c0, c0 + m))
+    field[box] = np.random.default_rng(m).random((m, m))
+    full = op.apply(field)[box]
+    windowed = op.window(m).apply(field[box])
+    assert np.max(np.abs(windowed - full)) <= 1e-12 * np.max(np.abs(full))
+    points = np.zeros((m, m))
+    points[1, 2], points[m - 1, 0] = 1.0, -2.0
+    sparse = op.window(m).apply_sparse(points)
+    assert np.max(np.abs(sparse - op.window(m).apply(points))) <= 1e-12 * np.max(np.abs(sparse))
+
+
+def test_periodic_grids_have_no_window():
+    sub = HalfSpace(Grid(16, 2e-3, periodic=True), seed_material(), ("zz",), "linear", 1e-3)
+    assert sub.elastic_operator("z", False).window is None
+
+
+@pytest.mark.parametrize("control", ["load", "displacement"])
+def test_windowed_solve_equals_full_solve_and_enlarges(control, monkeypatch):
+    n = 64
+    sub = _half_space(n, Material.elastic(1.93e6, 0.3))
+    x, y = sub.grid.mesh()
+    gap = (x**2 + y**2) / (2 * 0.01)
+    op = sub.elastic_operator("z", True)
+    sizes = []
+    window = op.window
+    spy = type(op)(op.apply, op.preconditioner, op.apply_sparse, lambda m: sizes.append(m) or window(m))
+    # a warm start on a disc of a fifth of the contact's radius: the first box is too small
+    warm = np.where(x**2 + y**2 < (0.2 * SEED_A0) ** 2, 1e5, 0.0)
+    kwargs = dict(tolerance=1e-11, max_iterations=500)
+    if control == "load":
+        kwargs.update(total=0.15, cell_area=sub.grid.cell_area)
+        b = -gap
+    else:
+        b = 20e-6 - gap
+    ours = support_window.windowed_cg(spy, b, warm, **kwargs)
+    ref = constrained_cg(op.apply, b, np.zeros_like(b), 0.0, np.inf, **kwargs, **op.cg_options())
+    assert len(set(sizes)) >= 2 and max(sizes) < n  # enlarged, still a window
+    peak = np.max(ref.x)
+    assert np.max(np.abs(ours.x - ref.x)) <= 1e-8 * peak
+    assert np.max(np.abs(ours.gradient - ref.gradient)) <= 1e-8 * np.max(np.abs(b))
+    assert ours.multiplier == pytest.approx(ref.multiplier, rel=1e-9, abs=1e-15)
+    assert np.all(ours.gradient[ours.x == 0] >= -1e-9 * np.max(np.abs(b)))
+
+
+def _records(problem, monkeypatch, windows: bool):
+    if not windows:
+        monkeypatch.setattr(support_window, "FULL_FRACTION", 0.0)
+    used = []
+    window_side = support_window.window_side
+
+    def spy(extent, n):
+        m = window_side(extent, n)
+        used.append(m)
+        return m
+
+    monkeypatch.setattr(support_window, "window_side", spy)
+    records = list(transient.simulate(problem))
+    monkeypatch.undo()
+    return records, [m for m in used if m is not None]
+
+
+@pytest.mark.parametrize("case", ["creep", "sliding"])
+def test_transient_with_windows_equals_full_domain(case, monkeypatch):
+    material = seed_material()
+    solver = SolverSettings(tolerance=1e-10)
+    if case == "creep":
+        problem = sphere_problem(material, 48, 2.5 * SEED_A0, t_end=0.02, dt=0.002, solver=solver,
+                                 fields=("pressure", "displacement_z"))
+    else:
+        v = 0.8 * SEED_A0 / 0.01
+        problem = sphere_problem(material, 48, 3.0 * SEED_A0, mode="frictionless_sliding", speed=v,
+                                 t_end=12 * 6 * SEED_A0 / 48 / v, solver=solver, fields=("pressure", "displacement_z"))
+    windowed, used = _records(problem, monkeypatch, True)
+    full, none = _records(problem, monkeypatch, False)
+    assert len(used) >= len(windowed) // 2 and not none
+    for a, b in zip(windowed, full):
+        peak = np.max(b.pressure)
+        assert np.max(np.abs(a.pressure - b.pressure)) <= 1e-7 * peak
+        assert np.max(np.abs(a.displacement_z - b.displacement_z)) <= 1e-7 * np.max(np.abs(b.displacement_z))
+        assert a.delta_z == pytest.approx(b.delta_z, rel=1e-8)
