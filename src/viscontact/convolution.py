@@ -31,7 +31,7 @@ class Convolver:
         Real-FFT spectra (2n, n+1) of the kernels, by name (``zz``, ``xx``, ``xz``, ``zx``, or any
         other kernel such as the steady-state effective ones).
     workers
-        FFT worker threads (-1: all cores).
+        FFT worker threads (-1: all cores above 512^2 cells, one below: :func:`~viscontact.fftbackends.fft_threads`).
     kernels
         Real-space kernels, centred (see :meth:`apply_sparse`).
     xp, fft
@@ -180,8 +180,8 @@ class FourierPreconditioner:
     """Approximate inverse of a convolution operator: r -> F^-1[F[r] / K^] on the periodic n x n grid.
 
     K^ is the spectrum of the kernel wrapped periodically on the n x n grid (its symmetric part), so
-    applying it costs a quarter of a DC-FFT convolution (threads: :func:`~viscontact.fftbackends.fft_threads`). It is the classical Fourier preconditioner of
-    boundary-element contact solvers: the half-space operator is diagonal in Fourier space,
+    applying it costs a quarter of a DC-FFT convolution (threads: :func:`~viscontact.fftbackends.fft_threads`).
+    It is the classical Fourier preconditioner of boundary-element contact solvers: the half-space operator is diagonal in Fourier space,
     ``|k|^-1`` up to a constant, and the preconditioned system has a bounded condition number.
     """
 

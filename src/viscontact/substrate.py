@@ -38,6 +38,7 @@ The contact solvers (:mod:`viscontact.transient`, :mod:`viscontact.steady`) see 
 """
 from __future__ import annotations
 
+from collections import OrderedDict
 from dataclasses import dataclass
 from types import ModuleType
 from typing import Callable, Mapping, Sequence
@@ -58,6 +59,8 @@ from .steady_kernels import SteadyKernelBuilder, SteadyShape
 
 Array = np.ndarray
 Operator = Callable[[Array], Array]
+#: window sides whose convolvers a substrate keeps (:meth:`TermSubstrate.elastic_operator`'s ``window``)
+WINDOWS_KEPT = 3
 
 
 @dataclass(frozen=True)
@@ -145,7 +148,9 @@ class TermSubstrate:
         self.normal_history = self._terms("z", "z")[0].history
         self._coefficients = {first: self._step_coefficients(first) for first in (True, False)}
         self._operators: dict[tuple[str, bool], ElasticOperator] = {}
-        self._window_operators: dict[tuple[str, bool, int], ElasticOperator] = {}
+        #: window side -> (convolver, preconditioners, operators by (component, first)), least recent first
+        self._windows: OrderedDict[int, tuple[Convolver, dict[str, FourierPreconditioner],
+                                              dict[tuple[str, bool], ElasticOperator]]] = OrderedDict()
 
     @property
     def xp(self) -> ModuleType:
@@ -234,18 +239,25 @@ class TermSubstrate:
         return _operator(self._factors(component, first), self.convolver, self.preconditioners, window)
 
     def _window_operator(self, component: str, first: bool, m: int) -> ElasticOperator:
-        """:meth:`elastic_operator` on an m x m window (kept per side: a window convolver of the cropped
-        kernels, :meth:`~viscontact.convolution.Convolver.window_kernels`, and their preconditioners)."""
-        key = (component, first, m)
-        if key not in self._window_operators:
-            factors = self._factors(component, first)
-            names = [k for k, _ in factors]
+        """:meth:`elastic_operator` on an m x m window: a convolver of the kernels cropped to the window
+        (:meth:`~viscontact.convolution.Convolver.window_kernels`) and their preconditioners, made once
+        per side and kept for the :data:`WINDOWS_KEPT` sides used last (a growing contact walks
+        through a sequence of sides; their kernels would otherwise pile up)."""
+        if m not in self._windows:
+            names = sorted({t.kernel for t in self.terms if t.displacement == t.traction})
             kernels = self.convolver.window_kernels(m, names)
             conv = Convolver.from_kernels(m, kernels, self.convolver.workers, xp=self.xp, fft=self.fft)
             precond = {k: FourierPreconditioner.for_kernel(kernels[k], 1.0, self.convolver.workers, fft=self.fft)
                        for k in names}
-            self._window_operators[key] = _operator(factors, conv, precond, None)
-        return self._window_operators[key]
+            self._windows[m] = (conv, precond, {})
+            while len(self._windows) > WINDOWS_KEPT:
+                self._windows.popitem(last=False)
+        self._windows.move_to_end(m)
+        conv, precond, operators = self._windows[m]
+        key = (component, first)
+        if key not in operators:
+            operators[key] = _operator(self._factors(component, first), conv, precond, None)
+        return operators[key]
 
     def cross_displacement(self, displacement: str, traction: str, field: Array, first: bool,
                            factor: float = 1.0) -> Array | None:
@@ -324,7 +336,8 @@ class TermSubstrate:
         return out
 
 
-def _operator(factors: Sequence[tuple[str, float]], conv: Convolver, preconditioners: Mapping[str, FourierPreconditioner],
+def _operator(factors: Sequence[tuple[str, float]], conv: Convolver,
+              preconditioners: Mapping[str, FourierPreconditioner],
               window: Callable[[int], ElasticOperator] | None) -> ElasticOperator:
     """K x = sum over ``factors`` (kernel name, J_inst [1/Pa]) of J_inst K_name x through ``conv``, with
     the Fourier preconditioner of the summed symbols (:class:`ElasticOperator`)."""
@@ -364,7 +377,7 @@ class HalfSpace(TermSubstrate):
     components
         Kernels to build among ``zz``, ``xx``, ``xz``, ``zx`` (``zz`` always).
     workers
-        FFT worker threads (-1: all cores).
+        FFT worker threads (-1: all cores above 512^2 cells, one below: :func:`~viscontact.fftbackends.fft_threads`).
     fft
         DC-FFT transforms by backend name (:func:`~viscontact.fftbackends.dcfft_transforms`).
     grid, scheme, dt, direct
