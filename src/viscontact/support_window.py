@@ -20,6 +20,10 @@ pass at once from a point that is exact on the old box, with the new points stil
 :data:`MAX_ENLARGEMENTS`, or when the box would cover more than :data:`FULL_FRACTION` of the grid's
 side, the full-domain solve runs instead. The window depends only on the warm start, so a resumed
 run repeats the same sequence of windows (bit-exact resume).
+
+The tangential problem of partial slip (:func:`windowed_bounded_cg`) needs no check: its bounds
+-mu_f p <= q_x <= mu_f p pin q_x = 0 outside the contact, so the box of the contact holds every
+unknown and the restricted solution is exact.
 """
 from __future__ import annotations
 
@@ -62,6 +66,18 @@ def _start(span: tuple[int, int], m: int, n: int) -> int:
     return min(max((span[0] + span[1] - m) // 2, 0), n - m)
 
 
+def _box(mask: np.ndarray) -> tuple[int, tuple[slice, slice]] | None:
+    """(m, the m x m box) around the True cells of ``mask`` (n, n) with :func:`window_side`'s margins;
+    None when that box would not be worth it."""
+    n = mask.shape[0]
+    rows, cols = _span(mask, 0), _span(mask, 1)
+    m = window_side(max(rows[1] - rows[0], cols[1] - cols[0]), n)
+    if m is None:
+        return None
+    r0, c0 = _start(rows, m, n), _start(cols, m, n)
+    return m, (slice(r0, r0 + m), slice(c0, c0 + m))
+
+
 def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None, cell_area: float = 1.0,
                 tolerance: float = 1e-10, max_iterations: int = 2000,
                 what: str = "constrained conjugate gradient") -> ConstrainedSolution:
@@ -93,14 +109,12 @@ def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None
     support = x0 > 0
     if op.window is None or b.shape != (n, n) or (total is not None and total <= 0) or not support.any():
         return full(x0, 0)
-    rows, cols = _span(support, 0), _span(support, 1)
-    iterations = 0
+    iterations, cover = 0, support
     for _ in range(MAX_ENLARGEMENTS + 1):
-        m = window_side(max(rows[1] - rows[0], cols[1] - cols[0]), n)
-        if m is None:
+        window = _box(cover)
+        if window is None:
             break
-        r0, c0 = _start(rows, m, n), _start(cols, m, n)
-        box = (slice(r0, r0 + m), slice(c0, c0 + m))
+        m, box = window
         sub = op.window(m)
         sol = constrained_cg(sub.apply, b[box], x0[box], 0.0, np.inf, total=total, cell_area=cell_area,
                              tolerance=tolerance, max_iterations=max_iterations, what=what, **sub.cg_options())
@@ -114,10 +128,43 @@ def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None
             contact = x > 0
             multiplier = float(gradient[contact].mean()) if contact.any() else sol.multiplier
             gradient -= multiplier
-        penetrating = gradient < 0
-        penetrating[box] = False
-        if not penetrating.any():
+        cover = gradient < 0  # penetration
+        cover[box] = False
+        if not cover.any():
             return ConstrainedSolution(x, gradient, multiplier, iterations, sol.residual)
-        penetrating[box] = True  # the next box covers this one and the points that penetrate
-        rows, cols = _span(penetrating, 0), _span(penetrating, 1)
+        cover[box] = True  # the next box covers this one and the points that penetrate
     return full(x0, iterations)
+
+
+def windowed_bounded_cg(op, b: np.ndarray, x0: np.ndarray, lower: np.ndarray, upper: np.ndarray, *,
+                        tolerance: float = 1e-10, max_iterations: int = 2000,
+                        what: str = "constrained conjugate gradient") -> ConstrainedSolution:
+    """:func:`~viscontact.constrained.constrained_cg` with array bounds that coincide outside a region,
+    on a box around that region: exact, no check needed (the points outside are fixed at the bound).
+
+    The tangential problem of partial slip (seed Eqs. 9, 11) is one: -mu_f p <= q_x <= mu_f p pins
+    q_x = 0 outside the contact, so its solution is that of the problem restricted to a box holding
+    the contact, with the operator ``op.window(m)`` (module docstring). One full-domain product gives
+    the gradient (the slip) everywhere.
+
+    Parameters
+    ----------
+    op
+        The step's :class:`~viscontact.substrate.ElasticOperator`.
+    b, x0, lower, upper, tolerance, max_iterations, what
+        As for :func:`~viscontact.constrained.constrained_cg` (``lower``, ``upper``: (n, n) arrays).
+    """
+    movable = lower < upper
+    window = _box(movable) if op.window is not None and movable.any() else None
+    if window is None:
+        return constrained_cg(op.apply, b, x0, lower, upper, tolerance=tolerance, max_iterations=max_iterations,
+                              what=what, **op.cg_options())
+    m, box = window
+    sub = op.window(m)
+    sol = constrained_cg(sub.apply, b[box], x0[box], lower[box], upper[box], tolerance=tolerance,
+                         max_iterations=max_iterations, what=what, **sub.cg_options())
+    x = np.clip(x0, lower, upper)
+    x[box] = sol.x
+    gradient = op.apply(x)
+    gradient -= b
+    return ConstrainedSolution(x, gradient, 0.0, sol.iterations, sol.residual)

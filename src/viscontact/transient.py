@@ -25,7 +25,6 @@ from typing import Callable, Iterator, Protocol
 import numpy as np
 
 from .allocator import tune_allocator
-from .constrained import constrained_cg
 from .errors import ConvergenceError, NumericalGuardError, ParameterError, ViscontactWarning
 from .history import History
 from .periodic import check_approach
@@ -35,7 +34,7 @@ from .roughness import roughness_metrics
 from .schemes import stable_step_limit
 from .sliding import Wake, hysteresis_force, pressure_centroid
 from .substrate import TermSubstrate, stability_responses, substrate_for
-from .support_window import windowed_cg
+from .support_window import windowed_bounded_cg, windowed_cg
 
 #: relative margin under mu_f p below which a node counts as stuck
 STICK_MARGIN = 1e-9
@@ -227,9 +226,9 @@ class PartialSlip:
         cross_x = sub.cross_displacement("x", "z", p, ctx.first) if self.coupled else None
         bound = self.friction * p
         op = sub.elastic_operator("x", ctx.first)
-        sol = constrained_cg(op.apply, ctx.delta_x - _plus(ctx.known_ux, cross_x), np.clip(shear, -bound, bound),
-                             -bound, bound, tolerance=s.tolerance, max_iterations=s.max_iterations,
-                             what="tangential contact (partial slip)", **op.cg_options())
+        sol = windowed_bounded_cg(op, ctx.delta_x - _plus(ctx.known_ux, cross_x), np.clip(shear, -bound, bound),
+                                  -bound, bound, tolerance=s.tolerance, max_iterations=s.max_iterations,
+                                  what="tangential contact (partial slip)")
         return p, sol.x, delta_z, it_n + sol.iterations, u_z
 
     def finish(self, ctx, solution):

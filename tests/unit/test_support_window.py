@@ -7,7 +7,8 @@
   (unique solution of a strictly convex programme), under load and displacement control, from a
   warm start whose support is far smaller than the contact: the first box is too small, the check
   finds the penetration outside it and the box is enlarged (asserted: more than one box side used);
-* whole transients (creep indentation, frictionless sliding) give the same records with and
+* whole transients (creep indentation, frictionless sliding, partial slip: its tangential solve on
+  the box of the contact, exact since q_x = 0 is pinned outside) give the same records with and
   without windows, to the solver tolerance, and do use windows.
 """
 from __future__ import annotations
@@ -104,17 +105,22 @@ def _records(problem, monkeypatch, windows: bool):
     return records, [m for m in used if m is not None]
 
 
-@pytest.mark.parametrize("case", ["creep", "sliding"])
+@pytest.mark.parametrize("case", ["creep", "sliding", "partial slip"])
 def test_transient_with_windows_equals_full_domain(case, monkeypatch):
     material = seed_material()
     solver = SolverSettings(tolerance=1e-10)
     if case == "creep":
         problem = sphere_problem(material, 48, 2.5 * SEED_A0, t_end=0.02, dt=0.002, solver=solver,
                                  fields=("pressure", "displacement_z"))
-    else:
+    elif case == "sliding":
         v = 0.8 * SEED_A0 / 0.01
         problem = sphere_problem(material, 48, 3.0 * SEED_A0, mode="frictionless_sliding", speed=v,
                                  t_end=12 * 6 * SEED_A0 / 48 / v, solver=solver, fields=("pressure", "displacement_z"))
+    elif case == "partial slip":
+        v = 0.8 * SEED_A0 / 0.01
+        problem = sphere_problem(material, 48, 2.5 * SEED_A0, mode="partial_slip", friction=0.3,
+                                 rate=0.05 * SEED_A0 / 0.01, speed=v, t_end=8 * 5 * SEED_A0 / 48 / v, solver=solver,
+                                 fields=("pressure", "shear_x", "displacement_z"))
     windowed, used = _records(problem, monkeypatch, True)
     full, none = _records(problem, monkeypatch, False)
     assert len(used) >= len(windowed) // 2 and not none
@@ -123,3 +129,7 @@ def test_transient_with_windows_equals_full_domain(case, monkeypatch):
         assert np.max(np.abs(a.pressure - b.pressure)) <= 1e-7 * peak
         assert np.max(np.abs(a.displacement_z - b.displacement_z)) <= 1e-7 * np.max(np.abs(b.displacement_z))
         assert a.delta_z == pytest.approx(b.delta_z, rel=1e-8)
+        if a.shear_x is not None:
+            assert np.max(np.abs(a.shear_x - b.shear_x)) <= 1e-7 * np.max(np.abs(b.shear_x))
+    if case == "partial slip":
+        assert 0 < windowed[-1].stick_ratio < 1  # still partial slip at the end: the tangential solves ran
