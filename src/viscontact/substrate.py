@@ -242,7 +242,9 @@ class TermSubstrate:
         """:meth:`elastic_operator` on an m x m window: a convolver of the kernels cropped to the window
         (:meth:`~viscontact.convolution.Convolver.window_kernels`) and their preconditioners, made once
         per side and kept for the :data:`WINDOWS_KEPT` sides used last (a growing contact walks
-        through a sequence of sides; their kernels would otherwise pile up)."""
+        through a sequence of sides; their kernels would otherwise pile up). Its transforms are the
+        zero-block ``scipy.fft`` ones whatever ``solver.fft`` (FFTW plans per side would cost more
+        planning than they save)."""
         if m not in self._windows:
             names = sorted({t.kernel for t in self.terms if t.displacement == t.traction})
             kernels = self.convolver.window_kernels(m, names)
