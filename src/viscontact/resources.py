@@ -65,7 +65,9 @@ def estimate(problem: Problem) -> Estimate:
     history (2 x retardation modes, more for bodies of several terms:
     :func:`viscontact.substrate.body_size`), a dozen n x n work fields, and per influence kernel its
     (2n)^2 real-space copy, its (2n)(n + 1) complex spectrum, the FFT work arrays and a step's
-    padded temporaries (8 (2n)^2 fields), on top of :data:`BASE_MEMORY`. Checkpoint:
+    padded temporaries (8 (2n)^2 fields), and on a non-periodic grid the support windows' cropped
+    self kernels (at most :data:`~viscontact.substrate.WINDOWS_KEPT` sides, each below n), on top
+    of :data:`BASE_MEMORY`. Checkpoint:
     the solver state only (history and the last step's fields).
     """
     n = problem.grid.n
@@ -77,8 +79,13 @@ def estimate(problem: Problem) -> Estimate:
 
     modes, per_component = body_size(problem)  # nu(t), layers: more histories and kernels
     kernels = per_component * (4 if problem.tangential.mode in ("partial_slip", "gross_sliding") else 1)
-    solver = (2 * 2 * modes + 16) * 8 * n * n + kernels * (4 * n * n * 8 + 2 * n * (n + 1) * 16) \
-        + 8 * 4 * n * n * 8
+    kernel_bytes = 4 * n * n * 8 + 2 * n * (n + 1) * 16
+    solver = (2 * 2 * modes + 16) * 8 * n * n + kernels * kernel_bytes + 8 * 4 * n * n * 8
+    if not problem.grid.periodic:  # support windows: cropped self kernels of the last sides used
+        from .substrate import WINDOWS_KEPT
+
+        self_kernels = 2 if problem.tangential.mode == "partial_slip" else 1
+        solver += WINDOWS_KEPT * self_kernels * per_component * kernel_bytes
     state = (2 * modes + 8) * 8 * n * n
     seconds = steps * SECONDS_PER_CELL_STEP * n * n * math.log2(2 * n)
     return Estimate(int(result), int(2 * per_record + solver + BASE_MEMORY), int(records), int(state), seconds)
