@@ -22,18 +22,29 @@ import errno
 import os
 from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
-import xarray as xr
-
-from .case import Case, load_case
 from .errors import ParameterError
 from .problem import Problem
-from .results import sweep_dataset, to_dataset
+
+if TYPE_CHECKING:  # xarray, pandas and pydantic load only where a Dataset or a Case is built
+    import xarray as xr
+
+    from .case import Case
 
 __all__ = ["Written", "checkpoint_path", "prepare", "run", "run_steady", "run_to_file", "steady"]
 
-CaseLike = Case | Problem | str | Path
+CaseLike = "Case | Problem | str | Path"
+
+
+def __getattr__(name: str) -> Any:
+    """``Case`` and ``load_case`` of :mod:`viscontact.case`, imported on first use (PEP 562): pydantic
+    loads for case files, not for a :class:`Problem`."""
+    if name in ("Case", "load_case"):
+        from . import case
+
+        return getattr(case, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def prepare(case: CaseLike, *, transient: bool = True) -> tuple[Problem, str]:
@@ -41,14 +52,16 @@ def prepare(case: CaseLike, *, transient: bool = True) -> tuple[Problem, str]:
     after the checks of :func:`viscontact.guards.check_problem` (``transient``: the time step too)."""
     from .guards import check_problem
 
-    if isinstance(case, (str, Path)):
-        case = load_case(case)
-    if isinstance(case, Case):
-        problem, text = case.to_problem(), case.text
-    elif isinstance(case, Problem):
+    if isinstance(case, Problem):
         problem, text = case, ""
     else:
-        raise TypeError(f"expected a case file path, a Case or a Problem, got {type(case).__name__}")
+        from .case import Case, load_case  # pydantic: only for case files and Case objects
+
+        if isinstance(case, (str, Path)):
+            case = load_case(case)
+        if not isinstance(case, Case):
+            raise TypeError(f"expected a case file path, a Case or a Problem, got {type(case).__name__}")
+        problem, text = case.to_problem(), case.text
     check_problem(problem, transient=transient)
     return problem, text
 
@@ -94,6 +107,7 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
     from .checkpoint import load_checkpoint
     from .observers import Checkpointer, Recorder, WakeWarning
     from .records import records_from_arrays, records_to_arrays
+    from .results import to_dataset  # xarray: loaded here, not with the package
 
     problem, text = prepare(case)
     start, kept = None, []
@@ -286,6 +300,7 @@ def run_steady(case: CaseLike, speeds: Sequence[float] | None = None) -> xr.Data
         dimension ``speed`` with ``mu_app``, ``peak_pressure``, ``contact_area``,
         ``contact_shift``, ``delta_z``, ``load`` (see :func:`viscontact.results.sweep_dataset`).
     """
+    from .results import sweep_dataset, to_dataset
     from .steady import solve_steady, speed_sweep
 
     problem, text = prepare(case, transient=False)

@@ -15,16 +15,21 @@ from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from datetime import datetime, timezone
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import xarray as xr
 
 from .errors import ParameterError
 from .materials import Material
 from .problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP, Problem
 from .records import StepRecord
 from .reference import hertz_from_approach, hertz_from_load
+
+if TYPE_CHECKING:  # xarray (with pandas, ~60 MiB) loads only where a Dataset is built or read
+    import xarray as xr
+
+#: a variable in plain numpy, as :class:`xarray.Dataset` takes it: (dimensions, data, attributes)
+VariableSpec = tuple[tuple[str, ...], Any, dict[str, Any]]
 
 __all__ = [
     "REFERENCES",
@@ -36,9 +41,12 @@ __all__ = [
     "material_dataset",
     "netcdf_encoding",
     "open_result",
+    "result_layout",
+    "scale_variables",
     "sweep_dataset",
     "t_gross_sliding",
     "to_dataset",
+    "variable_encoding",
     "write_netcdf",
 ]
 
@@ -248,7 +256,7 @@ def _coords(problem: Problem) -> dict[str, Any]:
     }
 
 
-def _variable(name: str, dims: tuple[str, ...], data: np.ndarray, mode: str) -> xr.Variable:
+def _variable(name: str, dims: tuple[str, ...], data: np.ndarray, mode: str) -> VariableSpec:
     units, long_name = VARIABLES[name]
     attrs = {"units": units, "long_name": long_name}
     names, why = _UNDEFINED.get(mode, ((), ""))
@@ -258,14 +266,19 @@ def _variable(name: str, dims: tuple[str, ...], data: np.ndarray, mode: str) -> 
         values, meanings = _FLAGS[name]
         stored = np.int8 if data.dtype == bool else data.dtype  # a boolean is stored as int8 in the file
         attrs.update(flag_values=np.array(values, dtype=stored), flag_meanings=meanings)
-    return xr.Variable(dims, data, attrs)
+    return dims, data, attrs
+
+
+def scale_variables(attrs: dict[str, Any]) -> dict[str, VariableSpec]:
+    """The :data:`SCALES` among the global attributes ``attrs`` as scalar variables with units."""
+    return {name: ((), float(attrs[name]), {"units": units, "long_name": long_name})
+            for name, (units, long_name) in SCALES.items() if name in attrs}
 
 
 def _add_scales(ds: xr.Dataset) -> xr.Dataset:
     """``ds`` with the :data:`SCALES` among its attributes also as scalar variables with units."""
-    for name, (units, long_name) in SCALES.items():
-        if name in ds.attrs:
-            ds[name] = xr.Variable((), float(ds.attrs[name]), {"units": units, "long_name": long_name})
+    for name, var in scale_variables(ds.attrs).items():
+        ds[name] = var
     return ds
 
 
@@ -302,11 +315,26 @@ def to_dataset(records: Sequence[StepRecord], problem: Problem, *, case_text: st
         ``p0`` [Pa], ``retardation_time`` [s], ``t_gross_sliding`` [s], ``complete`` (1 when the
         last step of the run is in it), ``case``, ``version``, ...
     """
+    import xarray as xr
+
+    variables, coords, ds_attrs = result_layout(records, problem, case_text=case_text, attrs=attrs)
+    ds = xr.Dataset(variables, coords=coords)
+    ds.attrs.update(ds_attrs)
+    return _add_scales(ds)
+
+
+def result_layout(records: Sequence[StepRecord], problem: Problem, *, case_text: str = "",
+                  attrs: dict[str, Any] | None = None
+                  ) -> tuple[dict[str, VariableSpec], dict[str, VariableSpec], dict[str, Any]]:
+    """What :func:`to_dataset` holds, in plain numpy (no xarray): its data variables and coordinates
+    as (dimensions, data, attributes), in the Dataset's order, and its global attributes; the
+    :data:`SCALES` variables follow from the attributes (:func:`scale_variables`). The streamed
+    writer (:mod:`viscontact.streaming`) writes a file's layout from it without loading xarray."""
     records = list(records)
     mode = problem.tangential.mode
     n = problem.grid.n
     t = np.array([r.t for r in records], dtype=float)
-    variables: dict[str, xr.Variable] = {}
+    variables: dict[str, VariableSpec] = {}
     for name in StepRecord.FIELDS:
         if name in problem.output.fields:
             variables[name] = _variable(name, ("t", "y", "x"), _field_stack(records, name, n), mode)
@@ -319,12 +347,11 @@ def to_dataset(records: Sequence[StepRecord], problem: Problem, *, case_text: st
               "step": ("t", np.array([r.step for r in records], dtype=int), {"long_name": "time-step index"}),
               **_coords(problem)}
     sub_vars, sub_coords = subsurface_variables(records, problem)
-    ds = xr.Dataset({**variables, **sub_vars}, coords={**coords, **sub_coords})
-    ds.attrs.update(global_attrs(problem, case_text))
-    ds.attrs["t_gross_sliding"] = t_gross_sliding(mode, t, variables["phase"].values)
-    ds.attrs["complete"] = completeness(coords["step"][1], problem)
-    ds.attrs.update(attrs or {})
-    return _add_scales(ds)
+    ds_attrs = global_attrs(problem, case_text)
+    ds_attrs["t_gross_sliding"] = t_gross_sliding(mode, t, variables["phase"][1])
+    ds_attrs["complete"] = completeness(coords["step"][1], problem)
+    ds_attrs.update(attrs or {})
+    return {**variables, **sub_vars}, {**coords, **sub_coords}, ds_attrs
 
 
 def completeness(steps: np.ndarray, problem: Problem) -> int:
@@ -349,6 +376,8 @@ def sweep_dataset(records: Sequence[StepRecord], speeds: Sequence[float], proble
     (``contact_fraction``, ``contact_patches``, ``mean_gap``, ``mean_contact_pressure``),
     ``pressure(speed, y, x)`` and the coordinate ``deborah`` = v tau / a0 [-].
     """
+    import xarray as xr
+
     records = list(records)
     mode = problem.tangential.mode
     speeds = np.asarray(speeds, dtype=float)
@@ -380,6 +409,8 @@ def material_dataset(material: Material, *, points: int = 200) -> xr.Dataset:
     G''(omega) [Pa], tan delta = G''/G' [-]. Attributes: G(0), G(inf) [Pa], nu, a_T, the
     relaxation and retardation times [s] and ``kind = "material"``.
     """
+    import xarray as xr
+
     creep = material.creep
     times = np.concatenate([np.asarray(material.tau, dtype=float), creep.retardation_times])
     lo, hi = (float(times.min()), float(times.max())) if times.size else (1.0, 1.0)
@@ -408,14 +439,23 @@ def netcdf_encoding(ds: xr.Dataset, *, streamed: bool = False) -> dict[str, dict
     time step. ``streamed`` (``t`` unlimited, :mod:`viscontact.streaming`): also the 1-D series
     along ``t`` in chunks of :data:`SERIES_CHUNK` steps, uncompressed (rewritten in place).
     Coordinates have no fill value."""
-    encoding: dict[str, dict[str, Any]] = {name: {"_FillValue": None} for name in ds.coords}
-    for name, var in ds.variables.items():
-        if var.ndim == 3 and (var.shape[0] or streamed):
-            encoding[name] = {**FIELD_COMPRESSION, "chunksizes": (1,) + var.shape[1:]}
-        elif var.ndim == 3:
-            encoding[name] = dict(FIELD_COMPRESSION)
-        elif streamed and var.dims == ("t",):
-            encoding[name] = {**encoding.get(name, {}), "chunksizes": (SERIES_CHUNK,)}
+    encoding = {name: variable_encoding(var.dims, var.shape, coordinate=name in ds.coords, streamed=streamed)
+                for name, var in ds.variables.items()}
+    return {name: enc for name, enc in encoding.items() if enc}
+
+
+def variable_encoding(dims: Sequence[str], shape: Sequence[int], *, coordinate: bool,
+                      streamed: bool = False) -> dict[str, Any]:
+    """The encoding of one variable of dimensions ``dims`` and ``shape`` (:func:`netcdf_encoding`),
+    as xarray takes it (netCDF4-python's keys: ``zlib``, ``complevel``, ``chunksizes``,
+    ``_FillValue``); empty when xarray's defaults apply."""
+    if len(shape) == 3:
+        if shape[0] or streamed:
+            return {**FIELD_COMPRESSION, "chunksizes": (1, *shape[1:])}
+        return dict(FIELD_COMPRESSION)
+    encoding: dict[str, Any] = {"_FillValue": None} if coordinate else {}
+    if streamed and tuple(dims) == ("t",):
+        encoding["chunksizes"] = (SERIES_CHUNK,)
     return encoding
 
 
@@ -469,6 +509,8 @@ def open_result(path: str | Path) -> xr.Dataset:
     ParameterError
         ``path`` is not a netCDF-4 file written by viscontact (``run``, ``steady`` or ``sweep``).
     """
+    import xarray as xr
+
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(errno.ENOENT, "no such file", str(path))

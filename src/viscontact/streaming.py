@@ -1,8 +1,9 @@
 """Streamed result files: each recorded step goes to the netCDF-4 file as the run goes.
 
 The file has the layout of :func:`viscontact.results.to_dataset` (same variables, coordinates and
-attributes: its skeleton *is* ``to_dataset`` of no records, written by xarray, then each step is
-appended with h5py) with the time dimension ``t`` unlimited. Fields are chunked one step per chunk
+attributes: its skeleton is ``to_dataset`` of no records, :func:`~viscontact.results.result_layout`,
+encoded as xarray encodes it but written with h5netcdf so that a run never loads xarray and pandas;
+then each step is appended with h5py) with the time dimension ``t`` unlimited. Fields are chunked one step per chunk
 and zlib-compressed, as :func:`viscontact.results.write_netcdf` writes them; the scalar series are
 chunked :data:`~viscontact.results.SERIES_CHUNK` steps at a time, uncompressed (a chunk of fixed
 size is rewritten in place as it fills, so the chunks the file already points to never move).
@@ -42,7 +43,7 @@ from .problem import Problem
 from .records import StepRecord
 from .resources import recorded_steps, stream_bytes
 
-__all__ = ["ResultStream", "is_complete_result", "partial_path"]
+__all__ = ["ResultStream", "is_complete_result", "layout_bytes", "partial_path"]
 
 #: what to do when the disk fills during a streamed run (the end of the error line)
 DISK_FULL_HINT = ("free some space or write elsewhere (--out); the steps done are kept (complete = 0) and "
@@ -66,9 +67,63 @@ def is_complete_result(path: str | Path) -> bool:
         return False
 
 
+def layout_bytes(problem: Problem, *, case_text: str = "", history: str = "") -> bytes:
+    """The streamed result file of no record (its layout), as bytes: what
+    ``to_dataset([], problem).to_netcdf(engine="h5netcdf", unlimited_dims=("t",),
+    encoding=netcdf_encoding(ds, streamed=True))`` writes, written with h5netcdf alone. ``history``
+    is appended to the attribute ``history``.
+
+    xarray's encoding of these variables, done here: booleans stored as ``int8`` with the attribute
+    ``dtype = "bool"``, floating data variables with ``_FillValue = NaN``, coordinates with none,
+    the attribute ``coordinates`` naming the non-dimension coordinates (``step``) on the variables
+    that share their dimensions, dimensions created in the order the variables first use them.
+    """
+    import io
+
+    import h5netcdf
+
+    from .results import result_layout, scale_variables, variable_encoding
+
+    data_vars, coords, attrs = result_layout([], problem, case_text=case_text)
+    attrs["history"] = f"{attrs.get('history', '')} {history}".strip()
+    variables = {**data_vars, **coords, **scale_variables(attrs)}  # the order of the Dataset's variables
+    auxiliary = {name: dims for name, (dims, _, _) in coords.items() if name not in dims}
+    buffer = io.BytesIO()
+    with h5netcdf.File(buffer, "w") as f:
+        for key, value in attrs.items():
+            f.attrs[key] = value
+        sizes: dict[str, int] = {}
+        for dims, data, _ in variables.values():
+            sizes.update((dim, size) for dim, size in zip(dims, np.shape(data)) if dim not in sizes)
+        for dim, size in sizes.items():
+            f.dimensions[dim] = None if dim == "t" else size
+            if dim == "t":
+                f.resize_dimension(dim, size)
+        for name, (dims, data, var_attrs) in variables.items():
+            data, var_attrs = np.asarray(data), dict(var_attrs)
+            encoding = variable_encoding(dims, data.shape, coordinate=name in coords, streamed=True)
+            shared = [aux for aux, aux_dims in auxiliary.items() if name not in coords and set(aux_dims) <= set(dims)]
+            if shared:
+                var_attrs["coordinates"] = " ".join(shared)
+            if data.dtype == bool:
+                data, var_attrs["dtype"] = data.astype(np.int8), "bool"
+            fill = np.nan if data.dtype.kind == "f" and "_FillValue" not in encoding else None
+            storage = {}
+            if data.ndim:
+                storage["chunks"] = encoding.get("chunksizes")
+                if encoding.get("zlib"):
+                    storage.update(compression="gzip", compression_opts=encoding["complevel"])
+            var = f.create_variable(name, dimensions=dims, dtype=data.dtype, fillvalue=fill, **storage)
+            for key, value in var_attrs.items():
+                var.attrs[key] = value
+            if data.size:
+                var[...] = data
+    return buffer.getvalue()
+
+
 class ResultStream:
-    """An open streamed result file: written by xarray with no step (its layout), then appended
-    to with h5py, one time entry at a time.
+    """An open streamed result file: written with no step (its layout, :func:`layout_bytes`), then
+    appended to with h5py, one time entry at a time.
 
     Create one with :meth:`create` (a new file) or :meth:`reopen` (continue a file after a resume);
     :meth:`append` each recorded step; :meth:`finish` sets the final attributes and closes it.
@@ -113,15 +168,9 @@ class ResultStream:
             The file cannot be written, or (``ENOSPC``) the disk cannot hold the result: no file
             is left behind.
         """
-        from .results import netcdf_encoding, to_dataset
-
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
-        skeleton = to_dataset([], problem, case_text=case_text)
-        skeleton.attrs["history"] = f"{skeleton.attrs.get('history', '')} {history}".strip()
-        layout = skeleton.to_netcdf(engine="h5netcdf", unlimited_dims=("t",),
-                                    encoding=netcdf_encoding(skeleton, streamed=True))
-        write_atomically(path, layout, hint=DISK_FULL_HINT)
+        write_atomically(path, layout_bytes(problem, case_text=case_text, history=history), hint=DISK_FULL_HINT)
         try:
             return cls(path, problem, require_space=require_space)
         except BaseException:

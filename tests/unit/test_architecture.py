@@ -1,9 +1,12 @@
 """The shape of the package, read from its source: private names stay in their module, matplotlib
 is imported by the one pyplot helper, and data flows one way (sweep and reproduce use plotting,
-plotting uses neither)."""
+plotting uses neither); and what a run loads: no xarray, pandas, dask or matplotlib."""
 from __future__ import annotations
 
 import ast
+import subprocess
+import sys
+import textwrap
 from pathlib import Path
 
 import pytest
@@ -68,3 +71,33 @@ def test_data_flows_one_way(user, used):
         if _module_name(path).startswith(user):
             bad = [m for m, _ in _imports(path) if m.startswith(used)]
             assert not bad, f"{_module_name(path)} imports {bad}"
+
+
+#: what neither ``import viscontact`` nor a whole ``viscontact run`` may load (issue 15's memory
+#: target: xarray with pandas is ~60 MiB, dask and matplotlib more; they belong to reading results,
+#: plots and sweeps)
+HEAVY = ("xarray", "pandas", "dask", "matplotlib")
+RUN_IN_A_FRESH_PROCESS = textwrap.dedent("""
+    import json, sys
+    import viscontact
+    after_import = sorted(m for m in {heavy} if m in sys.modules)
+    from viscontact.cli import main
+    code = main(["run", sys.argv[1], "--out", sys.argv[2], "--quiet", "--set", "grid.n=32",
+                 "--set", "time.t_end=0.001", "--set", 'output.fields=["pressure", "shear_x", "stick"]'])
+    print(json.dumps([code, after_import, sorted(m for m in {heavy} if m in sys.modules)]))
+""")
+
+
+def test_a_run_loads_no_xarray_pandas_dask_or_matplotlib(tmp_path):
+    """``import viscontact`` and then ``viscontact run`` of a case to a streamed result file, in a
+    fresh interpreter: none of :data:`HEAVY` is in ``sys.modules`` after either (the file is the
+    same as xarray's: ``test_streaming.test_layout_is_what_xarray_writes_byte_for_byte``)."""
+    import json
+
+    case = SRC / "cases" / "creep_indentation.toml"
+    out = subprocess.run([sys.executable, "-c", RUN_IN_A_FRESH_PROCESS.format(heavy=HEAVY), str(case),
+                          str(tmp_path / "r.nc")], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    code, after_import, after_run = json.loads(out.stdout.splitlines()[-1])
+    assert code == 0 and (tmp_path / "r.nc").exists(), out.stderr
+    assert after_import == [] and after_run == [], (after_import, after_run)

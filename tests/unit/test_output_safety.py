@@ -289,9 +289,9 @@ SLOW_WRITE = textwrap.dedent("""
     from viscontact.cli import main
     sys.exit(main(sys.argv[3:]))
 """)
-#: what the slow writer slows down: the creation of the streamed result file (its layout, by
-#: xarray), its first record, or its finishing (the final write of a streamed run)
-CREATE, APPEND, FINISH = ("xarray:Dataset:to_netcdf", "viscontact.streaming:ResultStream:append",
+#: what the slow writer slows down: the creation of the streamed result file (before its layout is
+#: written), its first record, or its finishing (the final write of a streamed run)
+CREATE, APPEND, FINISH = ("viscontact.streaming:ResultStream:create", "viscontact.streaming:ResultStream:append",
                           "viscontact.streaming:ResultStream:finish")
 
 

@@ -7,6 +7,7 @@ the resume from it: ``test_reliability.test_kill_9_then_resume_equals_uninterrup
 """
 from __future__ import annotations
 
+import dataclasses
 import tracemalloc
 from pathlib import Path
 
@@ -17,8 +18,9 @@ import viscontact as vc
 from viscontact import api, transient
 from viscontact.errors import RunInterrupted
 from viscontact.observers import StreamWriter
-from viscontact.results import to_dataset
-from viscontact.streaming import ResultStream, is_complete_result, partial_path
+from viscontact import results
+from viscontact.results import netcdf_encoding, to_dataset
+from viscontact.streaming import ResultStream, is_complete_result, layout_bytes, partial_path
 
 from vc_testing import seed_material, sphere_problem
 
@@ -49,6 +51,26 @@ def test_streamed_file_is_the_in_memory_result(tmp_path):
         assert ds.encoding["unlimited_dims"] == {"t"}
         assert ds["pressure"].encoding["chunksizes"] == (1, 16, 16) and ds["pressure"].encoding["zlib"]
     assert expected.attrs["t_gross_sliding"] > 0  # the attribute computed at the end is a real one
+
+
+@pytest.mark.parametrize("fields", [("pressure", "shear_x", "stick", "displacement_z"), ()])
+def test_layout_is_what_xarray_writes_byte_for_byte(monkeypatch, fields):
+    """The streamed file's layout, written with h5netcdf alone (a run never loads xarray), is the
+    file xarray writes of ``to_dataset`` of no record with the streamed encoding: the same bytes
+    (with the clock of the ``history`` attribute fixed). Booleans (``stick``), integers, scales,
+    the unlimited ``t`` and the ``coordinates`` attribute are all in it."""
+    class FixedClock(results.datetime):
+        @classmethod
+        def now(cls, tz=None):
+            return cls(2026, 1, 2, 3, 4, 5, tzinfo=tz)
+
+    monkeypatch.setattr(results, "datetime", FixedClock)
+    problem = dataclasses.replace(_partial_slip(), output=vc.OutputSettings(fields=fields))
+    skeleton = to_dataset([], problem, case_text="[grid]\nn = 16\n")
+    skeleton.attrs["history"] += " by a test"
+    by_xarray = skeleton.to_netcdf(engine="h5netcdf", unlimited_dims=("t",),
+                                   encoding=netcdf_encoding(skeleton, streamed=True))
+    assert layout_bytes(problem, case_text="[grid]\nn = 16\n", history="by a test") == by_xarray
 
 
 def test_clean_stop_ends_the_file_with_complete_0(tmp_path):
@@ -118,6 +140,7 @@ def test_memory_does_not_grow_with_the_number_of_steps(tmp_path):
 
     out = tmp_path / "r.nc"
     streamed = [_peak_bytes(lambda: api.run_to_file(problem(s), out.with_suffix(f".{s}.nc"))) for s in (20, 100)]
+    to_dataset([], problem(20))  # what xarray loads on its first Dataset (the streamed runs never load it)
     in_memory = [_peak_bytes(lambda: vc.run(problem(s))) for s in (20, 60)]
     assert in_memory[1] - in_memory[0] > 0.8 * 40 * per_record, in_memory  # the measure sees records
     assert streamed[1] - streamed[0] < 0.1 * 80 * per_record, streamed
