@@ -140,7 +140,10 @@ class ResultStream:
         import h5py
 
         self.path, self.problem, self.broken = Path(path), problem, False
-        self.file = h5py.File(self.path, "a")
+        # no chunk cache: each chunk is written whole and once (a field's step; a series' chunk is
+        # rewritten in place, 4 KiB); HDF5's default cache of 1 MiB per variable grew the process by
+        # ~20 MiB over the first steps at 256^2 and kept creeping (allocator fragmentation)
+        self.file = h5py.File(self.path, "a", rdcc_nbytes=0)
         #: every variable along ``t`` by name (the coordinates ``t``, ``step``, the series, the fields)
         self.along_t = {name: var for name, var in self.file.items()
                         if isinstance(var, h5py.Dataset) and var.maxshape[:1] == (None,)}
