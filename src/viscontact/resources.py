@@ -24,9 +24,10 @@ _FIELD_BYTES = {"pressure": 8, "shear_x": 8, "stick": 1, "displacement_z": 8}
 SECONDS_PER_CELL_STEP = 19.0 / (201 * 256**2 * math.log2(512))
 #: runs estimated to take longer than this [s] are refused unless forced
 MAX_RUN_SECONDS = 24 * 3600.0
-#: a run's memory before its arrays [bytes]: the interpreter with numpy, scipy, xarray, h5py and the
-#: solver imported (175 MiB measured for a 32^2 run, 2026-11-23; BENCHMARKS.md)
-BASE_MEMORY = 180e6
+#: a run's memory before its arrays [bytes]: the interpreter with numpy, scipy, h5py, pydantic and
+#: the solver imported; a run loads no xarray (108 MiB measured for a 32^2 ``viscontact run``,
+#: 2026-11-23; BENCHMARKS.md)
+BASE_MEMORY = 115e6
 #: HDF5 bookkeeping one streamed record may add (chunk index entries, flushed metadata) [bytes]
 RECORD_OVERHEAD = 4096
 #: a node of the chunk index of an HDF5 variable (B-tree; about 2 KiB measured) [bytes], an upper bound
