@@ -22,7 +22,7 @@ from viscontact import results
 from viscontact.results import netcdf_encoding, to_dataset
 from viscontact.streaming import ResultStream, is_complete_result, layout_bytes, partial_path
 
-from vc_testing import seed_material, sphere_problem
+from vc_testing import SEED_A0, SEED_RADIUS, seed_material, sphere_problem
 
 pytestmark = pytest.mark.filterwarnings("ignore:history dropped")  # short runs, wake not the point
 
@@ -130,12 +130,17 @@ def _peak_bytes(run) -> int:
 def test_memory_does_not_grow_with_the_number_of_steps(tmp_path):
     """Peak (traced) memory of a 100-step and a 20-step run: streamed, the difference is under 10 %
     of the 80 extra records; in memory (``viscontact.run``, which must hold them: 20 and 60 steps)
-    it is over 80 % of its 40 extra records."""
+    it is over 80 % of its 40 extra records. The approach is held (Lee & Radok: the contact radius
+    stays sqrt(R delta) while the pressure relaxes), so the solver's support windows are the same
+    in both runs: under a held load the contact grows with the creep, and the cropped kernels of
+    its larger windows (bounded: test_support_window) are up to 160 kB at 100 steps, what this
+    limit allows for records."""
     n, dt = 32, 2.5e-4
     per_record = 3 * n * n * 8 + n * n  # pressure, shear_x, displacement_z (float64), stick (1 byte)
 
     def problem(steps):
-        return sphere_problem(seed_material(), n, 2e-3, t_end=(steps - 1) * dt, dt=dt, scheme="linear",
+        return sphere_problem(seed_material(), n, 2e-3, control="displacement", value=SEED_A0**2 / SEED_RADIUS,
+                              t_end=(steps - 1) * dt, dt=dt, scheme="linear",
                               fields=("pressure", "shear_x", "stick", "displacement_z"))
 
     out = tmp_path / "r.nc"

@@ -55,6 +55,21 @@ def test_window_operator_is_the_full_operator_on_the_box(make, m, r0, c0):
     assert np.max(np.abs(sparse - op.window(m).apply(points))) <= 1e-12 * np.max(np.abs(sparse))
 
 
+def test_window_convolvers_kept_are_bounded():
+    """A contact that walks through many window sides keeps the convolvers of the last WINDOWS_KEPT
+    only (their cropped kernels would otherwise pile up), the most recent first to stay."""
+    from viscontact.substrate import WINDOWS_KEPT
+
+    sub = _half_space(32)
+    op = sub.elastic_operator("z", False)
+    sides = (10, 12, 14, 16, 18, 20)
+    for m in sides:
+        op.window(m)
+    assert list(sub._windows) == list(sides[-WINDOWS_KEPT:])
+    op.window(sides[-WINDOWS_KEPT])  # reused, not rebuilt: now the most recent
+    assert list(sub._windows)[-1] == sides[-WINDOWS_KEPT] and len(sub._windows) == WINDOWS_KEPT
+
+
 def test_periodic_grids_have_no_window():
     sub = HalfSpace(Grid(16, 2e-3, periodic=True), seed_material(), ("zz",), "linear", 1e-3)
     assert sub.elastic_operator("z", False).window is None
