@@ -86,9 +86,18 @@ class ZeroBlockTransforms:
         self._overwrite = {"overwrite_x": True} if fft is scipy.fft else {}
 
     def forward(self, field: np.ndarray) -> np.ndarray:
+        """The (2n, n+1) real FFT of ``field`` (n, n) zero-padded to (2n, 2n): the real FFT of the n
+        non-zero rows, then the column FFT, with the padding written into two work arrays instead of
+        copied by the transforms and the column transforms in place in the second (scipy.fft's
+        ``overwrite_x``): the spectrum returned is the only array that outlives the call."""
         n, fft = self.n, self.fft
-        rows = fft.rfft(field, n=2 * n, axis=1, **self._kw)       # (n, n+1): the non-zero rows
-        return fft.fft(rows, n=2 * n, axis=0, **self._kw)         # (2n, n+1): zero rows implied
+        rows = np.empty_like(field, shape=(n, 2 * n))
+        rows[:, :n] = field
+        rows[:, n:] = 0.0
+        spectrum = np.empty((2 * n, n + 1), dtype=np.result_type(field.dtype, np.complex64))
+        spectrum[:n] = fft.rfft(rows, axis=1, **self._kw)          # (n, n+1): the non-zero rows
+        spectrum[n:] = 0.0                                         # the zero rows
+        return fft.fft(spectrum, axis=0, **self._kw, **self._overwrite)  # in place with scipy.fft
 
     def inverse(self, spectrum: np.ndarray) -> np.ndarray:
         n, fft = self.n, self.fft
@@ -96,18 +105,9 @@ class ZeroBlockTransforms:
         return fft.irfft(columns, n=2 * n, axis=1, **self._kw)[:, :n]
 
     def convolve(self, kernel_spectrum: np.ndarray, field: np.ndarray) -> np.ndarray:
-        """As :meth:`inverse` of ``kernel_spectrum * forward(field)``, bit for bit, with the padding
-        written into two work arrays instead of copied by the transforms, and the column transforms
-        in place in the second (scipy.fft's ``overwrite_x``): the (n, n) block returned is the only
-        array that outlives the call."""
-        n, fft = self.n, self.fft
-        rows = np.empty_like(field, shape=(n, 2 * n))
-        rows[:, :n] = field
-        rows[:, n:] = 0.0
-        spectrum = np.empty_like(kernel_spectrum, shape=(2 * n, n + 1))
-        spectrum[:n] = fft.rfft(rows, axis=1, **self._kw)
-        spectrum[n:] = 0.0
-        spectrum = fft.fft(spectrum, axis=0, **self._kw, **self._overwrite)  # in place with scipy.fft
+        """:meth:`inverse` of ``kernel_spectrum * forward(field)``, the product in place: the (n, n)
+        block returned is the only array that outlives the call."""
+        spectrum = self.forward(field)
         spectrum *= kernel_spectrum
         return self.inverse(spectrum)
 
