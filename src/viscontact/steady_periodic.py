@@ -30,6 +30,7 @@ its own q = 0 mode, and its approach is the plain one, as in its transient.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Iterable
 
 import numpy as np
 
@@ -38,7 +39,7 @@ from .constrained import constrained_cg
 from .convolution import FourierPreconditioner
 from .errors import ParameterError
 from .grid import Grid
-from .materials import Material
+from .materials import CreepSpectrum, Material
 from .periodic import PeriodicConvolver, check_approach
 from .sliding import hysteresis_force
 from .steady import solve_contact_active_set
@@ -46,14 +47,27 @@ from .steady import solve_contact_active_set
 
 def steady_spectrum(conv: PeriodicConvolver, material: Material, grid: Grid, speed: float,
                     friction: float = 0.0) -> np.ndarray:
-    """Spectrum (n, n//2 + 1) of the steady operator p -> u_z [m per Pa]: (K^_zz + mu_f K^_zx) J*(-k_x v),
-    with J*(omega) = 1 / G*(omega) the complex creep compliance
-    (:func:`~viscontact.compliance_terms.complex_compliance`)."""
-    kx = 2 * np.pi * np.fft.rfftfreq(grid.n, grid.spacing)[None, :]
-    spec = conv.spectra["zz"]
+    """Spectrum (n, n//2 + 1) of the steady operator p -> u_z [m per Pa] of the half-space of
+    ``material``: (K^_zz + mu_f K^_zx) J*(-k_x v) (:func:`steady_operator_spectrum`)."""
+    parts = [(conv.spectra["zz"], material.creep)]
     if friction > 0 and "zx" in conv.spectra:
-        spec = spec + friction * conv.spectra["zx"]
-    return spec * complex_compliance(material.creep, -kx * speed)
+        parts.append((friction * conv.spectra["zx"], material.creep))
+    return steady_operator_spectrum(grid, speed, parts)
+
+
+def steady_operator_spectrum(grid: Grid, speed: float, parts: Iterable[tuple[np.ndarray, CreepSpectrum]]
+                             ) -> np.ndarray:
+    """Spectrum (n, n//2 + 1) of a steady operator p -> u_z [m per Pa] on a periodic grid: the sum over
+    ``parts`` (a kernel spectrum K^ at unit modulus, its creep compliance) of K^ phi*(-k_x v), with
+    phi*(omega) the complex compliance (:func:`~viscontact.compliance_terms.complex_compliance`): in
+    the frame of the indenter sliding at ``speed`` v [m/s] a Fourier mode exp(i k.x) of the material
+    is seen at the angular frequency -k_x v."""
+    omega = -2 * np.pi * np.fft.rfftfreq(grid.n, grid.spacing)[None, :] * speed
+    out = None
+    for spectrum, compliance in parts:
+        part = spectrum * complex_compliance(compliance, omega)
+        out = part if out is None else out + part
+    return out
 
 
 @dataclass(frozen=True)

@@ -320,22 +320,16 @@ class TermSubstrate:
     def steady_spectrum(self, speed: float, friction: float = 0.0) -> Array:
         """Spectrum (n, n//2 + 1) of the steady operator p -> u_z [m per Pa] on a periodic grid: the sum
         over the ``zz`` terms (and ``friction`` x the ``zx`` terms: q_x = mu_f p) of K^_term
-        phi*_term(-k_x v), phi* the term's complex compliance
-        (:func:`~viscontact.compliance_terms.complex_compliance`): in the frame of the indenter a
-        Fourier mode exp(i k.x) of the material is seen at the angular frequency -k_x v
-        (:mod:`viscontact.steady_periodic`)."""
-        from .compliance_terms import complex_compliance
+        phi*_term(-k_x v), each term with its own creep compliance
+        (:func:`viscontact.steady_periodic.steady_operator_spectrum`)."""
+        from .steady_periodic import steady_operator_spectrum
 
         if not self.periodic:
             raise NotImplementedError("steady_spectrum is for periodic grids: steady_convolver")
-        omega = -2 * np.pi * np.fft.rfftfreq(self.grid.n, self.grid.spacing)[None, :] * speed
-        out = None
-        for term in self._terms("z", "z") + (self._terms("z", "x") if friction > 0 else []):
-            factor = 1.0 if term.traction == "z" else friction
-            part = (factor * self.convolver.spectra[term.kernel]) * complex_compliance(self.responses[term.history],
-                                                                                      omega)
-            out = part if out is None else out + part
-        return out
+        terms = self._terms("z", "z") + (self._terms("z", "x") if friction > 0 else [])
+        return steady_operator_spectrum(self.grid, speed, [
+            ((1.0 if t.traction == "z" else friction) * self.convolver.spectra[t.kernel], self.responses[t.history])
+            for t in terms])
 
 
 def _operator(factors: Sequence[tuple[str, float]], conv: Convolver,
@@ -423,15 +417,6 @@ class HalfSpace(TermSubstrate):
         kernels = builder.effective(c.instantaneous, c.amplitudes, c.retardation_times, speed)
         return Convolver.from_kernels(self.grid.n, kernels, self.workers, xp=self.xp, fft=self.fft,
                                       transforms=self.convolver.transforms), kernels
-
-    def steady_spectrum(self, speed: float, friction: float = 0.0) -> Array:
-        """(K^_zz + mu_f K^_zx) / G*(-k_x v) on a periodic grid
-        (:func:`viscontact.steady_periodic.steady_spectrum`)."""
-        from .steady_periodic import steady_spectrum
-
-        if not self.periodic:
-            raise NotImplementedError("steady_spectrum is for periodic grids: steady_convolver")
-        return steady_spectrum(self.convolver, self.material, self.grid, speed, friction)
 
 
 def substrate_for(problem, components: Sequence[str] | None = None) -> TermSubstrate:
