@@ -453,6 +453,12 @@ def substrate_for(problem, components: Sequence[str] | None = None) -> TermSubst
                           workers=problem.solver.workers, direct=problem.solver.history == "direct")
 
 
+def _shift_node_body(problem) -> bool:
+    """Whether :func:`substrate_for` builds ``problem``'s body of shift-node terms: a viscoelastic layer
+    on an elastic substrate (:func:`viscontact.layers.elastic_substrate_terms`)."""
+    return problem.layer is not None and problem.layer.substrate == "elastic" and not problem.material.is_elastic
+
+
 def body_size(problem) -> tuple[int, int]:
     """(history fields per traction component, kernels per kernel component) of the body that
     :func:`substrate_for` builds, for the memory estimate (:func:`viscontact.resources.estimate`):
@@ -462,7 +468,7 @@ def body_size(problem) -> tuple[int, int]:
     modes = problem.material.creep.retardation_times.size
     if problem.bulk_modulus is not None:
         return 2 * modes, 2
-    if problem.layer is not None and problem.layer.substrate == "elastic" and not problem.material.is_elastic:
+    if _shift_node_body(problem):
         from .layers import shift_nodes
 
         nodes = shift_nodes(problem.material).nodes.size
@@ -482,7 +488,7 @@ def stability_responses(problem) -> list[CreepSpectrum]:
 
         bulk = BulkElasticMaterial(problem.material, problem.bulk_modulus)
         out += [bulk.factor("normal"), bulk.factor("tangential")]
-    if problem.layer is not None and problem.layer.substrate == "elastic" and not problem.material.is_elastic:
+    if _shift_node_body(problem):
         from .layers import shift_nodes
 
         nodes = shift_nodes(problem.material)
