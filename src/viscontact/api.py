@@ -196,7 +196,7 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
 
     from .checkpoint import load_checkpoint
     from .observers import Checkpointer, StreamWriter, WakeWarning
-    from .output_files import move_atomically
+    from .output_files import link_target, move_atomically
     from .records import records_from_arrays
     from .streaming import ResultStream, is_complete_result, partial_path
 
@@ -208,7 +208,7 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
         start, extra = load_checkpoint(checkpoint, problem)
     if resume and "records" in extra:  # the records so far are in the streamed file
         if not partial.exists() and out.exists() and not is_complete_result(out):
-            os.replace(out, partial)  # the file a clean stop published
+            os.replace(link_target(out), partial)  # the file a clean stop published
         try:
             stream = ResultStream.reopen(partial, problem, int(extra["records"]), require_space=require_space)
         except FileNotFoundError as exc:

@@ -39,7 +39,7 @@ from typing import BinaryIO
 
 from .resources import format_size
 
-__all__ = ["SpaceClaim", "check_output_path", "disk_full_error", "move_atomically", "remove_temporaries",
+__all__ = ["SpaceClaim", "check_output_path", "disk_full_error", "link_target", "move_atomically", "remove_temporaries",
            "signals_deferred", "write_atomically"]
 
 #: first bytes of the files a result may be: netCDF-4 (HDF5) and classic netCDF
@@ -49,7 +49,7 @@ _FS_IOC_GETFLAGS, _FS_IMMUTABLE_FL, _FS_APPEND_FL = 0x80086601, 0x10, 0x20
 _DISK_FULL = (errno.ENOSPC, errno.EDQUOT)
 
 
-def _target(path: Path) -> Path:
+def link_target(path: Path) -> Path:
     """``path`` with symbolic links followed (the file a write replaces)."""
     return Path(os.path.realpath(path)) if path.is_symlink() else path
 
@@ -132,7 +132,7 @@ def check_output_path(out: str | Path, *, force: bool = False, inputs: Iterable[
     if path.is_symlink() and not path.exists():
         raise FileNotFoundError(errno.ENOENT, f"is a symbolic link to the missing {os.readlink(path)}; "
                                 "remove it or choose another --out", str(path))
-    target = _target(path)
+    target = link_target(path)
     for name in inputs:
         if os.path.lexists(name) and os.path.exists(target) and os.path.samefile(name, target):
             raise FileExistsError(errno.EEXIST, f"is the input file {name}; refusing to overwrite it, "
@@ -160,7 +160,7 @@ def check_output_path(out: str | Path, *, force: bool = False, inputs: Iterable[
 def remove_temporaries(path: str | Path) -> list[Path]:
     """Remove what writes of ``path`` killed half way (SIGKILL, power loss) left: ``NAME.tmp*`` beside
     it. Call it only when no other process writes ``path`` (resuming a run or a sweep)."""
-    target = _target(Path(path))
+    target = link_target(Path(path))
     found = list(target.parent.glob(f"{glob.escape(target.name)}.tmp*")) if target.parent.is_dir() else []
     for tmp in found:
         tmp.unlink(missing_ok=True)
@@ -300,7 +300,7 @@ def write_atomically(path: str | Path, content: bytes | memoryview | Callable[[B
         error of the filesystem, always naming ``path``.
     """
     path = Path(path)
-    target = _target(path)
+    target = link_target(path)
     if isinstance(content, (bytes, bytearray, memoryview)):
         size = memoryview(content).nbytes
     with signals_deferred():
@@ -339,7 +339,7 @@ def move_atomically(source: str | Path, path: str | Path) -> Path:
     """Rename the finished file ``source`` (in the same folder) over ``path`` (over its target when
     ``path`` is a symbolic link) with SIGINT / SIGTERM held, and fsync the folder so that the
     rename outlives a crash. Returns the file replaced."""
-    target = _target(Path(path))
+    target = link_target(Path(path))
     with signals_deferred():
         os.replace(source, target)
         try:

@@ -38,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from .output_files import SpaceClaim, disk_full_error, signals_deferred, write_atomically
+from .output_files import SpaceClaim, disk_full_error, link_target, signals_deferred, write_atomically
 from .problem import Problem
 from .records import StepRecord
 from .resources import recorded_steps, stream_bytes
@@ -51,8 +51,10 @@ DISK_FULL_HINT = ("free some space or write elsewhere (--out); the steps done ar
 
 
 def partial_path(out: str | Path) -> Path:
-    """Where the result ``out`` is streamed while its run goes on: ``OUT.partial``."""
-    out = Path(out)
+    """Where the result ``out`` is streamed while its run goes on: ``OUT.partial`` beside the file
+    ``out`` names (beside its target when ``out`` is a symbolic link: the final rename replaces the
+    target, and must stay on its filesystem)."""
+    out = link_target(Path(out))
     return out.with_name(out.name + ".partial")
 
 
@@ -297,11 +299,7 @@ class ResultStream:
                 variables, coords = subsurface_variables(subsurface, self.problem)
             f.close()
             if subsurface is not None:
-                import xarray as xr
-
-                extra = xr.Dataset(variables, coords=coords)
-                extra.to_netcdf(self.path, mode="a", engine="h5netcdf",
-                                encoding={name: {"_FillValue": None} for name in extra.variables})
+                _append_variables(self.path, {**coords, **variables})
             with open(self.path, "rb+") as fh:
                 os.fsync(fh.fileno())
         return self.path
@@ -314,6 +312,23 @@ class ResultStream:
         space = getattr(self, "space", None)
         if space is not None:
             space.close()
+
+
+def _append_variables(path: Path, variables: dict) -> None:
+    """Add ``variables`` (name -> (dims, data, attrs), coordinates first) to the netCDF-4 file at
+    ``path`` with h5netcdf, their new dimensions with them, no fill value: what xarray's
+    ``to_netcdf(mode="a")`` of them writes, without loading xarray in a run."""
+    import h5netcdf
+
+    with h5netcdf.File(path, "a") as f:
+        for name, (dims, data, attrs) in variables.items():
+            dims, data = ((dims,) if isinstance(dims, str) else tuple(dims)), np.asarray(data)
+            for dim, size in zip(dims, data.shape):
+                if dim not in f.dimensions:
+                    f.dimensions[dim] = size
+            var = f.create_variable(name, dimensions=dims, data=data)
+            for key, value in attrs.items():
+                var.attrs[key] = value
 
 
 class _FileRecord:

@@ -216,3 +216,15 @@ def test_space_claim_holds_the_space_until_handed_back(tmp_path):
     with pytest.raises(OSError, match="needs about") as info:
         SpaceClaim(tmp_path / "r.nc", 2 * free + 2**30)
     assert info.value.errno == errno.ENOSPC and info.value.filename == str(tmp_path / "r.nc")
+
+
+def test_the_partial_file_is_beside_the_target_of_a_linked_out(tmp_path):
+    """--out through a symbolic link: the streamed file lies beside the file the final rename
+    replaces (the link's target, maybe on another filesystem), not beside the link."""
+    target = tmp_path / "data" / "r.nc"
+    target.parent.mkdir()
+    target.write_bytes(b"")
+    link = tmp_path / "r.nc"
+    link.symlink_to(target)
+    assert partial_path(link) == target.with_name("r.nc.partial")
+    assert partial_path(tmp_path / "new.nc") == tmp_path / "new.nc.partial"
