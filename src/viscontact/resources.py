@@ -112,9 +112,9 @@ def record_bytes(problem: Problem) -> int:
 def stream_bytes(problem: Problem, records: int, *, first: int = 0, finishing: bool = True) -> int:
     """Upper bound of what the records ``first .. first + records - 1`` add to a streamed result file
     [bytes]: :func:`record_bytes` each, a new chunk of every time series each
-    :data:`~viscontact.results.SERIES_CHUNK` records (and, the first time, the root node of the
-    chunk index of every variable along ``t``: :data:`INDEX_NODE_BYTES` each), and with
-    ``finishing`` :data:`FINISH_BYTES` and the subsurface stresses."""
+    :data:`~viscontact.results.SERIES_CHUNK` records (and with each, a node of the chunk index of
+    every variable along ``t``: :data:`INDEX_NODE_BYTES` each), and with ``finishing``
+    :data:`FINISH_BYTES` and the subsurface stresses."""
     from .records import StepRecord
     from .results import SERIES_CHUNK
 
