@@ -359,7 +359,9 @@ def _cmd_run(args: argparse.Namespace) -> int:
         raise FileExistsError(errno.EEXIST, "holds the steps of an interrupted run: --resume continues it (with its "
                               "checkpoint), --force starts over", str(partial))
     problem, _ = api.prepare(case)
-    estimate = check_resources(problem, args.out, force=args.force, checkpoints=bool(args.checkpoint_every))
+    written = partial.stat().st_size if args.resume and partial.exists() else 0  # a resume's records so far
+    estimate = check_resources(problem, args.out, force=args.force, checkpoints=bool(args.checkpoint_every),
+                               written_bytes=written)
     if args.dry_run:
         from .transient import validate
 

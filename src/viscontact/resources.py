@@ -135,17 +135,19 @@ def available_memory() -> int | None:
         return None
 
 
-def check_resources(problem: Problem, out: str | Path, *, force: bool = False, checkpoints: bool = False) -> Estimate:
+def check_resources(problem: Problem, out: str | Path, *, force: bool = False, checkpoints: bool = False,
+                    written_bytes: int = 0) -> Estimate:
     """Refuse a run that needs more than the machine has: its result (and, with ``checkpoints``,
     its checkpoints) beyond the free disk of ``out``, its memory beyond the free RAM, its run time
     beyond :data:`MAX_RUN_SECONDS`. :class:`ParameterError` naming the key to change, or with
-    ``force`` a warning."""
+    ``force`` a warning. ``written_bytes``: what a resumed run's streamed file already holds on
+    that disk [bytes] (not needed again)."""
     est = estimate(problem)
     folder = Path(out).resolve().parent
     while not folder.exists() and folder != folder.parent:
         folder = folder.parent
     free = shutil.disk_usage(folder).free
-    needed = est.disk_bytes(checkpoints)
+    needed = max(est.disk_bytes(checkpoints) - written_bytes, 0)
     what = f"{est.records} records of {', '.join(problem.output.fields)}"
     if checkpoints:
         what += f", and checkpoints of about {format_size(est.checkpoint_bytes)} written beside each other"

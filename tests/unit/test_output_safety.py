@@ -256,6 +256,23 @@ def test_pre_run_disk_check_counts_the_checkpoints(tmp_path, capsys, monkeypatch
     assert code == 2 and len(err) == 1 and "checkpoints" in err[0] and "--force" in err[0]
 
 
+def test_pre_run_disk_check_of_a_resume_counts_only_what_is_still_to_write(tmp_path, capsys, monkeypatch):
+    """A run stopped by a full disk, resumed after some space was freed: the streamed file already
+    holds its first records, so the check asks only for the rest (it asked for the whole result)."""
+    from viscontact.streaming import partial_path
+
+    problem = __import__("viscontact.api", fromlist=["prepare"]).prepare(
+        __import__("viscontact.case", fromlist=["load_case"]).load_case(CREEP))[0]
+    need = resources.estimate(problem).result_bytes
+    free = need // 3  # a third of the result free; two thirds already streamed
+    monkeypatch.setattr(shutil, "disk_usage", lambda path: shutil._ntuple_diskusage(10**12, 10**12 - free, free))
+    out = tmp_path / "r.nc"
+    assert cli.main(["run", str(CREEP), "--out", str(out), "--dry-run"]) == 2  # a new run does not fit
+    assert "needs about" in _err_lines(capsys)[0]
+    partial_path(out).write_bytes(b"\0" * (need - free + 1))
+    assert cli.main(["run", str(CREEP), "--out", str(out), "--dry-run", "--resume"]) == 0
+
+
 # --- resources beyond the machine (item 7) ----------------------------------------------------------
 def test_memory_and_run_time_beyond_the_machine_are_refused_unless_forced(tmp_path, capsys, monkeypatch):
     out = str(tmp_path / "r.nc")
