@@ -454,8 +454,9 @@ class LayerSection(_Section):
 
 class SolverSection(_Section):
     """Tolerances (relative) and iteration caps of the constrained CG and the coupling loop, FFT
-    workers and backend (``fft``: "scipy" or "pyfftw"), the history algorithm, and ``coupling``
-    (false: drop the (1 - 2 nu) normal/tangential cross terms)."""
+    workers and backend (``fft``: "scipy" or "pyfftw"), the history algorithm, ``coupling``
+    (false: drop the (1 - 2 nu) normal/tangential cross terms) and ``mixed_precision`` (false: every
+    product in double)."""
 
     tolerance: float = _num(SolverSettings.tolerance, unit="", gt=0, lt=1,
                             description="relative residual of the constrained conjugate-gradient solves")
@@ -474,6 +475,10 @@ class SolverSection(_Section):
                            "cross terms")
     fft: Literal["scipy", "pyfftw"] = Field(SolverSettings.fft, description="DC-FFT transforms: scipy (pocketfft) "
                                             "or pyfftw (FFTW plans; needs the optional package pyFFTW, extra fast)")
+    mixed_precision: bool = Field(SolverSettings.mixed_precision, description="the CG's search directions and "
+                                  "preconditioner in single precision (float32 transforms, about half their time; "
+                                  "the solution and its residual stay double, so the results agree to the "
+                                  "tolerance); false: every product in double")
 
     @model_validator(mode="after")
     def _workers(self) -> SolverSection:

@@ -42,6 +42,12 @@ class Convolver:
         zero-block transforms with ``fft`` and ``workers``, which skip the zero half of the padded
         input and the discarded half of the output (the kernel spectra above are full 2-D
         transforms, made once).
+
+    ``apply`` and ``combine`` take ``single=True`` for the product in single precision (float32
+    fields, complex64 spectra made from ``spectra`` on first use): half the transform time, with a
+    relative error of about 1e-7 of the result's scale. That is for increments of a field whose
+    product is otherwise kept in double (:func:`~viscontact.constrained.constrained_cg`'s search
+    directions): the error is then relative to the increment, not to the solution.
     """
 
     n: int
@@ -51,6 +57,8 @@ class Convolver:
     xp: ModuleType = np
     fft: ModuleType = scipy.fft
     transforms: DCFFTTransforms | None = dataclass_field(default=None, compare=False, repr=False)
+    #: complex64 copies of ``spectra`` made by the first single-precision product of each kernel
+    single_spectra: dict[str, np.ndarray] = dataclass_field(default_factory=dict, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if self.transforms is None:
@@ -105,12 +113,25 @@ class Convolver:
         may overwrite: pass a temporary)."""
         return self.transforms.inverse(spectrum)
 
-    def apply(self, name: str, field: np.ndarray) -> np.ndarray:
-        """sum_j K_name(x_i - x_j) field_j [m per unit modulus]."""
-        return self.transforms.convolve(self.spectra[name], field)
+    def kernel_spectrum(self, name: str, single: bool = False) -> np.ndarray:
+        """The spectrum of kernel ``name``: ``spectra[name]``, or its complex64 copy (kept) when
+        ``single``."""
+        if not single:
+            return self.spectra[name]
+        if name not in self.single_spectra:
+            self.single_spectra[name] = self.spectra[name].astype(np.complex64)
+        return self.single_spectra[name]
 
-    def combine(self, terms: Iterable[tuple[str, float, np.ndarray]]) -> np.ndarray:
-        """sum over terms of factor * (K_name * field), with one inverse transform.
+    def apply(self, name: str, field: np.ndarray, *, single: bool = False) -> np.ndarray:
+        """sum_j K_name(x_i - x_j) field_j [m per unit modulus]; in float32 when ``single`` (class
+        docstring)."""
+        if single:
+            field = field.astype(np.float32)
+        return self.transforms.convolve(self.kernel_spectrum(name, single), field)
+
+    def combine(self, terms: Iterable[tuple[str, float, np.ndarray]], *, single: bool = False) -> np.ndarray:
+        """sum over terms of factor * (K_name * field), with one inverse transform (in float32 when
+        ``single``: class docstring).
 
         ``terms`` holds (kernel name, scalar factor, field). Fields that are entirely zero are
         skipped; so are kernels missing from ``spectra`` (e.g. the coupling ones when nu = 0.5).
@@ -119,7 +140,9 @@ class Convolver:
         for name, factor, field in terms:
             if factor == 0 or name not in self.spectra or not self.xp.any(field):
                 continue
-            contrib = (factor * self.spectra[name]) * self.spectrum(field)
+            if single:
+                field = field.astype(np.float32)
+            contrib = (factor * self.kernel_spectrum(name, single)) * self.spectrum(field)
             acc = contrib if acc is None else acc + contrib
         if acc is None:
             return self.xp.zeros((self.n, self.n))
@@ -201,8 +224,16 @@ class FourierPreconditioner:
         symbol = np.maximum(symbol, symbol.max() * 1e-12)
         return cls(1.0 / symbol, workers, fft)
 
+    def single(self) -> "FourierPreconditioner":
+        """The same preconditioner in single precision (float32 transforms: half the time; a
+        preconditioner needs no more than a few digits)."""
+        return FourierPreconditioner(self.inverse_symbol.astype(np.float32), self.workers, self.fft)
+
     def __call__(self, residual: np.ndarray) -> np.ndarray:
+        """F^-1[F[residual] / K^] (in float32 when ``inverse_symbol`` is: :meth:`single`)."""
         workers = fft_threads(self.workers, residual.size)
+        if self.inverse_symbol.dtype == np.float32:  # the single-precision preconditioner
+            residual = residual.astype(np.float32)
         spectrum = self.fft.rfft2(residual, workers=workers)
         spectrum *= self.inverse_symbol
         return self.fft.irfft2(spectrum, s=residual.shape, workers=workers, overwrite_x=True)

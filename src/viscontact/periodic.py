@@ -213,9 +213,11 @@ class PeriodicConvolver(Convolver):
         return self.fft.irfft2(spectrum, s=(self.n, self.n), workers=fft_threads(self.workers, self.n * self.n),
                                overwrite_x=True)
 
-    def apply(self, name: str, field: np.ndarray) -> np.ndarray:
-        """sum_j K_name(x_i - x_j) field_j over the period (unpadded transforms)."""
-        return self.inverse(self.spectra[name] * self.spectrum(field))
+    def apply(self, name: str, field: np.ndarray, *, single: bool = False) -> np.ndarray:
+        """sum_j K_name(x_i - x_j) field_j over the period (unpadded transforms; float32 when ``single``)."""
+        if single:
+            field = field.astype(np.float32)
+        return self.inverse(self.kernel_spectrum(name, single) * self.spectrum(field))
 
     def preconditioner(self, name: str, factor: float = 1.0) -> FourierPreconditioner:
         """The exact inverse of ``factor`` x the (symmetric part of the) kernel ``name``: the periodic

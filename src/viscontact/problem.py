@@ -150,6 +150,7 @@ class SolverSettings:
     history: Literal["recursive", "direct"] = "recursive"  # direct: literal sum of seed Eq. 5 (reference)
     coupling: bool = True             # False: drop the (1 - 2 nu) normal/tangential cross terms
     fft: Literal["scipy", "pyfftw"] = "scipy"  # DC-FFT transforms (viscontact.fftbackends); pyfftw: extra "fast"
+    mixed_precision: bool = True      # CG search directions and preconditioner in float32 (viscontact.constrained)
 
     def __post_init__(self) -> None:
         for name in ("tolerance", "coupling_tolerance"):
@@ -165,8 +166,9 @@ class SolverSettings:
             raise ParameterError("solver.workers", f"must be -1 (all cores) or an integer >= 1, got {w!r}")
         if self.history not in ("recursive", "direct"):
             raise ParameterError("solver.history", f"must be 'recursive' or 'direct', got {self.history!r}")
-        if not isinstance(self.coupling, (bool, np.bool_)):
-            raise ParameterError("solver.coupling", f"must be true or false, got {self.coupling!r}")
+        for name in ("coupling", "mixed_precision"):
+            if not isinstance(getattr(self, name), (bool, np.bool_)):
+                raise ParameterError(f"solver.{name}", f"must be true or false, got {getattr(self, name)!r}")
         if self.fft not in ("scipy", "pyfftw"):
             raise ParameterError("solver.fft", f"must be 'scipy' or 'pyfftw', got {self.fft!r}")
         if self.fft == "pyfftw" and importlib.util.find_spec("pyfftw") is None:

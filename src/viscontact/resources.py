@@ -67,8 +67,9 @@ def estimate(problem: Problem) -> Estimate:
     :func:`viscontact.substrate.body_size`), a dozen n x n work fields, and per influence kernel its
     (2n)^2 real-space copy, its (2n)(n + 1) complex spectrum, the FFT work arrays and a step's
     padded temporaries (8 (2n)^2 fields), and on a non-periodic grid the support windows' cropped
-    self kernels (at most :data:`~viscontact.substrate.WINDOWS_KEPT` sides, each below n), on top
-    of :data:`BASE_MEMORY`. Checkpoint:
+    self kernels (at most :data:`~viscontact.substrate.WINDOWS_KEPT` sides, each below n) and, with
+    ``solver.mixed_precision``, the complex64 spectra of the self kernels, on top of
+    :data:`BASE_MEMORY`. Checkpoint:
     the solver state only (history and the last step's fields).
     """
     n = problem.grid.n
@@ -86,6 +87,9 @@ def estimate(problem: Problem) -> Estimate:
         from .substrate import WINDOWS_KEPT
 
         self_kernels = 2 if problem.tangential.mode == "partial_slip" else 1
+        # mixed precision: each self kernel also has a complex64 spectrum, on the grid and the windows
+        single_bytes = 2 * n * (n + 1) * 8 if problem.solver.mixed_precision else 0
+        solver += (WINDOWS_KEPT + 1) * self_kernels * per_component * single_bytes
         solver += WINDOWS_KEPT * self_kernels * per_component * kernel_bytes
     state = (2 * modes + 8) * 8 * n * n
     seconds = steps * SECONDS_PER_CELL_STEP * n * n * math.log2(2 * n)

@@ -88,16 +88,25 @@ class ElasticOperator:
     """The step's operator K = sum J_inst K_term for :func:`~viscontact.constrained.constrained_cg`.
 
     ``window``: m -> the same operator restricted to an m x m sub-box of the grid (tractions zero
-    outside it; :mod:`viscontact.support_window`), or None where it has none (periodic grids)."""
+    outside it; :mod:`viscontact.support_window`), or None where it has none (periodic grids).
+    ``apply_increment`` and ``single_preconditioner``: K and the preconditioner in single precision
+    (float32 transforms), for the search directions of a mixed-precision solve; None where the
+    solves must reach round-off (periodic grids: their preconditioner is exact)."""
 
     apply: Operator
     preconditioner: Operator
     apply_sparse: Operator
     window: Callable[[int], "ElasticOperator"] | None = None
+    apply_increment: Operator | None = None
+    single_preconditioner: Operator | None = None
 
-    def cg_options(self) -> dict[str, Operator]:
-        """Keyword arguments of :func:`~viscontact.constrained.constrained_cg` besides the action."""
-        return {"preconditioner": self.preconditioner, "apply_k_sparse": self.apply_sparse}
+    def cg_options(self, mixed_precision: bool = True) -> dict[str, Operator | None]:
+        """Keyword arguments of :func:`~viscontact.constrained.constrained_cg` besides the action:
+        with ``mixed_precision`` (``solver.mixed_precision``), the search directions and the
+        preconditioner in single precision where this operator has them."""
+        mixed = mixed_precision and self.apply_increment is not None
+        return {"preconditioner": self.single_preconditioner if mixed else self.preconditioner,
+                "apply_k_sparse": self.apply_sparse, "apply_k_increment": self.apply_increment if mixed else None}
 
 
 class TermSubstrate:
@@ -236,7 +245,8 @@ class TermSubstrate:
     def _elastic_operator(self, component: str, first: bool) -> ElasticOperator:
         windowed = not self.periodic and self.convolver.kernels is not None
         window = (lambda m: self._window_operator(component, first, m)) if windowed else None
-        return _operator(self._factors(component, first), self.convolver, self.preconditioners, window)
+        return _operator(self._factors(component, first), self.convolver, self.preconditioners, window,
+                         single=not self.periodic)
 
     def _window_operator(self, component: str, first: bool, m: int) -> ElasticOperator:
         """:meth:`elastic_operator` on an m x m window: a convolver of the kernels cropped to the window
@@ -258,7 +268,7 @@ class TermSubstrate:
         conv, precond, operators = self._windows[m]
         key = (component, first)
         if key not in operators:
-            operators[key] = _operator(self._factors(component, first), conv, precond, None)
+            operators[key] = _operator(self._factors(component, first), conv, precond, None, single=True)
         return operators[key]
 
     def cross_displacement(self, displacement: str, traction: str, field: Array, first: bool,
@@ -334,27 +344,35 @@ class TermSubstrate:
 
 def _operator(factors: Sequence[tuple[str, float]], conv: Convolver,
               preconditioners: Mapping[str, FourierPreconditioner],
-              window: Callable[[int], ElasticOperator] | None) -> ElasticOperator:
+              window: Callable[[int], ElasticOperator] | None, single: bool) -> ElasticOperator:
     """K x = sum over ``factors`` (kernel name, J_inst [1/Pa]) of J_inst K_name x through ``conv``, with
-    the Fourier preconditioner of the summed symbols (:class:`ElasticOperator`)."""
+    the Fourier preconditioner of the summed symbols (:class:`ElasticOperator`); ``single``: with its
+    single-precision variants as well."""
     if len(factors) == 1:
         (kernel, j_inst), = factors
         base = preconditioners[kernel]
         precond = FourierPreconditioner(base.inverse_symbol / j_inst, base.workers, base.fft)
 
-        def apply(x: Array) -> Array:
-            out = conv.apply(kernel, x)
+        def product(x: Array, single: bool = False) -> Array:
+            out = conv.apply(kernel, x, single=single)
             out *= j_inst
             return out
 
-        return ElasticOperator(apply, precond, lambda x: j_inst * conv.apply_sparse(kernel, x), window)
-    symbol = sum(j / preconditioners[k].inverse_symbol for k, j in factors)
-    precond = FourierPreconditioner(1.0 / symbol, conv.workers, conv.fft)
+        def sparse(x: Array) -> Array:
+            return j_inst * conv.apply_sparse(kernel, x)
+    else:
+        precond = FourierPreconditioner(1.0 / sum(j / preconditioners[k].inverse_symbol for k, j in factors),
+                                        conv.workers, conv.fft)
 
-    def sparse(x: Array) -> Array:
-        return sum(j * conv.apply_sparse(k, x) for k, j in factors)
+        def product(x: Array, single: bool = False) -> Array:
+            return conv.combine([(k, j, x) for k, j in factors], single=single)
 
-    return ElasticOperator(lambda x: conv.combine([(k, j, x) for k, j in factors]), precond, sparse, window)
+        def sparse(x: Array) -> Array:
+            return sum(j * conv.apply_sparse(k, x) for k, j in factors)
+
+    if not single:
+        return ElasticOperator(product, precond, sparse, window)
+    return ElasticOperator(product, precond, sparse, window, lambda x: product(x, True), precond.single())
 
 
 class HalfSpace(TermSubstrate):

@@ -80,7 +80,7 @@ def _box(mask: np.ndarray) -> tuple[int, tuple[slice, slice]] | None:
 
 def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None, cell_area: float = 1.0,
                 tolerance: float = 1e-10, max_iterations: int = 2000,
-                what: str = "constrained conjugate gradient") -> ConstrainedSolution:
+                what: str = "constrained conjugate gradient", mixed_precision: bool = True) -> ConstrainedSolution:
     """:func:`~viscontact.constrained.constrained_cg` of the normal problem (bounds 0 and inf) on a box
     around the support of ``x0`` (module docstring), the same solution to the CG tolerance.
 
@@ -92,6 +92,9 @@ def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None
     b, x0, total, cell_area, tolerance, max_iterations, what
         As for :func:`~viscontact.constrained.constrained_cg` (b: minus the gap and the known
         displacement [m]; x0: the warm start [Pa]).
+    mixed_precision
+        Search directions and preconditioner in single precision
+        (:meth:`~viscontact.substrate.ElasticOperator.cg_options`).
 
     Returns
     -------
@@ -103,7 +106,7 @@ def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None
 
     def full(start: np.ndarray, done: int) -> ConstrainedSolution:
         sol = constrained_cg(op.apply, b, start, 0.0, np.inf, total=total, cell_area=cell_area, tolerance=tolerance,
-                             max_iterations=max_iterations, what=what, **op.cg_options())
+                             max_iterations=max_iterations, what=what, **op.cg_options(mixed_precision))
         return replace(sol, iterations=sol.iterations + done)
 
     support = x0 > 0
@@ -117,7 +120,8 @@ def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None
         m, box = window
         sub = op.window(m)
         sol = constrained_cg(sub.apply, b[box], x0[box], 0.0, np.inf, total=total, cell_area=cell_area,
-                             tolerance=tolerance, max_iterations=max_iterations, what=what, **sub.cg_options())
+                             tolerance=tolerance, max_iterations=max_iterations, what=what,
+                             **sub.cg_options(mixed_precision))
         iterations += sol.iterations
         x = np.zeros_like(b)
         x[box] = sol.x
@@ -138,7 +142,8 @@ def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None
 
 def windowed_bounded_cg(op, b: np.ndarray, x0: np.ndarray, lower: np.ndarray, upper: np.ndarray, *,
                         tolerance: float = 1e-10, max_iterations: int = 2000,
-                        what: str = "constrained conjugate gradient") -> ConstrainedSolution:
+                        what: str = "constrained conjugate gradient",
+                        mixed_precision: bool = True) -> ConstrainedSolution:
     """:func:`~viscontact.constrained.constrained_cg` with array bounds that coincide outside a region,
     on a box around that region: exact, no check needed (the points outside are fixed at the bound).
 
@@ -153,16 +158,18 @@ def windowed_bounded_cg(op, b: np.ndarray, x0: np.ndarray, lower: np.ndarray, up
         The step's :class:`~viscontact.substrate.ElasticOperator`.
     b, x0, lower, upper, tolerance, max_iterations, what
         As for :func:`~viscontact.constrained.constrained_cg` (``lower``, ``upper``: (n, n) arrays).
+    mixed_precision
+        As for :func:`windowed_cg`.
     """
     movable = lower < upper
     window = _box(movable) if op.window is not None and movable.any() else None
     if window is None:
         return constrained_cg(op.apply, b, x0, lower, upper, tolerance=tolerance, max_iterations=max_iterations,
-                              what=what, **op.cg_options())
+                              what=what, **op.cg_options(mixed_precision))
     m, box = window
     sub = op.window(m)
     sol = constrained_cg(sub.apply, b[box], x0[box], lower[box], upper[box], tolerance=tolerance,
-                         max_iterations=max_iterations, what=what, **sub.cg_options())
+                         max_iterations=max_iterations, what=what, **sub.cg_options(mixed_precision))
     x = np.clip(x0, lower, upper)
     x[box] = sol.x
     gradient = op.apply(x)

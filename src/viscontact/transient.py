@@ -176,10 +176,11 @@ def _solve_normal(ctx: StepContext, known_uz: np.ndarray, warm: np.ndarray):
     op = ctx.substrate.elastic_operator("z", ctx.first)
     if problem.normal.control == "load":
         sol = windowed_cg(op, -(gap + known_uz), warm, total=ctx.value, cell_area=problem.grid.cell_area,
-                          tolerance=s.tolerance, max_iterations=s.max_iterations, what="normal contact (load control)")
+                          tolerance=s.tolerance, max_iterations=s.max_iterations, what="normal contact (load control)",
+                          mixed_precision=s.mixed_precision)
         return sol.x, sol.multiplier, sol.iterations, sol.gradient + sol.multiplier - gap
     sol = windowed_cg(op, ctx.value - (gap + known_uz), warm, tolerance=s.tolerance, max_iterations=s.max_iterations,
-                      what="normal contact (displacement control)")
+                      what="normal contact (displacement control)", mixed_precision=s.mixed_precision)
     return sol.x, ctx.value, sol.iterations, sol.gradient + ctx.value - gap
 
 
@@ -228,7 +229,7 @@ class PartialSlip:
         op = sub.elastic_operator("x", ctx.first)
         sol = windowed_bounded_cg(op, ctx.delta_x - _plus(ctx.known_ux, cross_x), np.clip(shear, -bound, bound),
                                   -bound, bound, tolerance=s.tolerance, max_iterations=s.max_iterations,
-                                  what="tangential contact (partial slip)")
+                                  what="tangential contact (partial slip)", mixed_precision=s.mixed_precision)
         return p, sol.x, delta_z, it_n + sol.iterations, u_z
 
     def finish(self, ctx, solution):
