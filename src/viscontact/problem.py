@@ -151,6 +151,7 @@ class SolverSettings:
     coupling: bool = True             # False: drop the (1 - 2 nu) normal/tangential cross terms
     fft: Literal["scipy", "pyfftw"] = "scipy"  # DC-FFT transforms (viscontact.fftbackends); pyfftw: extra "fast"
     mixed_precision: bool = True      # CG search directions and preconditioner in float32 (viscontact.constrained)
+    device: Literal["cpu", "gpu"] = "cpu"  # array backend; "gpu" (CuPy) is not built yet and is refused
 
     def __post_init__(self) -> None:
         for name in ("tolerance", "coupling_tolerance"):
@@ -169,6 +170,11 @@ class SolverSettings:
         for name in ("coupling", "mixed_precision"):
             if not isinstance(getattr(self, name), (bool, np.bool_)):
                 raise ParameterError(f"solver.{name}", f"must be true or false, got {getattr(self, name)!r}")
+        if self.device == "gpu":
+            raise ParameterError("solver.device", "'gpu' (a CuPy backend) is not available in this version: "
+                                 "the solver runs on the CPU; use 'cpu'")
+        if self.device != "cpu":
+            raise ParameterError("solver.device", f"must be 'cpu' (or 'gpu', not yet available), got {self.device!r}")
         if self.fft not in ("scipy", "pyfftw"):
             raise ParameterError("solver.fft", f"must be 'scipy' or 'pyfftw', got {self.fft!r}")
         if self.fft == "pyfftw" and importlib.util.find_spec("pyfftw") is None:

@@ -128,3 +128,19 @@ def test_default_workers_are_one_thread_up_to_512_squared() -> None:
     assert fft_threads(2, 64 * 64) == 2
     assert ZeroBlockTransforms(256, -1)._kw == {"workers": 1}
     assert ZeroBlockTransforms(1024, -1)._kw == {"workers": -1}
+
+
+def test_solver_device_and_mixed_precision_are_case_keys() -> None:
+    """``[solver] device`` is a contract key: "cpu" runs, "gpu" (no CuPy backend yet) is refused with
+    one line naming the key, anything else too; ``mixed_precision`` reaches the problem."""
+    case = load_case(ROOT / "cases" / "creep_indentation.toml")
+    assert case.to_problem().solver.device == "cpu" and case.to_problem().solver.mixed_precision
+    assert case.with_overrides({"solver.device": "cpu"}).to_problem().solver.device == "cpu"
+    assert not case.with_overrides({"solver.mixed_precision": False}).to_problem().solver.mixed_precision
+    for value in ("gpu", "tpu"):
+        with pytest.raises(ParameterError) as err:
+            case.with_overrides({"solver.device": value}).to_problem()
+        assert err.value.key == "solver.device"
+    with pytest.raises(ParameterError) as err:
+        SolverSettings(device="gpu")
+    assert "not available" in err.value.message
