@@ -164,8 +164,7 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         if total is not None:
             multiplier = _free_mean(g, free, n_free) if n_free else float(g.min())
             g -= multiplier
-        if not n_free or float(np.abs(g, out=work).max(where=free, initial=0.0)) <= ROUNDOFF * max(
-                float(np.abs(kx, out=work).max()), b_scale):
+        if not n_free or _at_roundoff(float(np.abs(g, out=work).max(where=free, initial=0.0)), kx, b_scale):
             # nothing free, or converged on the free set to round-off (an exact preconditioner does it
             # in one iteration: another step would divide round-off by round-off): release the bound
             # points whose gradient points inwards, or stop
@@ -204,12 +203,13 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         step = _dot(g, direction) / denom
         np.copyto(x_old, x)
         x -= np.multiply(direction, step, out=work)  # the direction vanishes off the free set
-        np.copyto(x_linear, x)
         clipped = bool(np.less(x, lower, out=mask).any() or bounded_above and np.greater(x, upper, out=mask).any())
-        if bounded_above:
-            np.clip(x, lower, upper, out=x)
-        else:
-            np.maximum(x, lower, out=x)
+        if clipped:  # x_linear: x before the bound corrections (the clip and the release below)
+            np.copyto(x_linear, x)
+            if bounded_above:
+                np.clip(x, lower, upper, out=x)
+            else:
+                np.maximum(x, lower, out=x)
         # release: bound points (not fixed) whose gradient points inwards
         release = np.less_equal(x, lower, out=mask)
         release &= np.less(g, 0.0, out=mask2)
@@ -219,6 +219,8 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         release &= movable
         released = bool(release.any())
         if released:
+            if not clipped:
+                np.copyto(x_linear, x)
             np.subtract(x, np.multiply(g, step, out=work), out=work)
             np.copyto(x, np.clip(work, lower, upper, out=work), where=release)
         conjugate = not (released or clipped)
@@ -259,6 +261,14 @@ def _dot(a: np.ndarray, b: np.ndarray) -> float:
     run 5x slower on a loaded machine, BENCHMARKS.md)."""
     axes = "ijklmn"[:a.ndim]
     return float(np.einsum(f"{axes},{axes}->", a, b))
+
+
+def _at_roundoff(free_gradient_max: float, kx: np.ndarray, b_scale: float) -> bool:
+    """Whether max |g| on the free set is round-off: at most :data:`ROUNDOFF` times max(|K x|, |b|)
+    (max |K x| only looked at when the gradient is small enough for it to matter)."""
+    if free_gradient_max <= ROUNDOFF * b_scale:
+        return True
+    return free_gradient_max <= 1e-6 * b_scale and free_gradient_max <= ROUNDOFF * _max_abs(kx)
 
 
 def _max_abs(field: np.ndarray) -> float:
