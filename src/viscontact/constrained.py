@@ -111,7 +111,8 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         r -> approximate K^-1 r (on the free set).
     apply_k_sparse, sparse_limit
         x -> K x by direct sums for an x of at most ``sparse_limit`` non-zeros (the bound
-        corrections), cheaper there than ``apply_k``.
+        corrections), cheaper there than ``apply_k`` (at most :data:`SPARSE_LIMIT_MIXED` with
+        ``apply_k_increment``).
     apply_k_increment
         x -> K x in lower precision (single-precision transforms) for the search directions and the
         bound corrections of more than :data:`SPARSE_LIMIT_MIXED` points (module docstring, mixed
@@ -147,6 +148,8 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
     # mixed precision: bound on the error the single-precision increments have left in K x since its
     # last full product, and the bound at which K x is recomputed (module docstring)
     drift, drift_limit = 0.0, DRIFT_FRACTION * tolerance * b_scale
+    # direct sums pay up to a product's cost: a single-precision one costs about half a double one
+    limit = min(sparse_limit, SPARSE_LIMIT_MIXED) if apply_k_increment is not None else sparse_limit
     g_norm_old = 1.0
     conjugate = False
     multiplier = 0.0
@@ -230,7 +233,7 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         if not conjugate:  # bound corrections: add their effect
             correction = np.subtract(x, x_linear, out=work)
             points = np.count_nonzero(correction)
-            if apply_k_sparse is not None and points <= (SPARSE_LIMIT_MIXED if apply_k_increment else sparse_limit):
+            if apply_k_sparse is not None and points <= limit:
                 kx += apply_k_sparse(correction)
             elif apply_k_increment is not None:  # an increment of the size of the move, as K d
                 k_correction = apply_k_increment(correction)

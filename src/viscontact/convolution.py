@@ -125,24 +125,24 @@ class Convolver:
     def apply(self, name: str, field: np.ndarray, *, single: bool = False) -> np.ndarray:
         """sum_j K_name(x_i - x_j) field_j [m per unit modulus]; in float32 when ``single`` (class
         docstring)."""
-        if single:
-            field = field.astype(np.float32)
-        return self.transforms.convolve(self.kernel_spectrum(name, single), field)
+        return self.transforms.convolve(self.kernel_spectrum(name, single), operand(field, single))
 
     def combine(self, terms: Iterable[tuple[str, float, np.ndarray]], *, single: bool = False) -> np.ndarray:
         """sum over terms of factor * (K_name * field), with one inverse transform (in float32 when
         ``single``: class docstring).
 
-        ``terms`` holds (kernel name, scalar factor, field). Fields that are entirely zero are
-        skipped; so are kernels missing from ``spectra`` (e.g. the coupling ones when nu = 0.5).
+        ``terms`` holds (kernel name, scalar factor, field); each distinct field is transformed once
+        (a body of several kernels applies them all to the same traction). Fields that are entirely
+        zero are skipped; so are kernels missing from ``spectra`` (e.g. the coupling ones when nu = 0.5).
         """
         acc = None
+        transforms: dict[int, np.ndarray] = {}
         for name, factor, field in terms:
             if factor == 0 or name not in self.spectra or not self.xp.any(field):
                 continue
-            if single:
-                field = field.astype(np.float32)
-            contrib = (factor * self.kernel_spectrum(name, single)) * self.spectrum(field)
+            if id(field) not in transforms:
+                transforms[id(field)] = self.spectrum(operand(field, single))
+            contrib = (factor * self.kernel_spectrum(name, single)) * transforms[id(field)]
             acc = contrib if acc is None else acc + contrib
         if acc is None:
             return self.xp.zeros((self.n, self.n))
@@ -169,6 +169,11 @@ class Convolver:
             contrib = self.spectra[name] * transforms[key]
             acc[out] = contrib if out not in acc else acc[out] + contrib
         return {o: self.inverse(acc[o]) if o in acc else self.xp.zeros((self.n, self.n)) for o in outputs}
+
+
+def operand(field: np.ndarray, single: bool) -> np.ndarray:
+    """``field`` as a transform takes it: float32 for a single-precision product, else as it is."""
+    return field.astype(np.float32) if single else field
 
 
 def direct_convolution(kernel: np.ndarray, field: np.ndarray) -> np.ndarray:

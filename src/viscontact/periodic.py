@@ -55,7 +55,7 @@ import numpy as np
 import scipy.fft
 from scipy.special import erfc, gammainc
 
-from .convolution import Convolver, FourierPreconditioner
+from .convolution import Convolver, FourierPreconditioner, operand
 from .fftbackends import fft_threads
 from .errors import ParameterError
 from .grid import Grid
@@ -215,9 +215,7 @@ class PeriodicConvolver(Convolver):
 
     def apply(self, name: str, field: np.ndarray, *, single: bool = False) -> np.ndarray:
         """sum_j K_name(x_i - x_j) field_j over the period (unpadded transforms; float32 when ``single``)."""
-        if single:
-            field = field.astype(np.float32)
-        return self.inverse(self.kernel_spectrum(name, single) * self.spectrum(field))
+        return self.inverse(self.kernel_spectrum(name, single) * self.spectrum(operand(field, single)))
 
     def preconditioner(self, name: str, factor: float = 1.0) -> FourierPreconditioner:
         """The exact inverse of ``factor`` x the (symmetric part of the) kernel ``name``: the periodic
