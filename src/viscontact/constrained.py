@@ -30,7 +30,9 @@ iteration adds up that bound and recomputes K x in double whenever it exceeds
 :data:`DRIFT_FRACTION` of ``tolerance`` times max |b| (the scale of K x at the solution). From a
 warm start the moves shrink geometrically and a solve needs about one such refresh, if any; a solve
 whose iterates travel far and come back (the tangential problem of partial slip, whose bounds move)
-gets as many as it needs. The solution, the gradient and every sum are in double. The drift left
+gets as many as it needs. The solution, the gradient and every sum are in double; the search
+direction, the preconditioned gradient and K d are float32 fields (any direction serves: x and K x
+move along the float32 direction exactly, in double), which halves their memory traffic. The drift left
 in K x, amplified by the inverse operator and carried by the history over the steps, keeps the
 solution within the tolerance of an all-double solve (tested against a solve 1000 times tighter);
 measured at 128^2 and 256^2 it is as close as all-double (BENCHMARKS.md), with the same iterations.
@@ -74,6 +76,9 @@ class ConstrainedSolution:
         Iterations used (each costs one application of K plus one for the gradient).
     residual
         Last relative change of x.
+    product
+        K x in double precision from one product of the final x, where the caller computed it
+        (:func:`~viscontact.support_window.windowed_cg`'s check), else None.
     """
 
     x: np.ndarray
@@ -81,6 +86,7 @@ class ConstrainedSolution:
     multiplier: float
     iterations: int
     residual: float
+    product: np.ndarray | None = None
 
 
 def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.ndarray | float,
@@ -89,7 +95,8 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
                    what: str = "constrained conjugate gradient",
                    preconditioner: Operator | None = None,
                    apply_k_sparse: Operator | None = None, sparse_limit: int = 48,
-                   apply_k_increment: Operator | None = None) -> ConstrainedSolution:
+                   apply_k_increment: Operator | None = None,
+                   start_product: np.ndarray | None = None) -> ConstrainedSolution:
     """Polonsky-Keer bound-constrained conjugate gradient.
 
     Parameters
@@ -118,11 +125,19 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         bound corrections of more than :data:`SPARSE_LIMIT_MIXED` points (module docstring, mixed
         precision); None: ``apply_k`` for the directions and a full ``apply_k`` of x after such
         corrections.
+    start_product
+        K x0 when the caller knows it in double precision (e.g. from the products of earlier time
+        steps, :func:`viscontact.transient.step`): used instead of the first product, so x0 must
+        lie within the bounds. None: computed.
     """
+    # a scalar lower bound and no upper one (the normal problem): the points at the bound are exactly
+    # those not free, which spares the release test its element-wise passes on x
+    plain_bounds = np.ndim(lower) == 0 and np.ndim(upper) == 0 and np.isposinf(upper)
     lower = np.broadcast_to(np.asarray(lower, dtype=float), b.shape)
     upper = np.broadcast_to(np.asarray(upper, dtype=float), b.shape)
     x = np.clip(np.array(x0, dtype=float), lower, upper)
     fixed = lower >= upper
+    scale_start = 1.0
     if total is not None:
         if total <= 0:
             zero = np.zeros_like(x)
@@ -130,7 +145,9 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             return ConstrainedSolution(zero, g - g.min(), float(g.min()), 0, 0.0)
         if x.sum() <= 0:
             x = np.where(fixed, 0.0, 1.0)
-        x *= total / (cell_area * x.sum())
+            start_product = None
+        scale_start = total / (cell_area * x.sum())
+        x *= scale_start
     if np.all(fixed):
         g = apply_k(x) - b
         return ConstrainedSolution(x, g, 0.0, 0, 0.0)
@@ -138,12 +155,18 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
     # work arrays, allocated once per solve: the iteration itself allocates only what the operator,
     # the preconditioner and the sparse corrections return (BENCHMARKS.md: the freed temporaries
     # were a fifth of the run's CPU time)
-    direction, x_old, x_linear, g, work = (np.zeros_like(x) for _ in range(5))
+    x_old, x_linear, g, work = (np.zeros_like(x) for _ in range(4))
+    # mixed precision: the search direction, the preconditioned gradient and K d are float32 fields
+    # (any direction serves; x and K x move by it exactly, in double), which halves their traffic
+    single = apply_k_increment is not None
+    direction = np.zeros(x.shape, dtype=np.float32 if single else float)
+    free_gradient = np.zeros(x.shape, dtype=np.float32) if single and preconditioner is not None else work
     free, bound, mask, mask2 = (np.empty(x.shape, dtype=bool) for _ in range(4))
     movable = ~fixed
     # the normal problem has no upper bound and no negative x: skip their element-wise passes
     bounded_above = not bool(np.isposinf(upper).all())
     nonnegative = bool(lower.min() >= 0)
+    lower_value = float(lower.flat[0])
     b_scale = float(np.max(np.abs(b)))
     # mixed precision: bound on the error the single-precision increments have left in K x since its
     # last full product, and the bound at which K x is recomputed (module docstring)
@@ -154,7 +177,10 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
     conjugate = False
     multiplier = 0.0
     residual = np.inf
-    kx = np.array(apply_k(x), dtype=float)  # own copy: updated in place below
+    if start_product is not None:
+        kx = np.multiply(start_product, scale_start)  # own copy: updated in place below
+    else:
+        kx = np.array(apply_k(x), dtype=float)
     for it in range(1, max_iterations + 1):
         np.greater(x, lower, out=free)
         if bounded_above:
@@ -179,15 +205,14 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             n_free = int(np.count_nonzero(free))
             conjugate = False
         np.logical_not(free, out=bound)
-        np.copyto(work, g)
-        np.copyto(work, 0.0, where=bound)  # the gradient on the free set
+        np.multiply(g, free, out=free_gradient)  # the gradient on the free set
         if preconditioner is not None:
-            z = np.array(preconditioner(work), dtype=float, copy=None)
+            z = preconditioner(free_gradient)
             if total is not None:
                 z -= _free_mean(z, free, n_free)
             np.copyto(z, 0.0, where=bound)
         else:
-            z = work
+            z = free_gradient
         g_norm = _dot(g, z)  # z vanishes off the free set
         if conjugate:
             direction *= g_norm / g_norm_old
@@ -197,16 +222,18 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             np.copyto(direction, z)
         g_norm_old = g_norm if g_norm > 0 else 1.0
         k_direction = apply_k_increment(direction) if apply_k_increment is not None else apply_k(direction)
-        if total is not None:
-            denom = _dot(np.subtract(k_direction, _free_mean(k_direction, free, n_free), out=work), direction)
-        else:
-            denom = _dot(k_direction, direction)
+        # under load control K d would be taken relative to its free mean: the direction sums to zero
+        # on the free set, so the mean drops out of d.K d
+        denom = _dot(k_direction, direction)
         if denom <= 0 or g_norm <= 0:
             return ConstrainedSolution(x, g, multiplier, it, 0.0)
         step = _dot(g, direction) / denom
         np.copyto(x_old, x)
         x -= np.multiply(direction, step, out=work)  # the direction vanishes off the free set
-        clipped = bool(np.less(x, lower, out=mask).any() or bounded_above and np.greater(x, upper, out=mask).any())
+        if plain_bounds:
+            clipped = float(x.min()) < lower_value
+        else:
+            clipped = bool(np.less(x, lower, out=mask).any() or bounded_above and np.greater(x, upper, out=mask).any())
         if clipped:  # x_linear: x before the bound corrections (the clip and the release below)
             np.copyto(x_linear, x)
             if bounded_above:
@@ -214,12 +241,15 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             else:
                 np.maximum(x, lower, out=x)
         # release: bound points (not fixed) whose gradient points inwards
-        release = np.less_equal(x, lower, out=mask)
-        release &= np.less(g, 0.0, out=mask2)
-        if bounded_above:
-            release |= np.greater_equal(x, upper, out=mask2) & (g > 0)
-        release &= bound
-        release &= movable
+        if plain_bounds:  # every point not free sits at the lower bound (the direction left it there)
+            release = np.logical_and(np.less(g, 0.0, out=mask2), bound, out=mask)
+        else:
+            release = np.less_equal(x, lower, out=mask)
+            release &= np.less(g, 0.0, out=mask2)
+            if bounded_above:
+                release |= np.greater_equal(x, upper, out=mask2) & (g > 0)
+            release &= bound
+            release &= movable
         released = bool(release.any())
         if released:
             if not clipped:
@@ -241,12 +271,17 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
                 drift += SINGLE_ERROR * _max_abs(k_correction)
             else:
                 kx = np.array(apply_k(x), dtype=float)
+        scale = None
         if total is not None:
             s = x.sum()
-            if s > 0:
-                x *= total / (cell_area * s)
-                kx *= total / (cell_area * s)
-        scale = float(x.sum()) if nonnegative else float(np.abs(x, out=work).sum())
+            factor = total / (cell_area * s) if s > 0 else 1.0
+            if factor != 1.0:
+                x *= factor
+                kx *= factor
+            else:
+                scale = float(s)
+        if scale is None:
+            scale = float(x.sum()) if nonnegative else float(np.abs(x, out=work).sum())
         residual = float(np.abs(np.subtract(x, x_old, out=work), out=work).sum()) / scale if scale > 0 else 0.0
         if residual < tolerance:
             g = kx - b  # K x kept exactly up to round-off (refreshed every 25 iterations)
@@ -261,8 +296,11 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
 
 def _dot(a: np.ndarray, b: np.ndarray) -> float:
     """sum(a * b) without a temporary (and without BLAS threads: an ``np.vdot`` in this loop made a
-    run 5x slower on a loaded machine, BENCHMARKS.md)."""
+    run 5x slower on a loaded machine, BENCHMARKS.md); two float32 fields are summed by rows in
+    single precision and over the rows in double (relative error about 1e-7)."""
     axes = "ijklmn"[:a.ndim]
+    if a.dtype == np.float32 and b.dtype == np.float32 and a.ndim > 1:  # rows in single, their sum in double
+        return float(np.einsum(f"{axes},{axes}->{axes[0]}", a, b).sum(dtype=np.float64))
     return float(np.einsum(f"{axes},{axes}->", a, b))
 
 
@@ -280,5 +318,6 @@ def _max_abs(field: np.ndarray) -> float:
 
 
 def _free_mean(field: np.ndarray, free: np.ndarray, n_free: int) -> float:
-    """Mean of ``field`` over the ``n_free`` points of the mask ``free``, without a masked copy."""
-    return float(np.sum(field, where=free)) / n_free
+    """Mean of ``field`` over the ``n_free`` points of the mask ``free``, without a masked copy (summed
+    in double whatever the field's precision)."""
+    return float(np.sum(field, where=free, dtype=np.float64)) / n_free

@@ -7,6 +7,8 @@ aperiodic discrete convolution. Kernel spectra are computed once per grid and re
 """
 from __future__ import annotations
 
+from collections import Counter
+
 from dataclasses import dataclass, field as dataclass_field
 from types import ModuleType
 from typing import Iterable, Mapping
@@ -156,24 +158,31 @@ class Convolver:
         fields that are entirely zero and kernels missing from ``spectra`` are skipped. Returns
         one (n, n) array per name in ``outputs`` (zeros where no term contributes).
         """
+        terms = [(out, name, field) for out, name, field in terms if name in self.spectra]
+        uses = Counter(id(field) for _, _, field in terms)
         transforms: dict[int, np.ndarray | None] = {}
         acc: dict[str, np.ndarray] = {}
         for out, name, field in terms:
-            if name not in self.spectra:
-                continue
             key = id(field)
             if key not in transforms:
                 transforms[key] = self.spectrum(field) if self.xp.any(field) else None
             if transforms[key] is None:
                 continue
-            contrib = self.spectra[name] * transforms[key]
-            acc[out] = contrib if out not in acc else acc[out] + contrib
+            if out not in acc and uses[key] == 1:  # the transform serves this term only: scaled in place
+                acc[out] = transforms[key]
+                acc[out] *= self.spectra[name]
+            else:
+                contrib = self.spectra[name] * transforms[key]
+                if out in acc:
+                    acc[out] += contrib
+                else:
+                    acc[out] = contrib
         return {o: self.inverse(acc[o]) if o in acc else self.xp.zeros((self.n, self.n)) for o in outputs}
 
 
 def operand(field: np.ndarray, single: bool) -> np.ndarray:
     """``field`` as a transform takes it: float32 for a single-precision product, else as it is."""
-    return field.astype(np.float32) if single else field
+    return field.astype(np.float32, copy=False) if single else field
 
 
 def direct_convolution(kernel: np.ndarray, field: np.ndarray) -> np.ndarray:
@@ -238,7 +247,7 @@ class FourierPreconditioner:
         """F^-1[F[residual] / K^] (in float32 when ``inverse_symbol`` is: :meth:`single`)."""
         workers = fft_threads(self.workers, residual.size)
         if self.inverse_symbol.dtype == np.float32:  # the single-precision preconditioner
-            residual = residual.astype(np.float32)
+            residual = residual.astype(np.float32, copy=False)
         spectrum = self.fft.rfft2(residual, workers=workers)
         spectrum *= self.inverse_symbol
         return self.fft.irfft2(spectrum, s=residual.shape, workers=workers, overwrite_x=True)
