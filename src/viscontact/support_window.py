@@ -35,10 +35,12 @@ import scipy.fft
 
 from .constrained import ConstrainedSolution, constrained_cg
 
-#: margin [cells] at least around the support of the warm start
-MARGIN_CELLS = 4
-#: margin as a fraction of the support's extent (the contact may grow by this much in a step)
-MARGIN_FRACTION = 0.03
+#: margin [cells] at least around the support of the warm start (the extrapolated warm start already
+#: holds the contact's growth to first order: 4 cells and 3 % gave the same solves as 2 cells and 1 %
+#: for the creep and sliding benchmarks, with boxes 5 % wider, BENCHMARKS.md)
+MARGIN_CELLS = 2
+#: margin as a fraction of the support's extent
+MARGIN_FRACTION = 0.01
 #: a box side above this fraction of the grid's is not worth it: the full-domain solve
 FULL_FRACTION = 0.95
 #: enlargements of the box after a failed check before the full-domain solve
@@ -80,7 +82,8 @@ def _box(mask: np.ndarray) -> tuple[int, tuple[slice, slice]] | None:
 
 def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None, cell_area: float = 1.0,
                 tolerance: float = 1e-10, max_iterations: int = 2000,
-                what: str = "constrained conjugate gradient", mixed_precision: bool = True) -> ConstrainedSolution:
+                what: str = "constrained conjugate gradient", mixed_precision: bool = True,
+                start_product: np.ndarray | None = None) -> ConstrainedSolution:
     """:func:`~viscontact.constrained.constrained_cg` of the normal problem (bounds 0 and inf) on a box
     around the support of ``x0`` (module docstring), the same solution to the CG tolerance.
 
@@ -95,18 +98,25 @@ def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None
     mixed_precision
         Search directions and preconditioner in single precision
         (:meth:`~viscontact.substrate.ElasticOperator.cg_options`).
+    start_product
+        K x0 on the whole grid in double precision, where the caller knows it (x0 >= 0): spares the
+        first product of every solve (:func:`~viscontact.constrained.constrained_cg`); x0 is
+        supported in every box, so its product there is a crop.
 
     Returns
     -------
     ConstrainedSolution
         On the whole grid: x, the gradient K x - b (minus the multiplier under load control) from one
-        full-domain product, and the iterations of every solve done.
+        full-domain product, and the iterations of every solve done; ``product`` is that K x where
+        the box passed its check (None after the full-domain solve, whose K x carries the drift of
+        its single-precision increments).
     """
     n = b.shape[0]
 
     def full(start: np.ndarray, done: int) -> ConstrainedSolution:
         sol = constrained_cg(op.apply, b, start, 0.0, np.inf, total=total, cell_area=cell_area, tolerance=tolerance,
-                             max_iterations=max_iterations, what=what, **op.cg_options(mixed_precision))
+                             max_iterations=max_iterations, what=what, start_product=start_product,
+                             **op.cg_options(mixed_precision))
         return replace(sol, iterations=sol.iterations + done)
 
     support = x0 > 0
@@ -121,12 +131,13 @@ def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None
         sub = op.window(m)
         sol = constrained_cg(sub.apply, b[box], x0[box], 0.0, np.inf, total=total, cell_area=cell_area,
                              tolerance=tolerance, max_iterations=max_iterations, what=what,
+                             start_product=None if start_product is None else start_product[box],
                              **sub.cg_options(mixed_precision))
         iterations += sol.iterations
         x = np.zeros_like(b)
         x[box] = sol.x
-        gradient = op.apply(x)
-        gradient -= b
+        product = op.apply(x)
+        gradient = product - b
         multiplier = 0.0
         if total is not None:  # as constrained_cg: the mean gradient over the contact
             contact = x > 0
@@ -135,7 +146,7 @@ def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None
         cover = gradient < 0  # penetration
         cover[box] = False
         if not cover.any():
-            return ConstrainedSolution(x, gradient, multiplier, iterations, sol.residual)
+            return ConstrainedSolution(x, gradient, multiplier, iterations, sol.residual, product)
         cover[box] = True  # the next box covers this one and the points that penetrate
     return full(x0, iterations)
 
