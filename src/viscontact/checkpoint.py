@@ -72,7 +72,10 @@ def _unflatten(key: str, data) -> Any:
         if module.split(".")[0] != __name__.split(".")[0]:
             raise ParameterError("--resume", f"checkpoint names a foreign class {module}:{name}")
         cls = getattr(importlib.import_module(module), name)
-        return cls(**{f.name: _unflatten(f"{key}.{f.name}", data) for f in dataclasses.fields(cls)})
+        # a field added since the checkpoint was written takes its default (e.g. the carried products
+        # of the transient state: recomputed where missing)
+        return cls(**{f.name: _unflatten(f"{key}.{f.name}", data) for f in dataclasses.fields(cls)
+                      if _stored(f"{key}.{f.name}", data) or not _has_default(f)})
     if f"{key}.__dict__" in data:
         return {str(k): _unflatten(f"{key}.{k}", data) for k in data[f"{key}.__dict__"]}
     for kind in (list, tuple):
@@ -82,6 +85,16 @@ def _unflatten(key: str, data) -> Any:
         return None
     value = data[key]
     return value.item() if value.ndim == 0 else value.copy()
+
+
+def _stored(key: str, data) -> bool:
+    """Whether :func:`_flatten` stored anything under ``key``."""
+    return key in data or any(f"{key}.{tag}" in data for tag in
+                              ("__class__", "__dict__", "__list__", "__tuple__", "__none__"))
+
+
+def _has_default(field_: dataclasses.Field) -> bool:
+    return field_.default is not dataclasses.MISSING or field_.default_factory is not dataclasses.MISSING
 
 
 def state_arrays(state: State) -> dict[str, np.ndarray]:

@@ -70,7 +70,8 @@ def estimate(problem: Problem) -> Estimate:
     self kernels (at most :data:`~viscontact.substrate.WINDOWS_KEPT` sides, each below n) and, with
     ``solver.mixed_precision``, the complex64 spectra of the self kernels, on top of
     :data:`BASE_MEMORY`. Checkpoint:
-    the solver state only (history and the last step's fields).
+    the solver state only (history, the last step's fields and, on a DC-FFT grid, the products and
+    the response history the state carries).
     """
     n = problem.grid.n
     steps = problem.time.n_steps
@@ -82,7 +83,14 @@ def estimate(problem: Problem) -> Estimate:
     modes, per_component = body_size(problem)  # nu(t), layers: more histories and kernels
     kernels = per_component * (4 if problem.tangential.mode in ("partial_slip", "gross_sliding") else 1)
     kernel_bytes = 4 * n * n * 8 + 2 * n * (n + 1) * 16
-    solver = (2 * 2 * modes + 16) * 8 * n * n + kernels * kernel_bytes + 8 * 4 * n * n * 8
+    # carried by the state of a DC-FFT grid: the warm start's two products and, for a body of one
+    # kernel per component, the response history (M + 1 fields,
+    # :meth:`viscontact.substrate.TermSubstrate.initial_response`)
+    from .substrate import RESPONSE_MODES
+
+    response = modes + 1 if per_component == 1 and modes <= RESPONSE_MODES else 0
+    carried = 0 if problem.grid.periodic else (2 + response) * 8 * n * n
+    solver = (2 * 2 * modes + 16) * 8 * n * n + 2 * carried + kernels * kernel_bytes + 8 * 4 * n * n * 8
     if not problem.grid.periodic:  # support windows: cropped self kernels of the last sides used
         from .substrate import WINDOWS_KEPT
 
@@ -91,7 +99,7 @@ def estimate(problem: Problem) -> Estimate:
         single_bytes = 2 * n * (n + 1) * 8 if problem.solver.mixed_precision else 0
         solver += (WINDOWS_KEPT + 1) * self_kernels * per_component * single_bytes
         solver += WINDOWS_KEPT * self_kernels * per_component * kernel_bytes
-    state = (2 * modes + 8) * 8 * n * n
+    state = (2 * modes + 8) * 8 * n * n + carried
     seconds = steps * SECONDS_PER_CELL_STEP * n * n * math.log2(2 * n)
     return Estimate(int(result), int(2 * per_record + solver + BASE_MEMORY), int(records), int(state), seconds)
 

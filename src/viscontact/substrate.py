@@ -61,6 +61,10 @@ Array = np.ndarray
 Operator = Callable[[Array], Array]
 #: window sides whose convolvers a substrate keeps (:meth:`TermSubstrate.elastic_operator`'s ``window``)
 WINDOWS_KEPT = 3
+#: retardation modes up to which the history displacement is carried in displacement space
+#: (:meth:`TermSubstrate.initial_response`): its 2 M field updates a step cost less than the transform
+#: pair they spare up to about this many modes
+RESPONSE_MODES = 8
 
 
 @dataclass(frozen=True)
@@ -227,6 +231,50 @@ class TermSubstrate:
             [(t_.displacement, t_.kernel, known[t_.history]) for t_ in self.terms if t_.displacement in outputs],
             outputs)
         return u["z"], u.get("x")
+
+    # --- the history displacement carried in displacement space ----------------------------------
+    def response_term(self) -> Term | None:
+        """The term whose history displacement can be carried in displacement space
+        (:meth:`initial_response`), or None: the substrate's only u_z term, a self term (``zz``) on
+        a support-window (DC-FFT) grid with the recursive history of at most
+        :data:`RESPONSE_MODES` retardation modes."""
+        z_terms = [t for t in self.terms if t.displacement == "z"]
+        if self.direct or self.periodic or self.convolver.kernels is None or len(z_terms) != 1:
+            return None
+        term = z_terms[0]
+        modes = self.responses[term.history].retardation_times.size
+        return term if term.traction == "z" and modes <= RESPONSE_MODES else None
+
+    def initial_response(self) -> PronyHistory | None:
+        """The response history before the first step, or None where :meth:`response_term` is None.
+
+        The hereditary recursion (:mod:`viscontact.history`) is linear and K is time-invariant, so
+        fed with the displacements K p_k of the steps' pressures instead of p_k it carries
+        K H_m and K p_k-1, and its ``known`` is the history displacement u_z = K r_k itself
+        (:meth:`known_from_response`): no transform per step, M + 1 more fields. It holds while the
+        frame stays put (a shift would need the displacement beyond the grid's edge: the transient
+        drops it at the first shift)."""
+        term = self.response_term()
+        if term is None:
+            return None
+        return PronyHistory.zeros(self.responses[term.history].retardation_times.size, self.grid.n)
+
+    def known_from_response(self, response: PronyHistory, t: float, first: bool) -> Array:
+        """u_z [m] of the past increments from the response history (:meth:`initial_response`)."""
+        return response.known(self.coefficients(first)[self.response_term().history], t)
+
+    def advanced_response(self, response: PronyHistory, pressure: Array, product: Array | None, t: float,
+                          first: bool) -> PronyHistory:
+        """The response history after the step at ``t`` [s] with ``pressure`` [Pa], ``product`` the
+        step's normal operator applied to it (J_inst K p [m], where the solve computed it; else one
+        product here)."""
+        term = self.response_term()
+        coef = self.coefficients(first)[term.history]
+        if product is None:
+            displacement = self.convolver.apply(term.kernel, pressure)
+        else:
+            displacement = product / coef.instantaneous
+        return response.advanced(displacement, coef, t)
 
     # --- the step's elastic operators -------------------------------------------------------------
     def elastic_operator(self, component: str, first: bool) -> ElasticOperator:

@@ -57,6 +57,15 @@ class State:
         Hereditary histories by key (:class:`~viscontact.substrate.Term`).
     delta_z, delta_x, sliding_distance
         Approach, tangential displacement and distance slid [m].
+    pressure_product, pressure_product_previous
+        The normal elastic operator of a regular step applied to ``pressure`` and to
+        ``pressure_previous`` [m] (J_inst K p, from the full-domain check of the step's solve; None
+        where that solve had none or the step was the first): with them the warm start's product
+        costs no transform (:func:`_warm_start`).
+    response
+        The normal history in displacement space, which gives the history displacement without a
+        transform (:meth:`~viscontact.substrate.TermSubstrate.initial_response`); None where the
+        substrate has none, and from the first frame shift on.
     substep
         Steps since the last frame shift (0 .. steps_per_cell - 1).
     t_gross_sliding
@@ -79,6 +88,9 @@ class State:
     wake: Wake = field(default_factory=Wake)
     pressure_previous: np.ndarray | None = None
     shear_previous: np.ndarray | None = None
+    pressure_product: np.ndarray | None = None
+    pressure_product_previous: np.ndarray | None = None
+    response: History | None = None
 
 
 def init(problem: Problem, substrate: TermSubstrate | None = None) -> State:
@@ -91,7 +103,8 @@ def init(problem: Problem, substrate: TermSubstrate | None = None) -> State:
     return State(step=-1, t=-problem.time.dt, phase=phase, pressure=np.zeros((n, n)),
                  shear_x=np.zeros((n, n)), histories=substrate.initial_histories(),
                  pressure_previous=np.zeros((n, n)), shear_previous=np.zeros((n, n)),
-                 t_gross_sliding=0.0 if phase == PHASE_GROSS_SLIDING else None)
+                 t_gross_sliding=0.0 if phase == PHASE_GROSS_SLIDING else None,
+                 response=substrate.initial_response())
 
 
 def validate(problem: Problem) -> None:
@@ -139,7 +152,9 @@ class StepContext:
 
 @dataclass(frozen=True)
 class StepSolution:
-    """Tractions [Pa], approach delta_z [m], total u_z [m] and the iteration counts of one step."""
+    """Tractions [Pa], approach delta_z [m], total u_z [m] and the iteration counts of one step;
+    ``pressure_product``: the step's normal operator applied to the pressure [m], where the solve
+    computed it in double precision (else None)."""
 
     pressure: np.ndarray
     shear_x: np.ndarray
@@ -147,6 +162,7 @@ class StepSolution:
     displacement_z: np.ndarray
     iterations: int = 0
     coupling_iterations: int = 1
+    pressure_product: np.ndarray | None = None
 
 
 class PhaseSolver(Protocol):
@@ -160,28 +176,32 @@ class PhaseSolver(Protocol):
     coupled: bool
     solves_shear: bool
 
-    def solve(self, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray
-              ) -> tuple[np.ndarray, np.ndarray, float, int, np.ndarray]:
-        """One pass from the iterate (p, q): returns (p, q, delta_z, CG iterations, u_z)."""
+    def solve(self, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray, product: np.ndarray | None
+              ) -> tuple[np.ndarray, np.ndarray, float, int, np.ndarray, np.ndarray | None]:
+        """One pass from the iterate (p, q), ``product`` the normal operator applied to p where known:
+        returns (p, q, delta_z, CG iterations, u_z, the normal operator applied to the new p or None)."""
 
     def finish(self, ctx: StepContext, solution: StepSolution) -> StepSolution:
         """The converged solution, completed (e.g. u_z with the final coupling term)."""
 
 
-def _solve_normal(ctx: StepContext, known_uz: np.ndarray, warm: np.ndarray):
+def _solve_normal(ctx: StepContext, known_uz: np.ndarray, warm: np.ndarray, warm_product: np.ndarray | None):
     """Polonsky-Keer solve of the normal problem (seed Eqs. 7-8, 10) with known displacement
-    ``known_uz`` [m], on a box around the warm start's support (:mod:`viscontact.support_window`).
-    Returns (pressure [Pa], approach delta_z [m], iterations, total u_z [m])."""
+    ``known_uz`` [m], on a box around the warm start's support (:mod:`viscontact.support_window`);
+    ``warm_product``: the step's normal operator applied to ``warm`` where known.
+    Returns (pressure [Pa], approach delta_z [m], iterations, total u_z [m], the operator applied to
+    the pressure or None)."""
     problem, s, gap = ctx.problem, ctx.problem.solver, ctx.gap
     op = ctx.substrate.elastic_operator("z", ctx.first)
     if problem.normal.control == "load":
         sol = windowed_cg(op, -(gap + known_uz), warm, total=ctx.value, cell_area=problem.grid.cell_area,
                           tolerance=s.tolerance, max_iterations=s.max_iterations, what="normal contact (load control)",
-                          mixed_precision=s.mixed_precision)
-        return sol.x, sol.multiplier, sol.iterations, sol.gradient + sol.multiplier - gap
+                          mixed_precision=s.mixed_precision, start_product=warm_product)
+        return sol.x, sol.multiplier, sol.iterations, sol.gradient + sol.multiplier - gap, sol.product
     sol = windowed_cg(op, ctx.value - (gap + known_uz), warm, tolerance=s.tolerance, max_iterations=s.max_iterations,
-                      what="normal contact (displacement control)", mixed_precision=s.mixed_precision)
-    return sol.x, ctx.value, sol.iterations, sol.gradient + ctx.value - gap
+                      what="normal contact (displacement control)", mixed_precision=s.mixed_precision,
+                      start_product=warm_product)
+    return sol.x, ctx.value, sol.iterations, sol.gradient + ctx.value - gap, sol.product
 
 
 def _plus(known: np.ndarray, coupling: np.ndarray | None) -> np.ndarray:
@@ -201,10 +221,10 @@ class NormalContact:
     name: str = "gross sliding"
     solves_shear: bool = False
 
-    def solve(self, ctx, pressure, shear):
+    def solve(self, ctx, pressure, shear, product):
         cross = ctx.substrate.cross_displacement("z", "x", pressure, ctx.first, self.friction) if self.coupled else None
-        p, delta_z, its, u_z = _solve_normal(ctx, _plus(ctx.known_uz, cross), pressure)
-        return p, (self.friction * p if self.friction else np.zeros_like(p)), delta_z, its, u_z
+        p, delta_z, its, u_z, product = _solve_normal(ctx, _plus(ctx.known_uz, cross), pressure, product)
+        return p, (self.friction * p if self.friction else np.zeros_like(p)), delta_z, its, u_z, product
 
     def finish(self, ctx, solution):
         return solution
@@ -220,17 +240,17 @@ class PartialSlip:
     name: str = "partial slip"
     solves_shear: bool = True
 
-    def solve(self, ctx, pressure, shear):
+    def solve(self, ctx, pressure, shear, product):
         sub, s = ctx.substrate, ctx.problem.solver
         cross_z = sub.cross_displacement("z", "x", shear, ctx.first) if self.coupled else None
-        p, delta_z, it_n, u_z = _solve_normal(ctx, _plus(ctx.known_uz, cross_z), pressure)
+        p, delta_z, it_n, u_z, product = _solve_normal(ctx, _plus(ctx.known_uz, cross_z), pressure, product)
         cross_x = sub.cross_displacement("x", "z", p, ctx.first) if self.coupled else None
         bound = self.friction * p
         op = sub.elastic_operator("x", ctx.first)
         sol = windowed_bounded_cg(op, ctx.delta_x - _plus(ctx.known_ux, cross_x), np.clip(shear, -bound, bound),
                                   -bound, bound, tolerance=s.tolerance, max_iterations=s.max_iterations,
                                   what="tangential contact (partial slip)", mixed_precision=s.mixed_precision)
-        return p, sol.x, delta_z, it_n + sol.iterations, u_z
+        return p, sol.x, delta_z, it_n + sol.iterations, u_z, product
 
     def finish(self, ctx, solution):
         if not self.coupled:
@@ -257,23 +277,50 @@ def _relative_change(new: np.ndarray, old: np.ndarray) -> float:
     return float(np.sum(np.abs(new - old))) / scale if scale > 0 else 0.0
 
 
-def solve_coupled(solver: PhaseSolver, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray) -> StepSolution:
+def solve_coupled(solver: PhaseSolver, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray,
+                  product: np.ndarray | None = None) -> StepSolution:
     """Fixed-point iteration of ``solver`` from (p, q) until both change by less than
-    ``solver.coupling_tolerance`` (one pass when it is not coupled)."""
+    ``solver.coupling_tolerance`` (one pass when it is not coupled); ``product``: the step's normal
+    operator applied to p, where known (each pass hands its own on to the next)."""
     settings = ctx.problem.solver
     iterations = 0
     change = np.inf
     for count in range(1, settings.max_coupling_iterations + 1):
-        p, q, delta_z, its, u_z = solver.solve(ctx, pressure, shear)
+        p, q, delta_z, its, u_z, product = solver.solve(ctx, pressure, shear, product)
         iterations += its
         change = _relative_change(p, pressure)
         if solver.solves_shear:
             change = max(change, _relative_change(q, shear))
         pressure, shear = p, q
         if not solver.coupled or change < settings.coupling_tolerance:
-            return solver.finish(ctx, StepSolution(p, q, float(delta_z), u_z, iterations, count))
+            return solver.finish(ctx, StepSolution(p, q, float(delta_z), u_z, iterations, count, product))
     raise ConvergenceError(f"normal/tangential coupling ({solver.name})", settings.max_coupling_iterations,
                            change, settings.coupling_tolerance, hint="raise solver.max_coupling_iterations")
+
+
+#: clipped points of the extrapolated warm start whose product is added by direct sums; more: one
+#: product of the warm start instead (:func:`_warm_start`)
+WARM_CLIP_POINTS = 24
+
+
+def _warm_start(substrate: TermSubstrate, state: State, k: int) -> tuple[np.ndarray, np.ndarray | None]:
+    """The warm start of step ``k``'s pressure [Pa]: the linear extrapolation of the last two steps
+    (frame fields) clipped at 0, or the last pressure at k <= 1; and the step's normal operator
+    applied to it [m] where the state's products give it (J_inst K is linear: 2 K p_-1 - K p_-2, plus
+    the direct sums of the clipped points, at most :data:`WARM_CLIP_POINTS`), else None."""
+    if k <= 1:
+        return state.pressure, None
+    linear = 2.0 * state.pressure - state.pressure_previous
+    warm = np.maximum(linear, 0.0)
+    if state.pressure_product is None or state.pressure_product_previous is None:
+        return warm, None
+    clipped = np.subtract(warm, linear, out=linear)
+    if np.count_nonzero(clipped) > WARM_CLIP_POINTS:
+        return warm, None
+    product = 2.0 * state.pressure_product - state.pressure_product_previous
+    if clipped.any():
+        product += substrate.elastic_operator("z", False).apply_sparse(clipped)
+    return warm, product
 
 
 def _advance_frame(problem: Problem, substrate: TermSubstrate, state: State, k: int, t: float) -> State:
@@ -291,7 +338,7 @@ def _advance_frame(problem: Problem, substrate: TermSubstrate, state: State, k: 
         wake = wake.ticked(substrate.responses[substrate.normal_history], dt)
         return replace(state, sliding_distance=state.sliding_distance + tan.sliding_speed * dt,
                        delta_x=state.delta_x + tan.sliding_speed * dt, substep=substep, histories=histories,
-                       wake=wake)
+                       wake=wake, response=state.response if histories is state.histories else None)
     if state.phase == PHASE_PARTIAL_SLIP:
         return replace(state, delta_x=tan.displacement_rate * t)
     return state
@@ -309,13 +356,15 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
     state = _advance_frame(problem, substrate, state, k, t)
     offset = state.substep * grid.spacing / tan.steps_per_cell if tan.slides else 0.0
     solver = phase_solver(state.phase, problem, substrate)
-    known_uz, known_ux = substrate.known_displacement(state.histories, t, first, need_x=solver.solves_shear)
+    if state.response is not None and not solver.solves_shear:
+        known_uz, known_ux = substrate.known_from_response(state.response, t, first), None
+    else:
+        known_uz, known_ux = substrate.known_displacement(state.histories, t, first, need_x=solver.solves_shear)
     ctx = StepContext(problem, substrate, k, t, first, problem.frame_gap(offset), known_uz, known_ux,
                       problem.normal.history(t), state.delta_x)
-    # warm start: linear extrapolation of the last two steps (frame fields), clipped by the solvers
-    p0 = np.maximum(2.0 * state.pressure - state.pressure_previous, 0.0) if k > 1 else state.pressure
+    p0, p0_product = _warm_start(substrate, state, k)
     q0 = 2.0 * state.shear_x - state.shear_previous if k > 1 else state.shear_x
-    sol = solve_coupled(solver, ctx, p0, q0)
+    sol = solve_coupled(solver, ctx, p0, q0, p0_product)
     p, q = sol.pressure, sol.shear_x
 
     contact = p > 0
@@ -330,7 +379,11 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
     state = replace(state, step=k, t=t, phase=phase, t_gross_sliding=t_gross,
                     histories=substrate.advanced(state.histories, {"z": p, "x": q}, t, first),
                     pressure_previous=state.pressure, shear_previous=state.shear_x,
-                    pressure=p, shear_x=q, delta_z=sol.delta_z)
+                    pressure=p, shear_x=q, delta_z=sol.delta_z,
+                    pressure_product_previous=state.pressure_product,
+                    pressure_product=None if first else sol.pressure_product,
+                    response=None if state.response is None else
+                    substrate.advanced_response(state.response, p, sol.pressure_product, t, first))
 
     # -- record
     load = float(p.sum() * grid.cell_area)
