@@ -69,6 +69,10 @@ def roughness_metrics(pressure: np.ndarray, gap: np.ndarray, periodic: bool = Fa
     (same shape). Contact is p > 0."""
     contact = pressure > 0
     n_contact = int(contact.sum())
-    _, patches = contact_patches(contact, periodic)
+    if not periodic and n_contact:  # label the contact's bounding box only: the same patches
+        rows, cols = np.flatnonzero(contact.any(axis=1)), np.flatnonzero(contact.any(axis=0))
+        _, patches = contact_patches(contact[rows[0]:rows[-1] + 1, cols[0]:cols[-1] + 1])
+    else:
+        _, patches = contact_patches(contact, periodic)
     mean_p = float(pressure[contact].mean()) if n_contact else 0.0
     return RoughContactMetrics(n_contact / contact.size, patches, float(gap.mean()), mean_p)
