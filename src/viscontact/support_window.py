@@ -36,11 +36,12 @@ import scipy.fft
 from .constrained import ConstrainedSolution, constrained_cg
 
 #: margin [cells] at least around the support of the warm start (the extrapolated warm start already
-#: holds the contact's growth to first order: 4 cells and 3 % gave the same solves as 2 cells and 1 %
-#: for the creep and sliding benchmarks, with boxes 5 % wider, BENCHMARKS.md)
-MARGIN_CELLS = 2
+#: holds the contact's growth to first order: 4 cells and 3 % gave the same solves as 3 cells and 2 %
+#: on the creep and sliding benchmarks, with boxes 5-8 % wider; 2 cells and 1 % re-solved twice as
+#: often under a load ramp, BENCHMARKS.md)
+MARGIN_CELLS = 3
 #: margin as a fraction of the support's extent
-MARGIN_FRACTION = 0.01
+MARGIN_FRACTION = 0.02
 #: a box side above this fraction of the grid's is not worth it: the full-domain solve
 FULL_FRACTION = 0.95
 #: enlargements of the box after a failed check before the full-domain solve
