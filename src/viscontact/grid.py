@@ -71,3 +71,10 @@ class Grid:
         k = np.arange(2 * self.n)
         k = np.where(k <= self.n, k, k - 2 * self.n)
         return k * self.spacing
+
+
+def mask_span(mask: np.ndarray, axis: int) -> tuple[int, int]:
+    """[first, last + 1) of the rows (axis 0) or columns (axis 1) of a grid field where the boolean
+    ``mask`` has a True (at least one)."""
+    hit = np.flatnonzero(mask.any(axis=1 - axis))
+    return int(hit[0]), int(hit[-1]) + 1

@@ -13,6 +13,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import ndimage
 
+from .grid import mask_span
+
 
 def contact_patches(contact: np.ndarray, periodic: bool = False) -> tuple[np.ndarray, int]:
     """Label the 4-connected patches of a boolean contact map (n, m).
@@ -70,8 +72,8 @@ def roughness_metrics(pressure: np.ndarray, gap: np.ndarray, periodic: bool = Fa
     contact = pressure > 0
     n_contact = int(contact.sum())
     if not periodic and n_contact:  # label the contact's bounding box only: the same patches
-        rows, cols = np.flatnonzero(contact.any(axis=1)), np.flatnonzero(contact.any(axis=0))
-        _, patches = contact_patches(contact[rows[0]:rows[-1] + 1, cols[0]:cols[-1] + 1])
+        rows, cols = mask_span(contact, 0), mask_span(contact, 1)
+        _, patches = contact_patches(contact[rows[0]:rows[1], cols[0]:cols[1]])
     else:
         _, patches = contact_patches(contact, periodic)
     mean_p = float(pressure[contact].mean()) if n_contact else 0.0

@@ -34,6 +34,7 @@ import numpy as np
 import scipy.fft
 
 from .constrained import ConstrainedSolution, constrained_cg
+from .grid import mask_span
 
 #: margin [cells] at least around the support of the warm start (the extrapolated warm start already
 #: holds the contact's growth to first order: 4 cells and 3 % gave the same solves as 3 cells and 2 %
@@ -58,12 +59,6 @@ def window_side(extent: int, n: int) -> int | None:
     return m if m <= FULL_FRACTION * n else None
 
 
-def _span(mask: np.ndarray, axis: int) -> tuple[int, int]:
-    """[first, last + 1) of the rows (axis 0) or columns (axis 1) where ``mask`` has a True."""
-    hit = np.flatnonzero(mask.any(axis=1 - axis))
-    return int(hit[0]), int(hit[-1]) + 1
-
-
 def _start(span: tuple[int, int], m: int, n: int) -> int:
     """First index of an m-long range centred on ``span`` and kept inside 0..n."""
     return min(max((span[0] + span[1] - m) // 2, 0), n - m)
@@ -73,7 +68,7 @@ def _box(mask: np.ndarray) -> tuple[int, tuple[slice, slice]] | None:
     """(m, the m x m box) around the True cells of ``mask`` (n, n) with :func:`window_side`'s margins;
     None when that box would not be worth it."""
     n = mask.shape[0]
-    rows, cols = _span(mask, 0), _span(mask, 1)
+    rows, cols = mask_span(mask, 0), mask_span(mask, 1)
     m = window_side(max(rows[1] - rows[0], cols[1] - cols[0]), n)
     if m is None:
         return None
