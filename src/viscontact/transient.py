@@ -65,7 +65,7 @@ class State:
     response
         The normal history in displacement space, which gives the history displacement without a
         transform (:meth:`~viscontact.substrate.TermSubstrate.initial_response`); None where the
-        substrate has none, and from the first frame shift on.
+        substrate has none, from the first frame shift on, and from the first partial-slip step on.
     substep
         Steps since the last frame shift (0 .. steps_per_cell - 1).
     t_gross_sliding
@@ -315,10 +315,11 @@ def _warm_start(substrate: TermSubstrate, state: State, k: int) -> tuple[np.ndar
     if state.pressure_product is None or state.pressure_product_previous is None:
         return warm, None
     clipped = np.subtract(warm, linear, out=linear)
-    if np.count_nonzero(clipped) > WARM_CLIP_POINTS:
+    points = np.count_nonzero(clipped)
+    if points > WARM_CLIP_POINTS:
         return warm, None
     product = 2.0 * state.pressure_product - state.pressure_product_previous
-    if clipped.any():
+    if points:
         product += substrate.elastic_operator("z", False).apply_sparse(clipped)
     return warm, product
 
@@ -356,7 +357,11 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
     state = _advance_frame(problem, substrate, state, k, t)
     offset = state.substep * grid.spacing / tan.steps_per_cell if tan.slides else 0.0
     solver = phase_solver(state.phase, problem, substrate)
-    if state.response is not None and not solver.solves_shear:
+    if solver.solves_shear and state.response is not None:
+        # partial slip needs u_x of the traction history anyway, and ends in sliding, whose first
+        # frame shift would drop the response history: it is not kept up
+        state = replace(state, response=None)
+    if state.response is not None:
         known_uz, known_ux = substrate.known_from_response(state.response, t, first), None
     else:
         known_uz, known_ux = substrate.known_displacement(state.histories, t, first, need_x=solver.solves_shear)
