@@ -679,6 +679,26 @@ def _pole_count(layer: Layer, key: str) -> int:
     return 2 if layer.interface == "bonded" else 1
 
 
+def _refined_eigentriple(s0: np.ndarray, s1: np.ndarray, rho: float, right: np.ndarray, left: np.ndarray
+                         ) -> tuple[float, np.ndarray, np.ndarray]:
+    """One step of inverse iteration on the pencil S0 + rho S1 at its eigenvalue ``rho``: the right and
+    left eigenvectors from (S0 + rho S1) v' = S1 v (and the adjoint), rho from their Rayleigh quotient
+    -w^H S0 v / w^H S1 v.
+
+    At small k h the finite eigenvalue is far out (|rho| ~ 1e7 at k h = 1e-2: the substrate barely
+    matters) and LAPACK's eigenvectors of the pencil carry relative errors of about 1e-7 into the
+    residue; one step brings them to about 1e-9, the limit the rounded matrix entries set (checked
+    against a 50-digit solve). A matrix singular to working precision keeps the vectors given."""
+    shifted = s0 + rho * s1
+    try:
+        v = np.linalg.solve(shifted, s1 @ right)
+        w = np.linalg.solve(shifted.conj().T, s1.conj().T @ left)
+    except np.linalg.LinAlgError:
+        return rho, right, left
+    v, w = v / np.linalg.norm(v), w / np.linalg.norm(w)
+    return float((-(w.conj() @ s0 @ v) / (w.conj() @ s1 @ v)).real), v, w
+
+
 def modulus_poles(layer: Layer, k: np.ndarray, key: str) -> ModulusPoles:
     """Poles and residues in G of A_key(k; G), key in zz, ze, ez, ee (in-plane; the coupling ones as
     their imaginary parts) or pp (anti-plane), at wavenumbers k [1/m].
@@ -686,7 +706,8 @@ def modulus_poles(layer: Layer, k: np.ndarray, key: str) -> ModulusPoles:
     In-plane: only the substrate's displacement rows of the interface system depend on G, linearly
     in rho = G/G_s, so the system is S0 + rho S1 and G k A = o^T (S0 + rho S1)^-1 b. Its poles are
     the finite generalised eigenvalues rho_j of (S0, -S1) (scipy.linalg.eig, left and right
-    eigenvectors w, v), with residues c_j = (o.v)(w^H b)/(w^H S1 v); hence
+    eigenvectors w, v, refined by one step of inverse iteration: :func:`_refined_eigentriple`), with
+    residues c_j = (o.v)(w^H b)/(w^H S1 v); hence
     A = A(rho -> 0) + sum_j c_j/(k rho_j) / (G - rho_j G_s) (:class:`ModulusPoles`, shift = -rho_j G_s).
     Anti-plane (bonded): A = (1 + r T)/((T + r) G k), r = G_s/G, T = tanh(kh), has the single pole
     G = -G_s/T: A = T/(G k) + (1 - T^2)/(T k (G + G_s/T)).
@@ -716,9 +737,8 @@ def modulus_poles(layer: Layer, k: np.ndarray, key: str) -> ModulusPoles:
         if finite.size != count or np.any(np.abs(rho[finite].imag) > 1e-9 * np.abs(rho[finite])):
             raise ValueError(f"layer compliance: expected {count} real poles in G at k = {k[idx]:.4g} 1/m")
         for j, e in enumerate(finite[np.argsort(rho[finite].real)]):
-            v, w = right[:, e], left[:, e]
+            r, v, w = _refined_eigentriple(mat0[idx], mat1[idx], rho[e].real, right[:, e], left[:, e])
             c = (out[idx][o_row] @ v) * (w.conj() @ rhs[idx][:, i_col]) / (w.conj() @ mat1[idx] @ v)
-            r = rho[e].real
             alpha[idx + (j,)] = sign * c.real / (k[idx] * r)
             shift[idx + (j,)] = -r * layer.substrate_shear_modulus
     return ModulusPoles(alpha0, alpha, shift)
