@@ -3,8 +3,8 @@
 The file has the layout of :func:`viscontact.results.to_dataset` (same variables, coordinates and
 attributes: its skeleton is ``to_dataset`` of no records, :func:`~viscontact.results.result_layout`,
 encoded as xarray encodes it but written with h5netcdf so that a run never loads xarray and pandas;
-then each step is appended with h5py) with the time dimension ``t`` unlimited. Fields are chunked one step per chunk
-and zlib-compressed, as :func:`viscontact.results.write_netcdf` writes them; the scalar series are
+then each step is appended with h5py) with the time dimension ``t`` unlimited. Fields are chunked one step per chunk,
+byte-shuffled and zlib-compressed, as :func:`viscontact.results.write_netcdf` writes them; the scalar series are
 chunked :data:`~viscontact.results.SERIES_CHUNK` steps at a time, uncompressed (a chunk of fixed
 size is rewritten in place as it fills, so the chunks the file already points to never move).
 After each step the file is flushed: its attribute ``complete`` stays 0 until
@@ -114,7 +114,8 @@ def layout_bytes(problem: Problem, *, case_text: str = "", history: str = "") ->
             if data.ndim:
                 storage["chunks"] = encoding.get("chunksizes")
                 if encoding.get("zlib"):
-                    storage.update(compression="gzip", compression_opts=encoding["complevel"])
+                    storage.update(compression="gzip", compression_opts=encoding["complevel"],
+                                   shuffle=encoding.get("shuffle", False))
             var = f.create_variable(name, dimensions=dims, dtype=data.dtype, fillvalue=fill, **storage)
             for key, value in var_attrs.items():
                 var.attrs[key] = value

@@ -50,6 +50,7 @@ def test_streamed_file_is_the_in_memory_result(tmp_path):
         _same(ds.load(), expected)
         assert ds.encoding["unlimited_dims"] == {"t"}
         assert ds["pressure"].encoding["chunksizes"] == (1, 16, 16) and ds["pressure"].encoding["zlib"]
+        assert ds["pressure"].encoding["shuffle"] and ds["pressure"].encoding["complevel"] == 1
     assert expected.attrs["t_gross_sliding"] > 0  # the attribute computed at the end is a real one
 
 
