@@ -220,7 +220,7 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
     observers = [StreamWriter(problem, stream), WakeWarning()]
     if checkpoint_every or resume:
         observers.append(Checkpointer(checkpoint, problem, checkpoint_every,
-                                      extra=lambda: {"records": np.array(stream.count)}))
+                                      extra=lambda: {"records": np.array(stream.drain())}))
     try:
         _drive(problem, observers, start=start, progress=progress, should_stop=should_stop)
     except BaseException as exc:
@@ -243,6 +243,11 @@ def _stopped(stream: Any, out: Path, reason: str) -> tuple[Path, int] | None:
     from .output_files import move_atomically
     from .streaming import is_complete_result
 
+    if not stream.broken:
+        try:
+            stream.drain()  # the record still queued
+        except Exception:  # noqa: BLE001 - its write failed: the file holds the records before it
+            pass
     if stream.broken:  # a write failed and so did saving the file: it holds its last flush (complete = 0)
         return stream.path, stream.count
     if stream.count == 0:

@@ -71,7 +71,7 @@ class Recorder(Observer):
 
 class StreamWriter(Recorder):
     """A :class:`Recorder` that appends each kept record to ``stream``
-    (:class:`~viscontact.streaming.ResultStream`, flushed after each) and holds none."""
+    (:class:`~viscontact.streaming.ResultStream`: written and flushed when the next one comes) and holds none."""
 
     def __init__(self, problem: Problem, stream) -> None:
         super().__init__(problem)

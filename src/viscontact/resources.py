@@ -62,7 +62,8 @@ def estimate(problem: Problem) -> Estimate:
 
     Result: what :mod:`viscontact.streaming` claims on disk for it (:func:`stream_bytes`) plus the
     file's layout. Memory (``viscontact run`` streams its records: it does not grow with the number
-    of steps): the record being written (and its compressed copy), plus the solver's own arrays: the
+    of steps): the record queued for writing, its shuffled and compressed copies on the compression
+    thread, and the record being computed (:mod:`viscontact.streaming`), plus the solver's own arrays: the
     history (2 x retardation modes, more for bodies of several terms:
     :func:`viscontact.substrate.body_size`), a dozen n x n work fields, and per influence kernel its
     (2n)^2 real-space copy, its (2n)(n + 1) complex spectrum, the FFT work arrays and a step's
@@ -101,7 +102,7 @@ def estimate(problem: Problem) -> Estimate:
         solver += WINDOWS_KEPT * self_kernels * per_component * kernel_bytes
     state = (2 * modes + 8) * 8 * n * n + carried
     seconds = steps * SECONDS_PER_CELL_STEP * n * n * math.log2(2 * n)
-    return Estimate(int(result), int(2 * per_record + solver + BASE_MEMORY), int(records), int(state), seconds)
+    return Estimate(int(result), int(3 * per_record + solver + BASE_MEMORY), int(records), int(state), seconds)
 
 
 def recorded_steps(problem: Problem) -> int:

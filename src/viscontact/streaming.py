@@ -7,10 +7,14 @@ then each step is appended with h5py) with the time dimension ``t`` unlimited. F
 byte-shuffled and zlib-compressed, as :func:`viscontact.results.write_netcdf` writes them; the scalar series are
 chunked :data:`~viscontact.results.SERIES_CHUNK` steps at a time, uncompressed (a chunk of fixed
 size is rewritten in place as it fills, so the chunks the file already points to never move).
-After each step the file is flushed: its attribute ``complete`` stays 0 until
-:meth:`ResultStream.finish`, so a run killed at any moment leaves a file that
-``xarray.open_dataset`` reads, holding every step flushed before the kill. Memory does not grow
-with the number of steps: nothing of a record is kept once written.
+Each record is written one step late: its fields are compressed on a thread while the run computes
+the next step (zlib releases the GIL: the compression of a 256^2 field, 1-7 ms, leaves the solve's
+path), and the record is written whole, and the file flushed, when the next one is appended, before
+each checkpoint (:meth:`ResultStream.drain`) and at the end. Its attribute ``complete`` stays 0 until
+:meth:`ResultStream.finish`, so a run killed at any moment leaves a file that ``xarray.open_dataset``
+reads, holding every step flushed before the kill (all but the last step computed; a checkpoint
+never counts a step the file lacks). Memory does not grow with the number of steps: nothing of a
+record is kept once written.
 
 Safety (:mod:`viscontact.output_files`): the disk space the remaining records need (an upper
 bound, :func:`viscontact.resources.stream_bytes`) is claimed when the file is opened
@@ -32,7 +36,9 @@ from __future__ import annotations
 
 import errno
 import os
-from collections.abc import Sequence
+import zlib
+from collections.abc import Callable, Sequence
+from concurrent.futures import Future, ThreadPoolExecutor
 from pathlib import Path
 from typing import Any
 
@@ -56,6 +62,35 @@ def partial_path(out: str | Path) -> Path:
     target, and must stay on its filesystem)."""
     out = link_target(Path(out))
     return out.with_name(out.name + ".partial")
+
+
+#: threads compressing the queued record's fields while the run computes the next step (zlib releases
+#: the GIL; one keeps the second core of a 2-core machine for the compression, the first for the solve)
+COMPRESSION_THREADS = 1
+
+
+def chunk_encoder(var: Any) -> Callable[[np.ndarray], tuple[int, bytes]] | None:
+    """How one time step of the field dataset ``var`` (h5py, chunks of one step) is encoded for
+    h5py's direct chunk write: the dataset's own filter pipeline (HDF5's byte shuffle where it has
+    one, then deflate at its level: zlib's format, which HDF5's filter writes and reads), done in
+    Python so that it can run on another thread. Returns ``encode(step) -> (filter_mask, bytes)``;
+    a chunk that deflate would not shrink is stored as it is, with the filters marked skipped (as
+    HDF5 does for an optional filter). None where the chunks or filters are other (then h5py writes
+    the step itself)."""
+    filters = var.id.get_create_plist().get_nfilters()
+    shuffle = bool(var.shuffle)
+    if var.chunks != (1, *var.shape[1:]) or var.compression != "gzip" or var.fletcher32 \
+            or var.scaleoffset is not None or filters != 1 + shuffle:
+        return None
+    level, dtype, skipped = int(var.compression_opts), var.dtype, (1 << filters) - 1
+
+    def encode(step: np.ndarray) -> tuple[int, bytes]:
+        data = np.ascontiguousarray(step, dtype=dtype)
+        ordered = data.view(np.uint8).reshape(-1, dtype.itemsize).T.copy() if shuffle and dtype.itemsize > 1 else data
+        packed = zlib.compress(ordered, level)
+        return (0, packed) if len(packed) < data.nbytes else (skipped, data.tobytes())
+
+    return encode
 
 
 def is_complete_result(path: str | Path) -> bool:
@@ -130,13 +165,16 @@ class ResultStream:
 
     Create one with :meth:`create` (a new file) or :meth:`reopen` (continue a file after a resume);
     :meth:`append` each recorded step; :meth:`finish` sets the final attributes and closes it.
+    A record is written one append late: its fields are compressed on a thread of the stream
+    (:func:`chunk_encoder`) while the run computes the next step, then written whole with the next
+    append, :meth:`drain` or :meth:`finish`.
 
     Attributes
     ----------
     path
         The file written.
     count
-        Records in the file.
+        Records in the file (the queued one, :attr:`queued`, not counted).
     """
 
     def __init__(self, path: str | Path, problem: Problem, *, require_space: bool = True) -> None:
@@ -151,6 +189,14 @@ class ResultStream:
         self.along_t = {name: var for name, var in self.file.items()
                         if isinstance(var, h5py.Dataset) and var.maxshape[:1] == (None,)}
         self.fields = [name for name in StepRecord.FIELDS if name in self.along_t]
+        self.encoders = {name: chunk_encoder(self.along_t[name]) for name in self.fields}
+        #: each variable's shape after ``t`` and dtype (read once: h5py's properties ask HDF5 each time)
+        self.tails = {name: var.shape[1:] for name, var in self.along_t.items()}
+        self.dtypes = {name: var.dtype for name, var in self.along_t.items()}
+        self._one = h5py.h5s.create_simple((1,))
+        self.pool: ThreadPoolExecutor | None = None
+        #: the record appended last, not yet written: (record, its fields, their encodings' futures)
+        self.queued: tuple[StepRecord, dict[str, np.ndarray], dict[str, Future]] | None = None
         self.count = int(self.along_t["t"].shape[0])
         self.total = recorded_steps(problem)
         self._hold_metadata_until_flush()
@@ -220,39 +266,76 @@ class ResultStream:
         self.file.id.set_mdc_config(config)
 
     def _resize(self, count: int) -> None:
-        for var in self.along_t.values():
-            var.resize(count, axis=0)
+        for name, var in self.along_t.items():
+            var.id.set_extent((count, *self.tails[name]))
         self.count = count
 
+    def _put(self, name: str, k: int, value: Any) -> None:
+        """Write the scalar ``value`` at ``t`` index ``k`` of the 1-D variable ``name`` (h5py's
+        low-level write: a tenth of ``var[k] = value``'s overhead, which 24 variables a step add up)."""
+        var = self.along_t[name].id
+        space = var.get_space()
+        space.select_hyperslab((k,), (1,))
+        var.write(self._one, space, np.array([value], dtype=self.dtypes[name]))
+
     def append(self, record: StepRecord) -> None:
-        """Write ``record`` as the next time entry (fields not recorded are written as zeros, as
-        :func:`~viscontact.results.to_dataset` does) and flush, with SIGINT / SIGTERM held meanwhile.
+        """Queue ``record`` as the next time entry (fields not recorded are written as zeros, as
+        :func:`~viscontact.results.to_dataset` does): the record queued before is written first
+        (:meth:`drain`), then this one's fields start compressing on the stream's thread while the
+        run computes the next step. It is written when the next record comes, or at :meth:`drain`
+        (the checkpoint writer's) or :meth:`finish`.
 
         Raises
         ------
         OSError
-            ``ENOSPC`` before anything is written when the disk has not the room this record may
+            ``ENOSPC`` before anything is queued when the disk has not the room this record may
             take (the file stays as it was after the previous record).
         """
-        k = self.count
-        self.space.take(stream_bytes(self.problem, 1, first=k, finishing=False), needed=self._needed())
-        f = self.along_t
+        self.drain()
+        self.space.take(stream_bytes(self.problem, 1, first=self.count, finishing=False), needed=self._needed())
+        steps = {name: (np.zeros(self.tails[name], dtype=self.dtypes[name]) if getattr(record, name) is None
+                        else getattr(record, name)) for name in self.fields}
+        self.queued = (record, steps, self._encode(steps))
+
+    def drain(self) -> int:
+        """Write the queued record, if any, and flush, with SIGINT / SIGTERM held meanwhile: the file
+        on disk then holds every record appended. Returns :attr:`count`.
+
+        Raises
+        ------
+        OSError
+            The write failed (:meth:`_rescue`: the file holds the records before this one).
+        """
+        if self.queued is None:
+            return self.count
+        (record, steps, encoded), self.queued, k = self.queued, None, self.count
         with signals_deferred():
             try:
-                for var in f.values():
-                    var.resize(k + 1, axis=0)
-                f["t"][k] = record.t
-                f["step"][k] = record.step
+                self._resize(k + 1)
+                self._put("t", k, record.t)
+                self._put("step", k, record.step)
                 for name in StepRecord.SCALARS:
-                    f[name][k] = getattr(record, name)
-                for name in self.fields:
-                    value, var = getattr(record, name), f[name]
-                    var[k] = (np.zeros(var.shape[1:], dtype=var.dtype) if value is None
-                              else np.asarray(value, dtype=var.dtype))
+                    self._put(name, k, getattr(record, name))
+                for name, step in steps.items():
+                    if name in encoded:
+                        mask, chunk = encoded[name].result()
+                        self.along_t[name].id.write_direct_chunk((k, 0, 0), chunk, mask)
+                    else:
+                        self.along_t[name][k] = np.asarray(step, dtype=self.dtypes[name])
                 self.count = k + 1
                 self.flush()
             except (OSError, RuntimeError) as exc:  # HDF5 reports a failed write as RuntimeError
                 self._rescue(exc)
+        return self.count
+
+    def _encode(self, steps: dict[str, np.ndarray]) -> dict[str, Future]:
+        """Start encoding the fields ``steps`` that have an encoder (:func:`chunk_encoder`) on the
+        stream's compression threads; their futures by name."""
+        if not any(self.encoders.values()):
+            return {}
+        if self.pool is None:
+            self.pool = ThreadPoolExecutor(COMPRESSION_THREADS, thread_name_prefix="viscontact-compress")
+        return {name: self.pool.submit(encode, steps[name]) for name, encode in self.encoders.items() if encode}
 
     def _rescue(self, exc: BaseException) -> None:
         """A write failed (the disk filled beyond the claim, an I/O error): give back the reserve and
@@ -281,8 +364,10 @@ class ResultStream:
         close, with SIGINT / SIGTERM held meanwhile. Returns the path."""
         from .results import SCALES, completeness, t_gross_sliding
 
+        self.drain()
         f = self.file
         self.space.close()  # what is left of the claim is for the finishing writes
+        self._stop_threads()
         with signals_deferred():
             if self.along_t["t"].shape[0] != self.count:  # an append interrupted (KeyboardInterrupt) part-way
                 self._resize(self.count)
@@ -306,13 +391,21 @@ class ResultStream:
         return self.path
 
     def close(self) -> None:
-        """Close without finishing (the file stays valid, ``complete = 0``) and give back the space
-        claimed."""
+        """Close without finishing (the file stays valid, ``complete = 0``, holding the records
+        written: a queued one is dropped, as a kill drops it) and give back the space claimed."""
+        self.queued = None
+        self._stop_threads()
         if self.file.id.valid:
             self.file.close()
         space = getattr(self, "space", None)
         if space is not None:
             space.close()
+
+
+    def _stop_threads(self) -> None:
+        if getattr(self, "pool", None) is not None:
+            self.pool.shutdown(wait=True)
+            self.pool = None
 
 
 def _append_variables(path: Path, variables: dict) -> None:

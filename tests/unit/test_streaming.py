@@ -229,3 +229,69 @@ def test_the_partial_file_is_beside_the_target_of_a_linked_out(tmp_path):
     link.symlink_to(target)
     assert partial_path(link) == target.with_name("r.nc.partial")
     assert partial_path(tmp_path / "new.nc") == tmp_path / "new.nc.partial"
+
+
+def test_each_record_is_written_one_append_late_and_drain_writes_it(tmp_path):
+    """The queued record (its fields compressing on the stream's thread) is in the file after the
+    next append or drain, never before; what a checkpoint counts (drain) is what the file holds."""
+    problem = _partial_slip()
+    records = [rec for _, rec in transient.steps(problem)][:4]
+    path = tmp_path / "s.nc"
+    stream = ResultStream.create(path, problem)
+    for k, rec in enumerate(records):
+        stream.append(rec)
+        assert stream.count == k and stream.queued is not None
+        assert stream.file["t"].shape == (k,) and stream.file["pressure"].shape[0] == k
+    assert stream.drain() == 4 and stream.queued is None and stream.drain() == 4
+    stream.close()
+    with xr.open_dataset(path, engine="h5netcdf") as ds:
+        expected = to_dataset(records, problem)
+        for name in ("pressure", "shear_x", "stick", "displacement_z", "load", "step"):
+            assert (ds[name].values == expected[name].values).all(), name
+
+
+@pytest.mark.parametrize("shuffle", [True, False])
+def test_direct_chunks_read_back_bit_for_bit_whatever_the_field(tmp_path, shuffle):
+    """The chunk encoder (byte shuffle + zlib, written with HDF5's direct chunk write) against HDF5's
+    own filters on the same data: smooth, all-zero, incompressible noise (stored unfiltered, the
+    filters marked skipped) and int8 fields; with and without the shuffle (a file of the former
+    layout, zlib alone, resumed)."""
+    import h5py
+    import numpy as np
+
+    from viscontact.streaming import chunk_encoder
+
+    rng = np.random.default_rng(1)
+    x = np.linspace(-1, 1, 32)
+    fields = [np.sqrt(np.maximum(0.5 - x[:, None] ** 2 - x ** 2, 0)) * 1e6, np.zeros((32, 32)),
+              np.frombuffer(rng.bytes(32 * 32 * 8), dtype=np.uint64).reshape(32, 32),
+              (rng.random((32, 32)) > 0.5).astype(np.int8)]
+    with h5py.File(tmp_path / "c.h5", "w") as f:
+        for i, field in enumerate(fields):
+            options = dict(shape=(0, 32, 32), maxshape=(None, 32, 32), chunks=(1, 32, 32), dtype=field.dtype,
+                           compression="gzip", compression_opts=1, shuffle=shuffle)
+            direct, by_hdf5 = f.create_dataset(f"d{i}", **options), f.create_dataset(f"h{i}", **options)
+            encode = chunk_encoder(direct)
+            assert encode is not None
+            direct.resize(1, axis=0), by_hdf5.resize(1, axis=0)
+            mask, chunk = encode(field)
+            direct.id.write_direct_chunk((0, 0, 0), chunk, mask)
+            by_hdf5[0] = field
+            assert (mask != 0) == (i == 2)  # only the noise does not shrink
+    with h5py.File(tmp_path / "c.h5", "r") as f:
+        for i, field in enumerate(fields):
+            assert np.array_equal(f[f"d{i}"][0], field) and np.array_equal(f[f"d{i}"][0], f[f"h{i}"][0])
+
+
+def test_no_encoder_for_chunks_or_filters_it_does_not_know(tmp_path):
+    import h5py
+
+    from viscontact.streaming import chunk_encoder
+
+    with h5py.File(tmp_path / "c.h5", "w") as f:
+        common = dict(shape=(0, 8, 8), maxshape=(None, 8, 8), dtype="f8")
+        assert chunk_encoder(f.create_dataset("two_steps", chunks=(2, 8, 8), compression="gzip", **common)) is None
+        assert chunk_encoder(f.create_dataset("lzf", chunks=(1, 8, 8), compression="lzf", **common)) is None
+        assert chunk_encoder(f.create_dataset("checksum", chunks=(1, 8, 8), compression="gzip", fletcher32=True,
+                                              **common)) is None
+        assert chunk_encoder(f.create_dataset("plain", chunks=(1, 8, 8), **common)) is None
