@@ -8,9 +8,12 @@ import signal
 import sys
 
 
+from .errors import EXIT_INTERRUPTED, raised_by_interrupt
+
+
 def _interrupted_at_start_up(signum: int, frame: object) -> None:  # noqa: ARG001
     sys.stderr.write("viscontact: error: interrupted (no result file written)\n")
-    raise SystemExit(130)
+    raise SystemExit(EXIT_INTERRUPTED)
 
 
 def main() -> int:
@@ -19,7 +22,12 @@ def main() -> int:
     from .allocator import tune_allocator
 
     tune_allocator()  # glibc settings for the solvers' temporaries (opt-out: VISCONTACT_MALLOC=default)
-    from .cli import main as cli_main
+    try:
+        from .cli import main as cli_main
+    except ImportError as exc:  # an extension module's start-up interrupted: its ImportError is the SIGINT
+        if raised_by_interrupt(exc):
+            raise SystemExit(EXIT_INTERRUPTED) from None  # the handler has said so
+        raise
 
     signal.signal(signal.SIGINT, previous)
     return cli_main()

@@ -25,10 +25,11 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-from .errors import ConvergenceError, NumericalGuardError, ParameterError, RunInterrupted, ViscontactWarning
+from .errors import (EXIT_INTERRUPTED, ConvergenceError, NumericalGuardError, ParameterError, RunInterrupted,
+                     ViscontactWarning, raised_by_interrupt)
 
 PROG = "viscontact"
-EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED, EXIT_TERMINATED = 1, 2, 130, 143
+EXIT_FAILED, EXIT_USAGE, EXIT_TERMINATED = 1, 2, 143
 LOG_LEVELS = ("debug", "info", "warning", "error")
 log = logging.getLogger("viscontact")
 
@@ -563,6 +564,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _error(f"stopped by {exc.reason} after the current step{_saved_note(exc)}", code)
     except KeyboardInterrupt as exc:
         return _error(f"interrupted{_saved_note(exc)}", EXIT_INTERRUPTED)
+    except ImportError as exc:  # a module the sub-command imports late, interrupted while it initialises
+        if raised_by_interrupt(exc):
+            return _error("interrupted (no result file written)", EXIT_INTERRUPTED)
+        raise
 
 
 def _saved_note(exc: BaseException) -> str:

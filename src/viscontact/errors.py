@@ -40,3 +40,21 @@ class RunInterrupted(ViscontactError):
 
 class ViscontactWarning(UserWarning):
     """A result is usable but something may bias it (history dropped, coarse time step, ...)."""
+
+
+#: the exit status of a run stopped by SIGINT (128 + 2); also the code of the start-up handler's SystemExit
+EXIT_INTERRUPTED = 130
+
+
+def raised_by_interrupt(exc: BaseException | None) -> bool:
+    """True when ``exc`` comes of a SIGINT: its chain of causes and contexts holds a KeyboardInterrupt
+    or the SystemExit(:data:`EXIT_INTERRUPTED`) of the command's start-up handler. An extension
+    module interrupted while it initialises (pybind11's, such as scipy's HiGHS) raises
+    ``ImportError: initialization failed`` from the interrupt instead of the interrupt itself."""
+    seen: set[int] = set()
+    while exc is not None and id(exc) not in seen:
+        seen.add(id(exc))
+        if isinstance(exc, KeyboardInterrupt) or (isinstance(exc, SystemExit) and exc.code == EXIT_INTERRUPTED):
+            return True
+        exc = exc.__cause__ or exc.__context__
+    return False

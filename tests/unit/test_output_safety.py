@@ -383,6 +383,62 @@ def test_sigint_at_start_up_is_one_line(tmp_path, delay):
     assert lines[0].startswith("viscontact: error:") and "interrupted" in lines[0]
 
 
+def _interrupted_import(interrupt: BaseException) -> ImportError:
+    """What an extension module's initialisation raises when SIGINT lands in it (pybind11's: scipy's
+    HiGHS, seen here): ImportError('initialization failed') from the interrupt."""
+    try:
+        try:
+            raise interrupt
+        except BaseException as cause:
+            raise ImportError("initialization failed") from cause
+    except ImportError as exc:
+        return exc
+
+
+def test_sigint_inside_an_extension_modules_start_up_is_one_line(monkeypatch, capsys):
+    """A sub-command's late import interrupted inside an extension module: one line and 130, as for
+    any SIGINT; an ImportError of another cause is not taken for one."""
+    from viscontact import cli
+
+    def interrupted():
+        raise _interrupted_import(KeyboardInterrupt())
+
+    monkeypatch.setattr(cli, "_parser", interrupted)
+    assert cli.main(["run", "case.toml"]) == 130
+    assert capsys.readouterr().err == "viscontact: error: interrupted (no result file written)\n"
+
+    def missing():
+        raise ImportError("No module named 'somewhere'")
+
+    monkeypatch.setattr(cli, "_parser", missing)
+    with pytest.raises(ImportError, match="somewhere"):
+        cli.main(["run", "case.toml"])
+
+
+def test_sigint_inside_the_commands_own_imports_exits_130(monkeypatch):
+    """The console script's start-up handler (SystemExit 130, its line already written) raised inside
+    an extension module's initialisation: exit 130, not the ImportError's traceback."""
+    import types
+
+    from viscontact import _entry
+    from viscontact.errors import raised_by_interrupt
+
+    class Interrupted(types.ModuleType):
+        def __getattr__(self, name):
+            raise _interrupted_import(SystemExit(130))
+
+    handler = signal.getsignal(signal.SIGINT)
+    monkeypatch.setitem(sys.modules, "viscontact.cli", Interrupted("viscontact.cli"))
+    try:
+        with pytest.raises(SystemExit) as stop:
+            _entry.main()
+    finally:
+        signal.signal(signal.SIGINT, handler)
+    assert stop.value.code == 130
+    assert not raised_by_interrupt(_interrupted_import(SystemExit(2)))
+    assert not raised_by_interrupt(ImportError("initialization failed"))
+
+
 def test_resume_removes_what_a_killed_write_left(tmp_path):
     """kill -9 cannot be deferred: a write killed half way leaves NAME.tmpXXXX; resuming (no other
     writer then) removes it."""
