@@ -401,8 +401,8 @@ class ResultStream:
         if space is not None:
             space.close()
 
-
     def _stop_threads(self) -> None:
+        """Let the compression thread finish what it has and end it."""
         if getattr(self, "pool", None) is not None:
             self.pool.shutdown(wait=True)
             self.pool = None
