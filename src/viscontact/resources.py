@@ -19,9 +19,12 @@ from .errors import ParameterError, ViscontactWarning
 from .problem import Problem
 
 _FIELD_BYTES = {"pressure": 8, "shear_x": 8, "stick": 1, "displacement_z": 8}
-#: seconds per time step, per cell and per log2(2n) (FFT cost), measured on the 2-core reference
-#: machine: creep indentation 256^2 x 201 steps in 19 s (BENCHMARKS.md)
-SECONDS_PER_CELL_STEP = 19.0 / (201 * 256**2 * math.log2(512))
+#: the run time of a step [s] is SECONDS_PER_STEP + SECONDS_PER_CELL_STEP n^2 log2(2n) (a fixed part:
+#: bookkeeping, the record; and the FFT-bound part), fitted to ``viscontact run``'s creep indentation
+#: streamed to a file (201 steps) on the 2-core machine, 2026-11-25: 11.1, 16.4, 46.2, 180 ms a step at
+#: n = 64, 128, 256, 512 (the fit: 9.7, 16.4, 46.5, 180 ms). Sliding and partial slip cost more a step.
+SECONDS_PER_STEP = 7.8e-3
+SECONDS_PER_CELL_STEP = 6.56e-8
 #: runs estimated to take longer than this [s] are refused unless forced
 MAX_RUN_SECONDS = 24 * 3600.0
 #: a run's memory before its arrays [bytes]: the interpreter with numpy, scipy, h5py, pydantic and
@@ -43,7 +46,7 @@ class Estimate:
     """``result_bytes``: the result file (uncompressed); ``peak_memory_bytes``: the process at its peak;
     ``records``: how many time entries the result holds; ``checkpoint_bytes``: one checkpoint (the
     solver state only: the records are in the streamed result); ``seconds``: the run time on the reference
-    machine (:data:`SECONDS_PER_CELL_STEP`)."""
+    machine (:data:`SECONDS_PER_STEP`, :data:`SECONDS_PER_CELL_STEP`)."""
 
     result_bytes: int
     peak_memory_bytes: int
@@ -101,7 +104,7 @@ def estimate(problem: Problem) -> Estimate:
         solver += (WINDOWS_KEPT + 1) * self_kernels * per_component * single_bytes
         solver += WINDOWS_KEPT * self_kernels * per_component * kernel_bytes
     state = (2 * modes + 8) * 8 * n * n + carried
-    seconds = steps * SECONDS_PER_CELL_STEP * n * n * math.log2(2 * n)
+    seconds = steps * (SECONDS_PER_STEP + SECONDS_PER_CELL_STEP * n * n * math.log2(2 * n))
     return Estimate(int(result), int(3 * per_record + solver + BASE_MEMORY), int(records), int(state), seconds)
 
 
