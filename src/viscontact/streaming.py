@@ -359,9 +359,10 @@ class ResultStream:
         self.file.flush()
 
     def finish(self, attrs: dict[str, Any] | None = None) -> Path:
-        """Set ``t_gross_sliding`` and ``complete`` as :func:`~viscontact.results.to_dataset` does (and
-        ``attrs``, which override them), add the subsurface stresses the output asks for, fsync and
-        close, with SIGINT / SIGTERM held meanwhile. Returns the path."""
+        """Write the queued record (:meth:`drain`), then set ``t_gross_sliding`` and ``complete`` as
+        :func:`~viscontact.results.to_dataset` does (and ``attrs``, which override them), add the
+        subsurface stresses the output asks for, fsync and close, with SIGINT / SIGTERM held
+        meanwhile. Returns the path."""
         from .results import SCALES, completeness, t_gross_sliding
 
         self.drain()
