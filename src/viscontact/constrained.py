@@ -17,9 +17,13 @@ whose optimality conditions are the contact conditions: with g = K x - b,
 The iteration is Polonsky & Keer's: conjugate directions restricted to the free set, a projection on
 the bounds, release of the bound points whose gradient points inwards, and a restart of conjugacy
 whenever the free set changes. Convergence is measured as the relative change of x between
-iterations, or reached when the gradient on the free set is at round-off (an exact preconditioner,
-e.g. that of a periodic operator, converges in one iteration); the solve raises
-:class:`~viscontact.errors.ConvergenceError` at the iteration cap.
+iterations, sum |x_new - x_old| / sum |x|, or reached when the gradient on the free set is at
+round-off (an exact preconditioner, e.g. that of a periodic operator, converges in one iteration);
+the solve raises :class:`~viscontact.errors.ConvergenceError` at the iteration cap. The change is
+taken from the move itself, |step| sum |d|, with no copy of the old x (to 1e-7: d is a float32 field);
+an iteration that corrects points on the bounds adds the corrections' sum |x - x_linear| and the load
+rescaling's |factor - 1| sum x, an upper bound of the change (triangle inequality), so the test never
+stops earlier than the exact change would.
 
 Mixed precision. K x is not recomputed each iteration but updated, K x <- K x - step K d (plus
 the product of the bound corrections, x minus its unclipped update), and recomputed by a full product
@@ -58,6 +62,11 @@ SINGLE_ERROR = 1e-6
 #: K x is recomputed in double when the bound on its drift exceeds this fraction of tolerance x max|b|
 #: (at the whole tolerance the sliding test case ends 5.6e-8 from the truth, at a tenth 1e-8)
 DRIFT_FRACTION = 0.1
+#: under load control the iterate is rescaled to the total load (Polonsky & Keer) unless the factor
+#: is within this of 1: a conjugate move keeps the sum to float32 rounding of the direction (factors
+#: 1 +- 1e-11 and less), which a rescale of x and K x (four passes over the grid) would not improve;
+#: the solution returned is rescaled exactly
+LOAD_ROUNDOFF = 1e-12
 
 
 @dataclass(frozen=True)
@@ -75,7 +84,7 @@ class ConstrainedSolution:
     iterations
         Iterations used (each costs one application of K plus one for the gradient).
     residual
-        Last relative change of x.
+        Last relative change of x (module docstring).
     product
         K x in double precision from one product of the final x, where the caller computed it
         (:func:`~viscontact.support_window.windowed_cg`'s check), else None.
@@ -155,7 +164,7 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
     # work arrays, allocated once per solve: the iteration itself allocates only what the operator,
     # the preconditioner and the sparse corrections return (BENCHMARKS.md: the freed temporaries
     # were a fifth of the run's CPU time)
-    x_old, x_linear, g, work = (np.zeros_like(x) for _ in range(4))
+    x_linear, g, work = (np.zeros_like(x) for _ in range(3))
     # mixed precision: the search direction, the preconditioned gradient and K d are float32 fields
     # (any direction serves; x and K x move by it exactly, in double), which halves their traffic
     single = apply_k_increment is not None
@@ -181,6 +190,18 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         kx = np.multiply(start_product, scale_start)  # own copy: updated in place below
     else:
         kx = np.array(apply_k(x), dtype=float)
+
+    def solution(it: int, residual: float) -> ConstrainedSolution:
+        """The solve's result from the current x and K x: the sum constraint imposed to round-off
+        (the iteration skips rescalings by less than LOAD_ROUNDOFF), the gradient from K x."""
+        if total is not None and x.sum() > 0:
+            factor = total / (cell_area * float(x.sum()))
+            x_final, kx_final = x * factor, kx * factor
+            g_final = kx_final - b
+            on = x_final > lower
+            mean = float(g_final[on].mean()) if on.any() else multiplier
+            return ConstrainedSolution(x_final, g_final - mean, mean, it, residual)
+        return ConstrainedSolution(x, kx - b - multiplier, multiplier, it, residual)
     for it in range(1, max_iterations + 1):
         np.greater(x, lower, out=free)
         if bounded_above:
@@ -193,42 +214,45 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         if total is not None:
             multiplier = _free_mean(g, free, n_free) if n_free else float(g.min())
             g -= multiplier
-        if not n_free or _at_roundoff(float(np.abs(g, out=work).max(where=free, initial=0.0)), kx, b_scale):
+        np.multiply(g, free, out=free_gradient)  # the gradient on the free set
+        if not n_free or _at_roundoff(_max_abs(free_gradient), kx, b_scale):
             # nothing free, or converged on the free set to round-off (an exact preconditioner does it
             # in one iteration: another step would divide round-off by round-off): release the bound
             # points whose gradient points inwards, or stop
             inward = ((x <= lower) & (g < 0)) | ((x >= upper) & (g > 0))
             inward &= ~fixed & ~free
             if not inward.any():
-                return ConstrainedSolution(x, g, multiplier, it, 0.0)
+                return solution(it, 0.0)
             free |= inward
             n_free = int(np.count_nonzero(free))
             conjugate = False
+            np.multiply(g, free, out=free_gradient)
         np.logical_not(free, out=bound)
-        np.multiply(g, free, out=free_gradient)  # the gradient on the free set
         if preconditioner is not None:
             z = preconditioner(free_gradient)
             if total is not None:
                 z -= _free_mean(z, free, n_free)
-            np.copyto(z, 0.0, where=bound)
         else:
             z = free_gradient
-        g_norm = _dot(g, z)  # z vanishes off the free set
+        # the sums below are over the free set: the free gradient vanishes off it (z need not)
+        g_norm = _dot(free_gradient, z)
         if conjugate:
             direction *= g_norm / g_norm_old
             direction += z
-            np.copyto(direction, 0.0, where=bound)
         else:
             np.copyto(direction, z)
+        np.copyto(direction, 0.0, where=bound)
         g_norm_old = g_norm if g_norm > 0 else 1.0
         k_direction = apply_k_increment(direction) if apply_k_increment is not None else apply_k(direction)
         # under load control K d would be taken relative to its free mean: the direction sums to zero
         # on the free set, so the mean drops out of d.K d
         denom = _dot(k_direction, direction)
         if denom <= 0 or g_norm <= 0:
-            return ConstrainedSolution(x, g, multiplier, it, 0.0)
-        step = _dot(g, direction) / denom
-        np.copyto(x_old, x)
+            return solution(it, 0.0)
+        step = _dot(free_gradient, direction) / denom
+        # the move's size, sum |x_new - x_old| before bound corrections and rescaling (the free gradient
+        # is no longer needed: its array takes |direction|)
+        change = abs(step) * float(np.abs(direction, out=free_gradient).sum())
         x -= np.multiply(direction, step, out=work)  # the direction vanishes off the free set
         if plain_bounds:
             clipped = float(x.min()) < lower_value
@@ -271,25 +295,21 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
                 drift += SINGLE_ERROR * _max_abs(k_correction)
             else:
                 kx = np.array(apply_k(x), dtype=float)
-        scale = None
+            change += float(np.abs(correction, out=correction).sum())  # the triangle inequality: a bound
         if total is not None:
-            s = x.sum()
+            s = float(x.sum())
             factor = total / (cell_area * s) if s > 0 else 1.0
-            if factor != 1.0:
+            if abs(factor - 1.0) > LOAD_ROUNDOFF:
                 x *= factor
                 kx *= factor
-            else:
-                scale = float(s)
-        if scale is None:
+                change += abs(factor - 1.0) * s  # x >= 0
+                s *= factor
+            scale = s
+        else:
             scale = float(x.sum()) if nonnegative else float(np.abs(x, out=work).sum())
-        residual = float(np.abs(np.subtract(x, x_old, out=work), out=work).sum()) / scale if scale > 0 else 0.0
+        residual = change / scale if scale > 0 else 0.0
         if residual < tolerance:
-            g = kx - b  # K x kept exactly up to round-off (refreshed every 25 iterations)
-            if total is not None:
-                fr = x > lower
-                multiplier = float(g[fr].mean()) if fr.any() else multiplier
-                g = g - multiplier
-            return ConstrainedSolution(x, g, multiplier, it, residual)
+            return solution(it, residual)
     raise ConvergenceError(what, max_iterations, residual, tolerance,
                            hint="raise solver.max_iterations or refine the grid")
 

@@ -407,7 +407,7 @@ def _operator(factors: Sequence[tuple[str, float]], conv: Convolver,
             return out
 
         def sparse(x: Array) -> Array:
-            return j_inst * conv.apply_sparse(kernel, x)
+            return conv.apply_sparse(kernel, x, j_inst)
     else:
         precond = FourierPreconditioner(1.0 / sum(j / preconditioners[k].inverse_symbol for k, j in factors),
                                         conv.workers, conv.fft)
@@ -416,7 +416,7 @@ def _operator(factors: Sequence[tuple[str, float]], conv: Convolver,
             return conv.combine([(k, j, x) for k, j in factors], single=single)
 
         def sparse(x: Array) -> Array:
-            return sum(j * conv.apply_sparse(k, x) for k, j in factors)
+            return sum(conv.apply_sparse(k, x, j) for k, j in factors)
 
     if not single:
         return ElasticOperator(product, precond, sparse, window)
