@@ -19,12 +19,20 @@ from .errors import ParameterError, ViscontactWarning
 from .problem import Problem
 
 _FIELD_BYTES = {"pressure": 8, "shear_x": 8, "stick": 1, "displacement_z": 8}
-#: the run time of a step [s] is SECONDS_PER_STEP + SECONDS_PER_CELL_STEP n^2 log2(2n) (a fixed part:
-#: bookkeeping, the record; and the FFT-bound part), fitted to ``viscontact run``'s creep indentation
-#: streamed to a file (201 steps) on the 2-core machine, 2026-11-25: 11.1, 16.4, 46.2, 180 ms a step at
-#: n = 64, 128, 256, 512 (the fit: 9.7, 16.4, 46.5, 180 ms). Sliding and partial slip cost more a step.
+#: the run time [s] is START_SECONDS + SETUP_SECONDS_PER_CELL n^2 log2(2n) (imports, kernels, the result's
+#: layout) plus, for every step, MODE_STEP_FACTOR[mode] (SECONDS_PER_STEP + SECONDS_PER_CELL_STEP n^2
+#: log2(2n)) (a fixed part: bookkeeping, the record; and the FFT-bound part). The step's part is fitted
+#: to ``viscontact run``'s creep indentation streamed to a file (201 steps) on the 2-core machine,
+#: 2026-11-25: 11.1, 16.4, 46.2, 180 ms a step at n = 64, 128, 256, 512 (the fit: 9.7, 16.4, 46.5, 180 ms);
+#: the start and the modes' factors to the shipped cases (``benchmarks/bench_estimate.py``, BENCHMARKS.md):
+#: starts of 1.0-1.7 s at n <= 256 and 2.4 s at 512; a step of gross sliding 1.4-2.0 times the creep
+#: model's, of partial slip 1.6-2.7 times (its coupling iterations), of indentation and frictionless
+#: sliding 0.3-1.0 times (their contact is smaller than the grid: the support window).
 SECONDS_PER_STEP = 7.8e-3
 SECONDS_PER_CELL_STEP = 6.56e-8
+START_SECONDS = 1.0
+SETUP_SECONDS_PER_CELL = 5e-7
+MODE_STEP_FACTOR = {"none": 1.0, "frictionless_sliding": 1.0, "gross_sliding": 1.8, "partial_slip": 2.5}
 #: runs estimated to take longer than this [s] are refused unless forced
 MAX_RUN_SECONDS = 24 * 3600.0
 #: a run's memory before its arrays [bytes]: the interpreter with numpy, scipy, h5py, pydantic and
@@ -41,12 +49,21 @@ FINISH_BYTES = 64 * 1024
 LAYOUT_BYTES = 64 * 1024
 
 
+def run_seconds(n: int, steps: int, mode: str) -> float:
+    """The run time [s] of ``steps`` steps of tangential ``mode`` on an n x n grid on the reference
+    machine, start included (:data:`START_SECONDS` ... :data:`MODE_STEP_FACTOR`): within a factor of 2
+    of the shipped cases' runs, less where the contact fills a smaller part of the grid."""
+    fft_bound = n * n * math.log2(2 * n)
+    step = MODE_STEP_FACTOR.get(mode, max(MODE_STEP_FACTOR.values())) * (SECONDS_PER_STEP + SECONDS_PER_CELL_STEP * fft_bound)
+    return START_SECONDS + SETUP_SECONDS_PER_CELL * fft_bound + steps * step
+
+
 @dataclass(frozen=True)
 class Estimate:
     """``result_bytes``: the result file (uncompressed); ``peak_memory_bytes``: the process at its peak;
     ``records``: how many time entries the result holds; ``checkpoint_bytes``: one checkpoint (the
     solver state only: the records are in the streamed result); ``seconds``: the run time on the reference
-    machine (:data:`SECONDS_PER_STEP`, :data:`SECONDS_PER_CELL_STEP`)."""
+    machine (:func:`run_seconds`)."""
 
     result_bytes: int
     peak_memory_bytes: int
@@ -104,7 +121,7 @@ def estimate(problem: Problem) -> Estimate:
         solver += (WINDOWS_KEPT + 1) * self_kernels * per_component * single_bytes
         solver += WINDOWS_KEPT * self_kernels * per_component * kernel_bytes
     state = (2 * modes + 8) * 8 * n * n + carried
-    seconds = steps * (SECONDS_PER_STEP + SECONDS_PER_CELL_STEP * n * n * math.log2(2 * n))
+    seconds = run_seconds(n, steps, problem.tangential.mode)
     return Estimate(int(result), int(3 * per_record + solver + BASE_MEMORY), int(records), int(state), seconds)
 
 

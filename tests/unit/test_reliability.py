@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from viscontact import cli, streaming
+from viscontact import cli, resources, streaming
 from viscontact.errors import NumericalGuardError
 from viscontact.transient import _guard
 
@@ -116,6 +116,19 @@ def test_dry_run_prints_the_estimate_and_writes_nothing(tmp_path, capsys):
     said = capsys.readouterr().out
     assert code == 0 and not out.exists()
     assert "161 records" in said and "MiB" in said
+
+
+def test_dry_run_time_counts_the_start_and_the_tangential_mode(tmp_path, capsys):
+    """Seed Table 3 cases 1 and 4 have the same grid and steps; partial slip (case 4) alternates normal
+    and tangential solves, so its estimate is the larger (a step measured 3.3 times case 1's at 128²,
+    BENCHMARKS.md); and every estimate includes the start (imports, kernels), about a second."""
+    said = {}
+    for case in ("seed_table3_case1", "seed_table3_case4"):
+        code = cli.main(["run", str(ROOT / "cases" / f"{case}.toml"), "--out", str(tmp_path / "r.nc"), "--dry-run"])
+        out = capsys.readouterr().out
+        assert code == 0
+        said[case] = float(out.split("run time about ")[1].split()[0])  # seconds at this size
+    assert said["seed_table3_case4"] > 1.5 * said["seed_table3_case1"] > 1.5 * resources.START_SECONDS
 
 
 def test_refuses_when_the_disk_cannot_hold_the_result(tmp_path, capsys, monkeypatch):
