@@ -27,7 +27,6 @@ from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
-from scipy.optimize import brentq
 
 from .errors import ParameterError
 
@@ -85,6 +84,8 @@ def _retardation_spectrum(g_inf: float, g: np.ndarray, tau: np.ndarray) -> tuple
     precision (as in LAPACK's dlaed4). The residue of J^(s) = 1/(s * sG^(s)) at s = -x_m gives
     J_m = 1 / (x_m G_0 sum_i w_i / (r_i - x_m)^2).
     """
+    from scipy.optimize import brentq  # here: scipy.optimize takes half a second to import
+
     rates = 1.0 / tau
     order = np.argsort(rates)
     rates, g = rates[order], g[order]
