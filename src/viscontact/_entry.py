@@ -4,6 +4,7 @@ command line and its libraries takes a noticeable fraction of a second) one line
 allocator setting of :mod:`viscontact.allocator`."""
 from __future__ import annotations
 
+import os
 import signal
 import sys
 
@@ -11,8 +12,11 @@ from .errors import EXIT_INTERRUPTED, raised_by_interrupt
 
 
 def _interrupted_at_start_up(signum: int, frame: object) -> None:  # noqa: ARG001
+    """Say so and exit at once: nothing is written yet. No exception is raised: one raised where Python
+    cannot propagate it (an import's module-lock callback) would be printed and dropped."""
     sys.stderr.write("viscontact: error: interrupted (no result file written)\n")
-    raise SystemExit(EXIT_INTERRUPTED)
+    sys.stderr.flush()
+    os._exit(EXIT_INTERRUPTED)
 
 
 def main() -> int:

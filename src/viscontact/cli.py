@@ -15,9 +15,11 @@ from __future__ import annotations
 import argparse
 import errno
 import logging
+import os
 import shlex
 import signal
 import sys
+import threading
 import time
 import warnings
 from collections.abc import Iterator, Sequence
@@ -545,12 +547,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     stop by SIGINT 130 and by SIGTERM 143.
     """
     try:
-        args = _parser().parse_args(argv)
-        args.argv = list(sys.argv[1:] if argv is None else argv)
-        _configure_logging(args.log_level, args.quiet)
-        log.debug("%s %s: %s", PROG, _version(), shlex.join(args.argv))
-        with _warnings_as_lines(args.quiet):
-            return args.handler(args)
+        with _interrupts_redelivered():
+            args = _parser().parse_args(argv)
+            args.argv = list(sys.argv[1:] if argv is None else argv)
+            _configure_logging(args.log_level, args.quiet)
+            log.debug("%s %s: %s", PROG, _version(), shlex.join(args.argv))
+            with _warnings_as_lines(args.quiet):
+                return args.handler(args)
     except ParameterError as exc:
         return _error(f"{exc.key}: {exc.message}", EXIT_USAGE)
     except OSError as exc:  # missing file, existing result, permissions
@@ -568,6 +571,41 @@ def main(argv: Sequence[str] | None = None) -> int:
         if raised_by_interrupt(exc):
             return _error("interrupted (no result file written)", EXIT_INTERRUPTED)
         raise
+
+
+#: seconds after which a KeyboardInterrupt that Python had to drop is delivered again
+#: (:func:`_interrupts_redelivered`)
+REDELIVERY_DELAY = 0.005
+
+
+@contextmanager
+def _interrupts_redelivered() -> Iterator[None]:
+    """While the body runs, a KeyboardInterrupt raised where Python cannot propagate it is delivered
+    again. SIGINT landing in a weakref callback (an import's module lock) or a ``__del__`` raises there;
+    Python prints "Exception ignored in ..." and drops it, and the command would go on as if never
+    interrupted. ``sys.unraisablehook`` catches it instead and sends SIGINT to the process again from a
+    timer thread a few milliseconds later, once the main thread has left the callback (sending it from
+    the hook itself would raise inside the hook, dropped again)."""
+    previous = sys.unraisablehook
+    active = threading.Event()
+    active.set()
+
+    def resend() -> None:
+        if active.is_set():
+            os.kill(os.getpid(), signal.SIGINT)
+
+    def hook(unraisable: Any) -> None:
+        if isinstance(unraisable.exc_value, KeyboardInterrupt):
+            threading.Timer(REDELIVERY_DELAY, resend).start()
+        else:
+            previous(unraisable)
+
+    sys.unraisablehook = hook
+    try:
+        yield
+    finally:
+        active.clear()
+        sys.unraisablehook = previous
 
 
 def _saved_note(exc: BaseException) -> str:
