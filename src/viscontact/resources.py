@@ -25,9 +25,9 @@ _FIELD_BYTES = {"pressure": 8, "shear_x": 8, "stick": 1, "displacement_z": 8}
 #: to ``viscontact run``'s creep indentation streamed to a file (201 steps) on the 2-core machine,
 #: 2026-11-25: 11.1, 16.4, 46.2, 180 ms a step at n = 64, 128, 256, 512 (the fit: 9.7, 16.4, 46.5, 180 ms);
 #: the start and the modes' factors to the shipped cases (``benchmarks/bench_estimate.py``, BENCHMARKS.md):
-#: starts of 1.0-1.7 s at n <= 256 and 2.4 s at 512; a step of gross sliding 1.4-2.0 times the creep
-#: model's, of partial slip 1.6-2.7 times (its coupling iterations), of indentation and frictionless
-#: sliding 0.3-1.0 times (their contact is smaller than the grid: the support window).
+#: starts of 1.0-1.7 s at n <= 256 and 2.3 s at 512; a step of gross sliding 1.4-2.3 times the creep
+#: model's, of partial slip 1.5-2.6 times (its coupling iterations), of indentation and frictionless
+#: sliding 0.24-1.13 times (a contact smaller than the grid: the support window).
 SECONDS_PER_STEP = 7.8e-3
 SECONDS_PER_CELL_STEP = 6.56e-8
 START_SECONDS = 1.0
@@ -54,7 +54,8 @@ def run_seconds(n: int, steps: int, mode: str) -> float:
     machine, start included (:data:`START_SECONDS` ... :data:`MODE_STEP_FACTOR`): within a factor of 2
     of the shipped cases' runs, less where the contact fills a smaller part of the grid."""
     fft_bound = n * n * math.log2(2 * n)
-    step = MODE_STEP_FACTOR.get(mode, max(MODE_STEP_FACTOR.values())) * (SECONDS_PER_STEP + SECONDS_PER_CELL_STEP * fft_bound)
+    factor = MODE_STEP_FACTOR.get(mode, max(MODE_STEP_FACTOR.values()))
+    step = factor * (SECONDS_PER_STEP + SECONDS_PER_CELL_STEP * fft_bound)
     return START_SECONDS + SETUP_SECONDS_PER_CELL * fft_bound + steps * step
 
 
