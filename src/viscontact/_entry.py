@@ -28,8 +28,9 @@ def main() -> int:
     try:
         from .cli import main as cli_main
     except ImportError as exc:  # an extension module's start-up interrupted: its ImportError is the SIGINT
+        # (a guard: the handler above exits without raising, so this takes a handler that raises)
         if raised_by_interrupt(exc):
-            raise SystemExit(EXIT_INTERRUPTED) from None  # the handler has said so
+            raise SystemExit(EXIT_INTERRUPTED) from None
         raise
 
     signal.signal(signal.SIGINT, previous)

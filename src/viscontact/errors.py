@@ -42,13 +42,13 @@ class ViscontactWarning(UserWarning):
     """A result is usable but something may bias it (history dropped, coarse time step, ...)."""
 
 
-#: the exit status of a run stopped by SIGINT (128 + 2); also the code of the start-up handler's SystemExit
+#: the exit status of a command stopped by SIGINT (128 + 2)
 EXIT_INTERRUPTED = 130
 
 
 def raised_by_interrupt(exc: BaseException | None) -> bool:
     """True when ``exc`` comes of a SIGINT: its chain of causes and contexts holds a KeyboardInterrupt
-    or the SystemExit(:data:`EXIT_INTERRUPTED`) of the command's start-up handler. An extension
+    or a SystemExit(:data:`EXIT_INTERRUPTED`) (a handler that exits by raising). An extension
     module interrupted while it initialises (pybind11's, such as scipy's HiGHS) raises
     ``ImportError: initialization failed`` from the interrupt instead of the interrupt itself."""
     seen: set[int] = set()

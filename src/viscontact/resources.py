@@ -54,8 +54,7 @@ def run_seconds(n: int, steps: int, mode: str) -> float:
     machine, start included (:data:`START_SECONDS` ... :data:`MODE_STEP_FACTOR`): within a factor of 2
     of the shipped cases' runs, less where the contact fills a smaller part of the grid."""
     fft_bound = n * n * math.log2(2 * n)
-    factor = MODE_STEP_FACTOR.get(mode, max(MODE_STEP_FACTOR.values()))
-    step = factor * (SECONDS_PER_STEP + SECONDS_PER_CELL_STEP * fft_bound)
+    step = MODE_STEP_FACTOR[mode] * (SECONDS_PER_STEP + SECONDS_PER_CELL_STEP * fft_bound)
     return START_SECONDS + SETUP_SECONDS_PER_CELL * fft_bound + steps * step
 
 
