@@ -38,14 +38,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import ParameterError, ViscontactWarning
+from .errors import NumericalGuardError, ParameterError, ViscontactWarning
 from .history import PronyHistory
 from .materials import Material
 from .problem import Problem
 from .schemes import stable_step_limit, step_coefficients
 
-__all__ = ["ContactEstimate", "check_problem", "contact_estimate", "grid_suggestion", "peak_pressure_error",
-           "time_step_error"]
+__all__ = ["ContactEstimate", "check_problem", "check_solution", "contact_estimate", "grid_suggestion",
+           "peak_pressure_error", "time_step_error"]
 
 #: estimated relative errors of the peak pressure above which a run is refused / warned about
 ERROR_LIMIT, WARNING_LIMIT = 0.10, 0.05
@@ -61,6 +61,10 @@ RADIUS_RATIO_ERROR, RADIUS_RATIO_WARNING = 0.5, 0.2
 #: largest G(0)/G(inf) [-]: J_inst = J(inf) - sum_m J_m beta_m (viscontact.schemes) loses
 #: log10(G(0)/G(inf)) of the 16 digits of float64; above 1e8 it is not known to the solver tolerance
 MAX_MODULUS_RATIO = 1e8
+#: pressure, relative to its peak, above which a cell counts as loaded in :func:`check_solution`
+LOADED_FRACTION = 1e-6
+#: relative load imbalance sum p dA / W - 1 that :func:`check_solution` refuses
+LOAD_BALANCE_TOLERANCE = 1e-6
 #: the time-step check runs the scheme over at most this many steps (the response has settled by then
 #: or the estimate is taken over the first part of the run)
 MAX_CHECKED_STEPS = 4000
@@ -361,3 +365,43 @@ def check_problem(problem: Problem, *, transient: bool = True) -> None:
     _check_space(problem, transient)
     if transient:
         _check_time(problem)
+
+
+def check_solution(problem: Problem, pressure: np.ndarray, load: float, value: float, *, where: str = "") -> None:
+    """Refuse a solved pressure field that cannot be trusted (the transient's every step and each
+    steady state): NaN or Inf, contact at the edge of a non-periodic domain (the body beyond the edge
+    is missing, so the contact is cut off and the pressure inside it is wrong), or a load that does
+    not balance.
+
+    Parameters
+    ----------
+    problem
+        What was solved (its grid and normal control).
+    pressure
+        The solved pressure [Pa], (n, n).
+    load
+        sum p dA [N].
+    value
+        The prescribed load [N] under load control (ignored under displacement control).
+    where
+        Said after the finding, e.g. ``" at v = 0.1 m/s"``.
+
+    Raises
+    ------
+    NumericalGuardError
+        Saying what to change.
+    """
+    if not np.all(np.isfinite(pressure)):
+        raise NumericalGuardError(f"pressure has NaN or Inf values{where}; check the inputs (material, load, grid)")
+    grid = problem.grid
+    edge = np.concatenate([pressure[0], pressure[-1], pressure[:, 0], pressure[:, -1]])
+    peak = float(pressure.max())
+    if peak > 0 and edge.max() > LOADED_FRACTION * peak and not grid.periodic:
+        x, y = grid.mesh()
+        reach = float(np.sqrt(x**2 + y**2)[pressure > LOADED_FRACTION * peak].max())
+        raise NumericalGuardError(
+            f"the contact reaches the edge of the domain{where} (pressure {edge.max() / peak:.1e} of its peak there); "
+            f"enlarge grid.half_width to more than {1.5 * reach:.4g} m (now {grid.half_width:.4g} m; the edge cuts "
+            "the contact off, so it may need more)")
+    if problem.normal.control == "load" and value > 0 and abs(load - value) > LOAD_BALANCE_TOLERANCE * value:
+        raise NumericalGuardError(f"load balance violated{where}: sum p dA = {load:.6g} N for W = {value:.6g} N")

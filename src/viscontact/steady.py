@@ -46,6 +46,7 @@ from .compliance_terms import complex_compliance
 from .convolution import Convolver, FourierPreconditioner
 from .errors import ConvergenceError, ParameterError
 from .grid import Grid
+from .guards import check_solution
 from .krylov import gmres
 from .problem import PHASE_GROSS_SLIDING, Problem
 from .records import StepRecord
@@ -323,6 +324,7 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
                                                        preconditioner=precondition)
         u_z = apply_k(p)
     load = float(p.sum() * grid.cell_area)
+    check_solution(problem, p, load, value, where=f" at v = {v:.4g} m/s")
     f_t = hysteresis_force(p, u_z, grid, grid.periodic)
     q = mu * p
     return StepRecord(step=0, t=problem.time.t_end, phase=PHASE_GROSS_SLIDING, load=load, delta_z=delta,

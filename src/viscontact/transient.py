@@ -25,7 +25,8 @@ from typing import Callable, Iterator, Protocol
 import numpy as np
 
 from .allocator import tune_allocator
-from .errors import ConvergenceError, NumericalGuardError, ParameterError, ViscontactWarning
+from .errors import ConvergenceError, ParameterError, ViscontactWarning
+from .guards import check_solution
 from .history import History
 from .periodic import check_approach
 from .problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP, Problem
@@ -392,7 +393,7 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
 
     # -- record
     load = float(p.sum() * grid.cell_area)
-    _guard(problem, p, load, ctx.value)
+    check_solution(problem, p, load, ctx.value)
     f_t = hysteresis_force(p, sol.displacement_z, grid, grid.periodic) if tan.slides else 0.0
     wake = _wake_loss(problem, substrate, state, p, f_t / load if load > 0 else 0.0, sol.delta_z)
     record = StepRecord(
@@ -422,24 +423,6 @@ def _wake_loss(problem: Problem, substrate: TermSubstrate, state: State, pressur
     if problem.normal.control == "displacement" and delta_z > 0:
         err = max(err, 1.5 * abs(u_lost) / delta_z)
     return float(err)
-
-
-def _guard(problem: Problem, pressure: np.ndarray, load: float, value: float) -> None:
-    """Errors for results that cannot be trusted: NaN, contact at the domain edge (not an edge on a
-    periodic domain), load imbalance."""
-    if not np.all(np.isfinite(pressure)):
-        raise NumericalGuardError("pressure has NaN or Inf values; check the inputs (material, load, grid)")
-    edge = np.concatenate([pressure[0], pressure[-1], pressure[:, 0], pressure[:, -1]])
-    peak = pressure.max()
-    if peak > 0 and edge.max() > 1e-6 * peak and not problem.grid.periodic:
-        grid = problem.grid
-        x, y = grid.mesh()
-        r = np.sqrt(x**2 + y**2)[pressure > 1e-6 * peak].max()
-        raise NumericalGuardError(
-            f"the contact reaches the edge of the domain (pressure {edge.max() / peak:.1e} of its peak there); "
-            f"enlarge grid.half_width to at least {1.5 * r:.4g} m (now {grid.half_width:.4g} m)")
-    if problem.normal.control == "load" and value > 0 and abs(load - value) > 1e-6 * value:
-        raise NumericalGuardError(f"load balance violated: sum p dA = {load:.6g} N for W = {value:.6g} N")
 
 
 def steps(problem: Problem, *, progress: Callable[[int, int], None] | None = None,

@@ -19,7 +19,7 @@ import xarray as xr
 
 from viscontact import cli, resources, streaming
 from viscontact.errors import NumericalGuardError
-from viscontact.transient import _guard
+from viscontact.guards import check_solution
 
 from vc_testing import SEED_MATERIAL_TOML, seed_material, sphere_problem
 
@@ -193,7 +193,7 @@ def test_guard_contact_at_the_domain_edge_during_the_run():
     p[3:5, 3:5] = 1.0
     p[0, 4] = 0.5
     with pytest.raises(NumericalGuardError, match="edge of the domain.*half_width"):
-        _guard(pb, p, float(p.sum() * pb.grid.cell_area), float(p.sum() * pb.grid.cell_area))
+        check_solution(pb, p, float(p.sum() * pb.grid.cell_area), float(p.sum() * pb.grid.cell_area))
 
 
 def test_guard_non_convergence_gives_the_residual(tmp_path, capsys):
@@ -231,10 +231,10 @@ def test_guards_nan_and_load_balance():
     p = np.zeros((8, 8))
     p[3:5, 3:5] = 1.0
     with pytest.raises(NumericalGuardError, match="NaN"):
-        _guard(pb, np.where(p > 0, np.nan, 0.0), 1.0, 1.0)
+        check_solution(pb, np.where(p > 0, np.nan, 0.0), 1.0, 1.0)
     with pytest.raises(NumericalGuardError, match="load balance"):
-        _guard(pb, p, 0.9, 1.0)
-    _guard(pb, p, 1.0, 1.0)
+        check_solution(pb, p, 0.9, 1.0)
+    check_solution(pb, p, 1.0, 1.0)
 
 
 def test_every_warning_is_a_viscontact_warning():
