@@ -21,7 +21,7 @@ from viscontact import cli, resources, streaming
 from viscontact.errors import NumericalGuardError
 from viscontact.guards import check_solution
 
-from vc_testing import SEED_MATERIAL_TOML, seed_material, sphere_problem
+from vc_testing import SEED_A0, SEED_MATERIAL_TOML, SEED_TAU, seed_material, sphere_problem
 
 ROOT = Path(__file__).resolve().parents[2]
 EXE = [sys.executable, "-m", "viscontact.cli"]
@@ -194,6 +194,21 @@ def test_guard_contact_at_the_domain_edge_during_the_run():
     p[0, 4] = 0.5
     with pytest.raises(NumericalGuardError, match="edge of the domain.*half_width"):
         check_solution(pb, p, float(p.sum() * pb.grid.cell_area), float(p.sum() * pb.grid.cell_area))
+
+
+def test_steady_state_cut_off_by_the_domain_edge_is_refused():
+    """The steady solver checks its answer as a transient step is checked: at v tau / a0 = 1 the
+    steady contact of the seed's material (about 2 a0 long) does not fit in +-2 a0; it used to be
+    returned with the pressure at the edge equal to its peak. On +-3 a0 it fits."""
+    from viscontact.steady import solve_steady
+
+    def problem(half_width: float):
+        return sphere_problem(seed_material(), 24, half_width, mode="frictionless_sliding", speed=SEED_A0 / SEED_TAU)
+
+    with pytest.raises(NumericalGuardError, match="edge of the domain at v = .*half_width"):
+        solve_steady(problem(2.0 * SEED_A0))
+    p = solve_steady(problem(3.0 * SEED_A0)).pressure
+    assert p[0].max() == p[-1].max() == p[:, 0].max() == p[:, -1].max() == 0.0
 
 
 def test_guard_non_convergence_gives_the_residual(tmp_path, capsys):
