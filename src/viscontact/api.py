@@ -277,19 +277,23 @@ def _drive(problem: Problem, observers: list, *, start: Any = None,
            should_stop: Callable[[], str | None] | None = None) -> None:
     """The run: a plain loop over :func:`viscontact.transient.steps` handing each (state, record)
     to the ``observers`` (:mod:`viscontact.observers`), stopping cleanly with
-    :class:`~viscontact.errors.RunInterrupted` when one of them (or ``should_stop``) asks."""
+    :class:`~viscontact.errors.RunInterrupted` when one of them (or ``should_stop``) asks, and
+    telling them when the run went to its end."""
     from . import transient
     from .errors import RunInterrupted
     from .observers import StopRequest
 
     if should_stop is not None:
         observers = [*observers, StopRequest(should_stop)]
+    state = start
     for state, record in transient.steps(problem, progress=progress, state=start):
         reasons = [r for r in (o.on_step(state, record) for o in observers) if r]
         if reasons:
             for o in observers:
                 o.on_stop(state, reasons[0])
             raise RunInterrupted(reasons[0])
+    for o in observers:
+        o.on_finish(state)
 
 
 def run_steady(case: CaseLike, speeds: Sequence[float] | None = None) -> xr.Dataset:

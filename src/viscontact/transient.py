@@ -457,15 +457,18 @@ def steps(problem: Problem, *, progress: Callable[[int, int], None] | None = Non
 def simulate(problem: Problem, *, progress: Callable[[int, int], None] | None = None,
              state: State | None = None, substrate: TermSubstrate | None = None) -> Iterator[StepRecord]:
     """Run the transient and yield the records the output settings keep (every ``output.every``
-    steps and the last, with the ``output.fields``), warning once about a biasing wake.
+    steps and the last, with the ``output.fields``), warning about a biasing wake
+    (:class:`~viscontact.observers.WakeWarning`).
 
     Parameters are those of :func:`steps`.
     """
     from .observers import Recorder, WakeWarning
 
     recorder, wake = Recorder(problem), WakeWarning()
+    current = state
     for current, record in steps(problem, progress=progress, state=state, substrate=substrate):
         wake.on_step(current, record)
         kept = recorder.kept(record)
         if kept is not None:
             yield kept
+    wake.on_finish(current)

@@ -241,6 +241,19 @@ def test_warning_wake_dropped_at_the_trailing_edge(tmp_path, capsys):
     assert code == 0 and any("history dropped" in line for line in err)
 
 
+def test_wake_warning_at_the_end_gives_the_largest_bias(tmp_path, capsys):
+    """The first warning gives the estimate when it passes 1 %; the wake then lengthens and the bias
+    grows tenfold (v tau / a0 = 10 on +-2.7 a0; against the steady state, mu_app is 11.5 % low at the
+    end). The run's last line must give the largest estimate, the one in the result's wake_loss."""
+    code, err = _guard_run(tmp_path, capsys, half_width=1.6e-3, mode="frictionless_sliding", speed=0.589,
+                           t_end=0.06, dt="", scheme="linear")
+    wake = [line for line in err if "history dropped" in line]
+    assert code == 0 and len(wake) == 2
+    largest = float(xr.open_dataset(tmp_path / "r.nc")["wake_loss"].max())
+    assert largest > 0.1
+    assert f"up to about {100 * largest:.2g}%" in wake[1]
+
+
 def test_guards_nan_and_load_balance():
     pb = sphere_problem(seed_material(), 8, 1e-3)
     p = np.zeros((8, 8))
