@@ -83,7 +83,7 @@ def _restricted(fun, idx: np.ndarray, shape: tuple[int, int]):
 
 
 def _solve_on_set(apply_k, rhs: np.ndarray, active: np.ndarray, x0: np.ndarray, tol: float, maxiter: int,
-                  preconditioner=None) -> tuple[np.ndarray, int]:
+                  preconditioner=None, what: str = "steady-state") -> tuple[np.ndarray, int]:
     """GMRES (:func:`viscontact.krylov.gmres`) on the active set; returns (solution on the grid,
     Krylov iterations)."""
     idx = np.flatnonzero(active)
@@ -92,7 +92,7 @@ def _solve_on_set(apply_k, rhs: np.ndarray, active: np.ndarray, x0: np.ndarray, 
     m = _restricted(preconditioner, idx, shape) if preconditioner is not None else None
     sol = gmres(op, rhs.ravel()[idx], x0.ravel()[idx], rtol=tol, max_iterations=maxiter, preconditioner=m)
     if not sol.converged:
-        raise ConvergenceError("steady-state GMRES", maxiter, sol.residual, tol)
+        raise ConvergenceError(f"{what} GMRES", maxiter, sol.residual, tol)
     out = np.zeros(shape)
     out.ravel()[idx] = sol.x
     return out, sol.iterations
@@ -100,7 +100,7 @@ def _solve_on_set(apply_k, rhs: np.ndarray, active: np.ndarray, x0: np.ndarray, 
 
 def _solve_bordered(apply_k, gap: np.ndarray, active: np.ndarray, p0: np.ndarray, delta0: float,
                     mean_pressure: float, row_scale: float, tol: float, maxiter: int,
-                    preconditioner=None) -> tuple[np.ndarray, float, int]:
+                    preconditioner=None, what: str = "steady-state") -> tuple[np.ndarray, float, int]:
     """The load-controlled system on the active set in one GMRES solve: the bordered system
 
         [K_AA  -e] [p    ]   [-gap_A         ]
@@ -135,7 +135,7 @@ def _solve_bordered(apply_k, gap: np.ndarray, active: np.ndarray, p0: np.ndarray
     sol = gmres(bordered, rhs, np.concatenate([p0.ravel()[idx], [delta0]]), rtol=tol, max_iterations=maxiter,
                 preconditioner=precondition)
     if not sol.converged:
-        raise ConvergenceError("steady-state GMRES", maxiter, sol.residual, tol)
+        raise ConvergenceError(f"{what} GMRES", maxiter, sol.residual, tol)
     out = np.zeros(shape)
     out.ravel()[idx] = sol.x[:m]
     return out, float(sol.x[m]), sol.iterations
@@ -148,8 +148,8 @@ SETTLING_TOLERANCE = 1e-6
 def solve_contact_active_set(apply_k, gap: np.ndarray, *, control: str, value: float, cell_area: float,
                              initial: np.ndarray | None = None, tolerance: float = 1e-10,
                              max_iterations: int = 2000, max_sets: int = 100,
-                             preconditioner=None, settling_tolerance: float = SETTLING_TOLERANCE
-                             ) -> tuple[np.ndarray, float, int, int]:
+                             preconditioner=None, settling_tolerance: float = SETTLING_TOLERANCE,
+                             what: str = "steady-state") -> tuple[np.ndarray, float, int, int]:
     """Primal-dual active set for p >= 0, h = K p + gap - delta >= 0, p h = 0, with a general
     (non-symmetric) K. Returns (p [Pa], delta [m], Krylov (GMRES) iterations of all solves,
     number of active-set rounds). Raises ConvergenceError with the number of points that still
@@ -162,7 +162,8 @@ def solve_contact_active_set(apply_k, gap: np.ndarray, *, control: str, value: f
     again to ``tolerance`` and checked once more, and from there on every solve is to ``tolerance``
     (so the answer is that of exact rounds: a set that is stable under solves to ``tolerance``).
     A set that comes back, or a round that changes no fewer points than the one before, also ends
-    the inexact rounds (points at p ~ 0 entering and leaving on the solves' error).
+    the inexact rounds (points at p ~ 0 entering and leaving on the solves' error). ``what`` names the
+    problem in a :class:`~viscontact.errors.ConvergenceError`.
     """
     active = initial > 0 if initial is not None and np.any(initial > 0) else gap <= np.quantile(gap, 0.05)
     p = initial.copy() if initial is not None else np.zeros_like(gap)
@@ -179,11 +180,11 @@ def solve_contact_active_set(apply_k, gap: np.ndarray, *, control: str, value: f
             if it == 1 and not np.any(p[active] > 0):
                 p = np.where(active, mean_pressure, 0.0)
             p, delta, kp = _solve_bordered(apply_k, gap, active, p, delta, mean_pressure, row_scale, tol,
-                                           max_iterations, preconditioner)
+                                           max_iterations, preconditioner, what)
             krylov += kp
         else:
             delta = value
-            p, kp = _solve_on_set(apply_k, delta - gap, active, p, tol, max_iterations, preconditioner)
+            p, kp = _solve_on_set(apply_k, delta - gap, active, p, tol, max_iterations, preconditioner, what)
             krylov += kp
         h = apply_k(p) + gap - delta
         scale = np.abs(gap[active]).max() if active.any() else 1.0
@@ -201,7 +202,7 @@ def solve_contact_active_set(apply_k, gap: np.ndarray, *, control: str, value: f
             new_active = new_active | active
         seen.append(active)
         active = new_active
-    raise ConvergenceError("steady-state active set", max_sets, float(changed), 0.0,
+    raise ConvergenceError(f"{what} active set", max_sets, float(changed), 0.0,
                            hint="the contact set did not settle (residual: points still changing set)")
 
 

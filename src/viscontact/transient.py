@@ -227,6 +227,28 @@ class NormalContact:
         p, delta_z, its, u_z, product = _solve_normal(ctx, _plus(ctx.known_uz, cross), pressure, product)
         return p, (self.friction * p if self.friction else np.zeros_like(p)), delta_z, its, u_z, product
 
+    def solve_direct(self, ctx, pressure):
+        """The step's normal problem with the coupling inside the operator, J_inst (K_zz + mu_f K_zx),
+        which is not symmetric: the primal-dual active set with GMRES of the steady solver
+        (:func:`viscontact.steady.solve_contact_active_set`), from ``pressure``. For a coupling too
+        strong for the fixed point. Returns (p, q, delta_z, Krylov iterations, u_z, K_zz p)."""
+        from .steady import solve_contact_active_set
+
+        problem, s, sub = ctx.problem, ctx.problem.solver, ctx.substrate
+        op = sub.elastic_operator("z", ctx.first)
+
+        def apply_k(p: np.ndarray) -> np.ndarray:
+            return op.apply(p) + sub.cross_displacement("z", "x", p, ctx.first, self.friction)
+
+        p, delta_z, krylov, _ = solve_contact_active_set(
+            apply_k, ctx.gap + ctx.known_uz, control=problem.normal.control, value=ctx.value,
+            cell_area=problem.grid.cell_area, initial=pressure, tolerance=min(s.tolerance, 1e-10),
+            max_iterations=s.max_iterations, preconditioner=op.preconditioner,
+            what=f"{self.name} with the coupling in the operator")
+        product = op.apply(p)
+        u_z = product + sub.cross_displacement("z", "x", p, ctx.first, self.friction) + ctx.known_uz
+        return p, self.friction * p, delta_z, krylov, u_z, product
+
     def finish(self, ctx, solution):
         return solution
 
@@ -278,25 +300,71 @@ def _relative_change(new: np.ndarray, old: np.ndarray) -> float:
     return float(np.sum(np.abs(new - old))) / scale if scale > 0 else 0.0
 
 
+#: smallest relaxation weight of the coupling iteration (:func:`relaxation_weight`)
+MIN_RELAXATION = 0.02
+SLOW_CONTRACTION = 0.7
+
+
+def relaxation_weight(weight: float, ratio: float) -> float:
+    """Relaxation weight omega of the coupling iteration x <- (1 - omega) x + omega S(x) after a pass
+    whose change shrank by ``ratio`` (>= 1: it did not shrink) under ``weight``.
+
+    The coupling term mu_f K_zx is odd in x (a skew operator), so about the solution the map S acts
+    on x through a matrix of imaginary eigenvalues +-i gamma, gamma ~ mu_f (1 - 2 nu) / (2 (1 - nu))
+    relative to K_zz: the plain iteration (omega = 1) shrinks the change by gamma, diverging beyond 1.
+    Relaxed, the change shrinks by |1 - omega -+ i omega gamma| = sqrt((1 - omega)^2 + omega^2 gamma^2),
+    smallest, gamma / sqrt(1 + gamma^2) < 1, at omega = 1 / (1 + gamma^2). gamma is read off the
+    observed ratio, gamma^2 = (ratio^2 - (1 - weight)^2) / weight^2; the weight never grows and
+    stays above :data:`MIN_RELAXATION`.
+    """
+    gamma2 = max(ratio**2 - (1.0 - weight) ** 2, 0.0) / weight**2
+    return max(min(weight, 1.0 / (1.0 + gamma2)), MIN_RELAXATION)
+
+
 def solve_coupled(solver: PhaseSolver, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray,
                   product: np.ndarray | None = None) -> StepSolution:
     """Fixed-point iteration of ``solver`` from (p, q) until both change by less than
     ``solver.coupling_tolerance`` (one pass when it is not coupled); ``product``: the step's normal
-    operator applied to p, where known (each pass hands its own on to the next)."""
+    operator applied to p, where known (each pass hands its own on to the next).
+
+    While the change shrinks from pass to pass, each pass starts from the last one's solution (the
+    seed's cases: mu_f (1 - 2 nu) / (2 (1 - nu)) < 0.1). After a pass whose change did not shrink
+    (a large mu_f (1 - 2 nu)), a solver with a direct method for the coupled operator
+    (``solve_direct``: gross sliding) solves the step with it; otherwise (partial slip)
+    under-relaxation turns on (:func:`relaxation_weight`): the next pass starts from a weighted mean
+    of its start and its solution (both satisfy the bounds and the load, so the mean does), which
+    converges where the plain iteration diverges. A converged pass's own solution is returned."""
     settings = ctx.problem.solver
     iterations = 0
-    change = np.inf
+    change = previous = np.inf
+    weight = 1.0
     for count in range(1, settings.max_coupling_iterations + 1):
-        p, q, delta_z, its, u_z, product = solver.solve(ctx, pressure, shear, product)
+        p, q, delta_z, its, u_z, solved_product = solver.solve(ctx, pressure, shear, product)
         iterations += its
         change = _relative_change(p, pressure)
         if solver.solves_shear:
             change = max(change, _relative_change(q, shear))
-        pressure, shear = p, q
         if not solver.coupled or change < settings.coupling_tolerance:
-            return solver.finish(ctx, StepSolution(p, q, float(delta_z), u_z, iterations, count, product))
+            return solver.finish(ctx, StepSolution(p, q, float(delta_z), u_z, iterations, count, solved_product))
+        if change >= SLOW_CONTRACTION * previous:
+            if hasattr(solver, "solve_direct"):  # the coupling is too strong for the fixed point
+                p, q, delta_z, its, u_z, solved_product = solver.solve_direct(ctx, p)
+                return solver.finish(ctx, StepSolution(p, q, float(delta_z), u_z, iterations + its, count + 1,
+                                                       solved_product))
+            weight = relaxation_weight(weight, change / previous)
+        previous = change
+        if weight == 1.0:
+            pressure, shear, product = p, q, solved_product
+        else:
+            pressure = (1.0 - weight) * pressure + weight * p
+            shear = (1.0 - weight) * shear + weight * q
+            product = (None if product is None or solved_product is None
+                       else (1.0 - weight) * product + weight * solved_product)
+    hint = ("raise solver.max_coupling_iterations" if weight == 1.0 else
+            f"it converges slowly (under-relaxed by {weight:.2g}: a large mu_f (1 - 2 nu)); raise "
+            "solver.max_coupling_iterations")
     raise ConvergenceError(f"normal/tangential coupling ({solver.name})", settings.max_coupling_iterations,
-                           change, settings.coupling_tolerance, hint="raise solver.max_coupling_iterations")
+                           change, settings.coupling_tolerance, hint=hint)
 
 
 #: clipped points of the extrapolated warm start whose product is added by direct sums; more: one

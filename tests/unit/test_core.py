@@ -143,3 +143,47 @@ def test_periodic_shift_wraps_the_material_around():
     np.testing.assert_array_equal(moved, np.roll(field, -1, axis=-1))
     np.testing.assert_array_equal(dropped, field[..., :1])
     np.testing.assert_array_equal(shift_material(field, 1)[0][..., -1], 0.0)
+
+
+def test_relaxation_weight_converges_the_rotation_the_coupling_makes():
+    """The coupling's fixed point x <- b - A x with A = gamma [[0, -1], [1, 0]] (the skew form mu_f K_zx
+    takes relative to K_zz) diverges for gamma > 1; relaxed with the weight read off the observed
+    ratio it converges to the solution of (I + A) x = b (numpy's), at gamma / sqrt(1 + gamma^2) a pass."""
+    from viscontact.transient import relaxation_weight
+
+    gamma = 3.0
+    a = gamma * np.array([[0.0, -1.0], [1.0, 0.0]])
+    b = np.array([1.0, 2.0])
+    exact = np.linalg.solve(np.eye(2) + a, b)
+    x = np.zeros(2)
+    plain = [x := b - a @ x for _ in range(3)]
+    ratio = np.linalg.norm(plain[2] - plain[1]) / np.linalg.norm(plain[1] - plain[0])
+    assert ratio == pytest.approx(gamma)  # the plain iteration diverges
+    weight = relaxation_weight(1.0, ratio)
+    assert weight == pytest.approx(1 / (1 + gamma**2))
+    x = np.zeros(2)
+    for _ in range(600):  # 0.949 a pass: 1e-14
+        x = (1 - weight) * x + weight * (b - a @ x)
+    np.testing.assert_allclose(x, exact, rtol=1e-12)
+    # read off under a weight already on, the same gamma gives the same weight
+    observed = np.hypot(1 - 0.5, 0.5 * gamma)
+    assert relaxation_weight(0.5, observed) == pytest.approx(min(0.5, 1 / (1 + gamma**2)))
+
+
+def test_gross_sliding_with_a_coupling_too_strong_for_the_fixed_point():
+    """mu_f = 2.5 on an elastic nu = 0 half-space (mu_f (1 - 2 nu) / (2 (1 - nu)) = 1.25): the fixed
+    point of the normal/tangential coupling diverged (ConvergenceError, whatever the iteration cap).
+    The step is now solved with the coupling in the operator. Truths: Coulomb (F = mu_f W), the load,
+    and the steady solver (an elastic body has no history: the steady state at any speed is the
+    transient's), which assembles its operator from its own kernels."""
+    from viscontact.materials import Material
+
+    pb = sphere_problem(Material.elastic(1.93e6, 0.0), 32, 1.2e-3, mode="gross_sliding", friction=2.5,
+                        speed=0.075, t_end=3 * 75e-6)
+    records = list(simulate(pb))
+    last = records[-1]
+    assert last.friction_force == pytest.approx(2.5 * last.load, rel=1e-14)  # Coulomb: q = mu_f p
+    assert last.load == pytest.approx(pb.normal.history(0.0), rel=1e-9)
+    steady_state = solve_steady(pb)
+    np.testing.assert_allclose(last.pressure, steady_state.pressure, atol=1e-6 * steady_state.pressure.max())
+    assert last.delta_z == pytest.approx(steady_state.delta_z, rel=1e-6)
