@@ -129,6 +129,18 @@ def test_version() -> None:
     assert proc.returncode == 0 and __version__ in proc.stdout
 
 
+def test_python_dash_m_is_the_command(tmp_path: Path) -> None:
+    """``python -m viscontact`` (no console script on the PATH) runs the same command, errors included."""
+    from viscontact import __version__
+
+    proc = subprocess.run([sys.executable, "-m", "viscontact", "--version"], capture_output=True, text=True,
+                          timeout=60, check=False)
+    assert proc.returncode == 0 and __version__ in proc.stdout
+    proc = subprocess.run([sys.executable, "-m", "viscontact", "run", "missing.toml", "--out", "r.nc"], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=60, check=False)
+    assert_one_line_error(proc, "case file")
+
+
 def test_plot_refuses_a_file_that_is_not_a_result(tmp_path: Path) -> None:
     (tmp_path / "notes.nc").write_text("not a netCDF file")
     proc = viscontact("plot", "notes.nc", "--out", "figs", cwd=tmp_path)
