@@ -9,7 +9,7 @@ closed-form contact mechanics and from the time scheme applied to one point:
   Radok 1960), for as long as the run lasts or, when sliding, a material point stays under the
   contact; under displacement control it is a = sqrt(R delta) whatever the modulus (a coarse grid
   there used to give zero load and zero contact). R is the sphere radius, or for a height file the
-  equivalent radius of the gap at its lowest point (no estimate when it is not curved there).
+  equivalent radius of the gap, fitted about its lowest point (no estimate when it is not convex there).
 * **resolution** -- cells across the smallest contact radius: on the cell-centred grid the node
   nearest the centre of the contact may lie dx/sqrt(2) from it, where the Hertz pressure is
   sqrt(1 - dx^2/(2 a^2)) of its peak (:func:`peak_pressure_error`; measured peak errors of the
@@ -65,6 +65,8 @@ MAX_MODULUS_RATIO = 1e8
 LOADED_FRACTION = 1e-6
 #: relative load imbalance sum p dA / W - 1 that :func:`check_solution` refuses
 LOAD_BALANCE_TOLERANCE = 1e-6
+#: shortfall of the last step's time under time.t_end, as a fraction of t_end, above which a run warns
+END_SHORTFALL = 0.01
 #: the time-step check runs the scheme over at most this many steps (the response has settled by then
 #: or the estimate is taken over the first part of the run)
 MAX_CHECKED_STEPS = 4000
@@ -313,6 +315,17 @@ def _check_time(problem: Problem) -> None:
                       ViscontactWarning, stacklevel=3)
 
 
+def _check_end(problem: Problem) -> None:
+    """Warn when the last step falls short of ``time.t_end`` by more than :data:`END_SHORTFALL` of it
+    (the steps are t = k dt, k = 0 .. floor(t_end / dt))."""
+    t_end, dt = problem.time.t_end, problem.time.dt
+    last = (problem.time.n_steps - 1) * dt
+    if t_end - last > END_SHORTFALL * t_end:
+        warnings.warn(f"time.t_end = {t_end:.4g} s is not a multiple of time.dt = {dt:.4g} s: the run ends at "
+                      f"t = {last:.4g} s, {100 * (t_end - last) / t_end:.2g} % short; use time.t_end = "
+                      f"{last + dt:.4g} s (one step more) or a time.dt that divides it", ViscontactWarning, stacklevel=3)
+
+
 def _time_step_suggestion(problem: Problem) -> str:
     """The step (halved until the estimate is under the warning limit) and the scheme to use."""
     from dataclasses import replace
@@ -354,7 +367,7 @@ def check_problem(problem: Problem, *, transient: bool = True) -> None:
     problem
         What is about to be solved.
     transient
-        Also check the time step (not for the steady solver).
+        Also check the time step and that the steps reach ``time.t_end`` (not for the steady solver).
 
     Raises
     ------
@@ -365,6 +378,7 @@ def check_problem(problem: Problem, *, transient: bool = True) -> None:
     _check_space(problem, transient)
     if transient:
         _check_time(problem)
+        _check_end(problem)
 
 
 def check_solution(problem: Problem, pressure: np.ndarray, load: float, value: float, *, where: str = "") -> None:

@@ -254,6 +254,17 @@ def test_wake_warning_at_the_end_gives_the_largest_bias(tmp_path, capsys):
     assert f"up to about {100 * largest:.2g}%" in wake[1]
 
 
+def test_a_run_that_stops_short_of_t_end_says_so(tmp_path, capsys):
+    """The steps are k dt up to t_end: with t_end = 2.1 ms and dt = 0.2 ms the last is at 2.0 ms,
+    4.8 % short of what was asked, which used to pass without a word."""
+    code, err = _guard_run(tmp_path, capsys, t_end=0.0021)
+    assert code == 0 and len(err) == 1 and err[0].startswith("viscontact: warning: time.t_end")
+    assert "ends at t = 0.002 s, 4.8 % short" in err[0]
+    assert float(xr.open_dataset(tmp_path / "r.nc")["t"][-1]) == pytest.approx(0.002, rel=1e-12)
+    code, err = _guard_run(tmp_path, capsys, t_end=0.002)
+    assert code == 0 and err == []
+
+
 def test_guards_nan_and_load_balance():
     pb = sphere_problem(seed_material(), 8, 1e-3)
     p = np.zeros((8, 8))
