@@ -204,3 +204,21 @@ def test_sliding_time_step_suggestion_passes(capsys):
     assert code == 2 and len(err) == 1 and err[0].startswith("viscontact: error: tangential.steps_per_cell:")
     k = int(err[0].split("steps_per_cell = ")[-1].split()[0])
     assert _check_quietly(_problem(case, **{"grid.n": 64, "tangential.steps_per_cell": k})) == []
+
+
+def test_equivalent_radius_of_a_measured_rough_sphere():
+    """A height file of a 10 mm sphere with 1 um rms of roughness (slope 0.02) was refused: the
+    curvature at its lowest cell, the roughness's, gave R = 0.2 mm and a/R = 0.76. The fitted
+    paraboloid gives the sphere's radius (truth: 10 mm; exact for the smooth paraboloid), the case
+    passes the checks and a0 is Hertz's; a tilted plane has none."""
+    from viscontact.results import equivalent_radius, hertz_scale
+
+    smooth = sphere_problem(Material.elastic(1.93e6, 0.3), 64, 1.2e-3, t_end=1e-3, dt=5e-4)
+    noise = np.random.default_rng(3).standard_normal(smooth.gap.shape) * 1e-6
+    rough = replace(smooth, gap=smooth.gap + noise - (smooth.gap + noise).min(), radius=None)
+    assert equivalent_radius(replace(smooth, radius=None)) == pytest.approx(0.01, rel=1e-9)
+    assert equivalent_radius(rough) == pytest.approx(0.01, rel=0.03)
+    guards.check_problem(rough)
+    assert hertz_scale(rough)[0] == pytest.approx(hertz_scale(smooth)[0], rel=0.01)
+    x, _ = smooth.grid.mesh()
+    assert math.isnan(equivalent_radius(replace(smooth, gap=1e-3 * (x - x.min()), radius=None)))
