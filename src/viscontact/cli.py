@@ -297,7 +297,8 @@ def _prepare(args: argparse.Namespace) -> Any:
 
     case = _load(args)
     _check_result_name(args.out)
-    check_output_path(args.out, force=args.force or getattr(args, "resume", False), inputs=[args.case])
+    check_output_path(args.out, force=args.force or getattr(args, "resume", False),
+                      inputs=[args.case, *case.input_files().values()])
     if args.plots:
         _check_figures(args)
     return case

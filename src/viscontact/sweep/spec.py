@@ -168,6 +168,15 @@ class Plan:
     runs: tuple[Run, ...]
     fixed: dict[str, Any]
 
+    def input_files(self) -> list[Path]:
+        """Every file the sweep reads: the sweep file (when read from one), the base case and the
+        files any run's case reads (:meth:`viscontact.case.Case.input_files`)."""
+        files = [Path(self.spec.source)] if self.spec.text else []
+        files.append(self.base_path)
+        for run in self.runs:
+            files.extend(run.case.input_files().values())
+        return list(dict.fromkeys(files))
+
 
 def plan(spec: SweepSpec | str | Path, *, fixed: Mapping[str, Any] | None = None) -> Plan:
     """Check ``spec`` completely and build every run's validated case, computing nothing.
@@ -229,11 +238,11 @@ def run_fingerprint(solver: str, case: Any) -> str:
     """A hash of everything that shapes a run's result: the solver, the validated case and the
     content of every file it reads (a changed height file makes its runs stale)."""
     digest = hashlib.sha256(f"{solver}\n{case.model_dump_json()}".encode())
-    for path in case.input_files():
+    for key, path in case.input_files().items():
         try:
             digest.update(Path(path).read_bytes())
         except OSError as exc:
-            raise ParameterError("indenter.file", f"cannot read {path}: {exc.strerror}") from None
+            raise ParameterError(key, f"cannot read {path}: {exc.strerror}") from None
     return digest.hexdigest()[:16]
 
 
