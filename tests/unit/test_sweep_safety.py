@@ -24,10 +24,14 @@ def no_cluster(monkeypatch):
     monkeypatch.setattr(execute, "cluster_client", refuse)
 
 
-def _sweep_file(folder: Path, base_text: str = BASE) -> Path:
+def _sweep_file(folder: Path, base_text: str = BASE, solver: str = "steady") -> Path:
+    """Two speeds of ``base_text``. With a height file or topography in place of the sphere, the
+    steady solver refuses the grid of BASE (its steady contact at G(inf) does not fit); the
+    transient one (t_end = 0.012 s) accepts it."""
     (folder / "base.toml").write_text(base_text)
     path = folder / "sweep.toml"
-    path.write_text('base = "base.toml"\nsolver = "steady"\n[parameters]\n"tangential.sliding_speed" = [0.05, 0.1]\n')
+    path.write_text(f'base = "base.toml"\nsolver = "{solver}"\n[parameters]\n'
+                    '"tangential.sliding_speed" = [0.05, 0.1]\n')
     return path
 
 
@@ -65,7 +69,7 @@ def test_a_changed_height_file_makes_its_runs_stale(tmp_path):
     np.save(heights, (xx**2 + yy**2) / 0.02)
     base = BASE.replace('shape = "sphere"\nradius = 0.01', 'shape = "surface"\nfile = "h.npy"')
     assert base != BASE
-    spec = _sweep_file(tmp_path, base)
+    spec = _sweep_file(tmp_path, base, "transient")
     before = [run.fingerprint for run in plan(spec).runs]
     assert [run.fingerprint for run in plan(spec).runs] == before  # the same files: reused
     np.save(heights, (xx**2 + yy**2) / 0.03)  # another indenter, same file name
@@ -110,7 +114,7 @@ def test_a_changed_input_file_makes_its_runs_stale(tmp_path, key):
     base, name, write = READERS[key]
     assert base != BASE
     write(tmp_path / name, 0)
-    spec = _sweep_file(tmp_path, base)
+    spec = _sweep_file(tmp_path, base, "transient")
     the_plan = plan(spec)
     assert the_plan.runs[0].case.input_files() == {key: tmp_path / name}
     assert tmp_path / name in the_plan.input_files()
@@ -127,7 +131,7 @@ def test_force_never_replaces_a_netcdf_topography_the_case_reads(tmp_path, capsy
     base, name, write = READERS["indenter.file"]
     topography = tmp_path / name
     write(topography, 0)
-    spec = _sweep_file(tmp_path, base)
+    spec = _sweep_file(tmp_path, base, "transient")
     before = topography.read_bytes()
     source = spec if command == "sweep" else tmp_path / "base.toml"
     assert cli.main([command, str(source), "--out", str(topography), "--force", "--quiet"]) == 2
