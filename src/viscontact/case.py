@@ -51,8 +51,11 @@ from .problem import (
 )
 from .records import StepRecord
 
-__all__ = ["MATERIALS", "MAX_GRID_N", "MIN_GRID_N", "Case", "case_keys", "closest", "load_case", "read_input_file"]
+__all__ = ["FILE_KEYS", "MATERIALS", "MAX_GRID_N", "MIN_GRID_N", "Case", "case_keys", "closest", "load_case",
+           "read_input_file"]
 
+#: the case keys that name a file the case reads (:meth:`Case.input_files`)
+FILE_KEYS = ("material.file", "indenter.file")
 #: smallest and largest grids accepted (cells per side); 16384^2 already needs ~100 GiB of kernels
 MIN_GRID_N, MAX_GRID_N = 8, 16384
 _SLIDING_MODES = ("frictionless_sliding", "gross_sliding", "partial_slip")
@@ -601,9 +604,18 @@ class Case(_Section):
         tan = self.tangential
         return (2.0 * self.grid.half_width / self.grid.n) / tan.sliding_speed / tan.steps_per_cell
 
-    def input_files(self) -> list[Path]:
-        """The files the case reads besides its own text (``indenter.file``)."""
-        return [self._base_dir / self.indenter.file] if self.indenter.shape == "surface" else []
+    def input_files(self) -> dict[str, Path]:
+        """Every file the case reads besides its own text, by the key naming it (:data:`FILE_KEYS`:
+        ``material.file``, the Prony table; ``indenter.file``, the heights of a ``surface`` or
+        ``topography``), relative paths taken from :attr:`base_dir`. A result depends on their
+        content, and a run must never replace one of them."""
+        files = {}
+        for key in FILE_KEYS:
+            section, name = key.split(".")
+            value = getattr(getattr(self, section), name, None)  # material.file: type = "prony" only
+            if value is not None:
+                files[key] = self._base_dir / value
+        return files
 
     def gap(self, grid: Grid) -> np.ndarray:
         """Undeformed gap h0(x, y) [m] on ``grid``: (x^2 + y^2)/(2R) for a smooth sphere, else the

@@ -274,11 +274,15 @@ def _overrides(items: Sequence[str]) -> dict[str, Any]:
 
 
 def _check_figures(args: argparse.Namespace) -> None:
-    """Before any computing: the figure options are valid and matplotlib imports."""
+    """Before any computing: the figure options are valid, matplotlib imports and the ``--plots``
+    folder (of the commands that have one) can be made and is not the result file."""
+    from .output_files import check_output_folder
     from .plotting import check_format, pyplot
 
     check_format(args.fmt, args.dpi)
     pyplot()
+    if getattr(args, "plots", None):
+        check_output_folder(args.plots, option="--plots", files=[args.out])
 
 
 def _load(args: argparse.Namespace) -> Any:
@@ -297,7 +301,8 @@ def _prepare(args: argparse.Namespace) -> Any:
 
     case = _load(args)
     _check_result_name(args.out)
-    check_output_path(args.out, force=args.force or getattr(args, "resume", False), inputs=[args.case])
+    check_output_path(args.out, force=args.force or getattr(args, "resume", False),
+                      inputs=[args.case, *case.input_files().values()])
     if args.plots:
         _check_figures(args)
     return case

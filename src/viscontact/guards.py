@@ -124,7 +124,7 @@ def _creep_ratio(problem: Problem, duration: float) -> float:
         return mat.shear_modulus_instantaneous / mat.shear_modulus_long_term
     creep = mat.creep
     t = np.linspace(0.0, duration, 1001)
-    load = np.array([problem.normal.history(x) for x in t])
+    load = np.interp(t, problem.normal.history.times, problem.normal.history.values)  # history(t) at every t
     compliance = hereditary_integral(creep.long_term, -creep.amplitudes, creep.retardation_times, load, t[1] - t[0])
     return float(np.max(compliance) / (creep.instantaneous * problem.normal.history.reference))
 

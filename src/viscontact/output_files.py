@@ -6,7 +6,8 @@ line:
 * :func:`check_output_path` refuses, before anything is computed, an output path that could not be
   written at the end (read-only folder or mount, immutable file, a path under a regular file) or
   that must not be replaced: an existing file without ``force``, and even with ``force`` anything
-  but a regular result file (never an input file of the run, never a device, FIFO or folder).
+  but a regular result file (never an input file of the run, never a device, FIFO or folder);
+  :func:`check_output_folder` refuses a figure folder (``--plots``) that could not be made.
 * :func:`write_atomically` writes under a temporary name in the destination folder, claims the
   whole size on disk first (``posix_fallocate``), fsyncs and renames over the destination: readers
   see the old file or the complete new one. A full disk is one :class:`OSError` (``ENOSPC``) that
@@ -39,8 +40,8 @@ from typing import BinaryIO
 
 from .resources import format_size
 
-__all__ = ["SpaceClaim", "check_output_path", "disk_full_error", "link_target", "move_atomically", "remove_temporaries",
-           "signals_deferred", "write_atomically"]
+__all__ = ["SpaceClaim", "check_output_folder", "check_output_path", "disk_full_error", "link_target",
+           "move_atomically", "remove_temporaries", "signals_deferred", "write_atomically"]
 
 #: first bytes of the files a result may be: netCDF-4 (HDF5) and classic netCDF
 RESULT_SIGNATURES = (b"\x89HDF\r\n\x1a\n", b"CDF\x01", b"CDF\x02")
@@ -89,13 +90,13 @@ def _is_result_file(path: Path) -> bool:
     return not head or any(head.startswith(sig) for sig in RESULT_SIGNATURES)
 
 
-def _probe_writable(folder: Path, path: Path) -> None:
+def _probe_writable(folder: Path, path: Path, option: str = "--out") -> None:
     """Create and remove a file in ``folder``: the only check a read-only mount, an immutable
     folder or missing permissions cannot fool."""
     try:
         fd, probe = tempfile.mkstemp(prefix=".viscontact-probe-", dir=folder)
     except OSError as exc:
-        raise OSError(exc.errno, f"cannot write in {folder}: {exc.strerror}; choose another folder (--out)",
+        raise OSError(exc.errno, f"cannot write in {folder}: {exc.strerror}; choose another folder ({option})",
                       str(path)) from None
     os.close(fd)
     os.unlink(probe)
@@ -155,6 +156,43 @@ def check_output_path(out: str | Path, *, force: bool = False, inputs: Iterable[
                                   str(path))
     _probe_writable(_existing_folder(target), path)
     return target
+
+
+def check_output_folder(folder: str | Path, *, option: str, files: Iterable[str | Path] = ()) -> Path:
+    """Refuse (before any computing) a folder the figures could not be written into: an existing file
+    that is not a folder, a path under a regular file, a folder (or the existing folder above it)
+    that cannot be written, or one of ``files``, the other files the command reads or writes (its
+    result). A missing folder is fine: it is created when the figures are written.
+
+    Parameters
+    ----------
+    folder
+        The folder for the figures (``--plots DIR``).
+    option
+        The command-line option that gave it, named in the errors.
+    files
+        Paths the folder must not be (it would be a file by the time the figures are written).
+
+    Returns
+    -------
+    Path
+        ``folder``.
+
+    Raises
+    ------
+    OSError
+        (``NotADirectoryError``, ``FileExistsError``, ...) naming ``folder`` and saying why.
+    """
+    path = Path(folder)
+    for name in files:
+        if os.path.realpath(name) == os.path.realpath(path):
+            raise FileExistsError(errno.EEXIST, f"is also the file {name} of this command; give a folder for the "
+                                  f"figures ({option})", str(path))
+    if os.path.lexists(path) and not path.is_dir():
+        raise NotADirectoryError(errno.ENOTDIR, f"exists and is not a folder; give a folder for the figures "
+                                 f"({option})", str(path))
+    _probe_writable(path if path.is_dir() else _existing_folder(path), path, option)
+    return path
 
 
 def remove_temporaries(path: str | Path) -> list[Path]:

@@ -275,6 +275,12 @@ def coarse_start(problem: Problem, speed: float) -> np.ndarray:
     return np.repeat(np.repeat(coarse.pressure, 2, axis=0), 2, axis=1)
 
 
+def check_speed(speed: float) -> None:
+    """A steady state needs a sliding ``speed`` > 0 m/s (:class:`ParameterError` otherwise)."""
+    if not speed > 0:
+        raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s for a steady state, got {speed}")
+
+
 def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.ndarray | None = None,
                  substrate: TermSubstrate | None = None) -> StepRecord:
     """Steady state of sliding at ``speed`` [m/s] (default: the problem's sliding speed).
@@ -288,8 +294,7 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
     the steady state is exact in Fourier space (:mod:`viscontact.steady_periodic`).
     """
     v = problem.tangential.sliding_speed if speed is None else speed
-    if not v > 0:
-        raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s for a steady state, got {v}")
+    check_speed(v)
     grid = problem.grid
     mu = problem.tangential.effective_friction if problem.tangential.mode != "none" else 0.0
     value = problem.normal.history(problem.time.t_end)

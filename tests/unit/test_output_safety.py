@@ -110,6 +110,19 @@ def test_force_never_replaces_the_case_file(tmp_path, capsys):
         assert case.read_bytes() == before
 
 
+@pytest.mark.parametrize("plots", ["the case file", "the result file"])
+def test_plots_target_is_checked_before_the_run(tmp_path, capsys, plots):
+    """Red team item 9: an existing file (or the result itself) as --plots failed only after the run."""
+    case = tmp_path / "case.toml"
+    shutil.copy(CREEP, case)
+    out = tmp_path / "r.nc"
+    target = case if plots == "the case file" else out
+    code = cli.main(["run", str(case), "--out", str(out), "--plots", str(target), "--quiet", *SMALL])
+    err = _err_lines(capsys)
+    assert code == 2 and len(err) == 1 and err[0].startswith(f"viscontact: error: {target}: ") and "(--plots)" in err[0]
+    assert not out.exists() and sorted(p.name for p in tmp_path.iterdir()) == ["case.toml"]
+
+
 def test_force_never_replaces_a_device_or_a_foreign_file(tmp_path, capsys):
     device = tmp_path / "null.nc"
     try:

@@ -141,3 +141,39 @@ def test_set_reaches_every_case_and_names_a_bad_key():
     with pytest.raises(ParameterError) as err:
         load_seed_case("seed_fig10_case2", CASES, 32, (), {"material.shear_modulus_long_trem": 1.0})
     assert err.value.key == "material.shear_modulus_long_trem" and "seed_fig10_case2" in err.value.message
+
+
+def test_reproduce_checks_every_result_path_before_the_first_case(tiny_cases, tmp_path, capsys):
+    """Red team item 11: a foreign result in the way of the first case was replaced and the second
+    refused only after the first was computed, with a message naming a --force reproduce lacks."""
+    import xarray as xr
+
+    first, second, third = (tmp_path / f"{name}.nc" for name in FIGURES["fig10"].cases)
+    xr.Dataset({"load": ("t", [1.0])}, attrs={"case": "title = 'my own run'\n", "version": "0.1.0"}).to_netcdf(first)
+    second.write_text("my notes")
+    before = {path: path.read_bytes() for path in (first, second)}
+    assert cli.main(["reproduce", "fig10", "--out", str(tmp_path), "--cases", str(tiny_cases), "--quiet"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(f"viscontact: error: {first}: exists and is not a result of the "
+                                               "shipped case seed_fig10_case1") and "--force" not in err[0]
+    assert {path: path.read_bytes() for path in before} == before and not third.exists()
+    first.unlink()
+    assert cli.main(["reproduce", "fig10", "--out", str(tmp_path), "--cases", str(tiny_cases), "--quiet"]) == 2
+    assert str(second) in capsys.readouterr().err and not first.exists() and not third.exists()
+
+
+def test_reproduce_replaces_its_own_results_at_any_grid(tiny_cases, tmp_path):
+    """A result of the same shipped case (its case text, overrides appended) is reproduce's own."""
+    import xarray as xr
+
+    from viscontact.reproduce.runner import check_outputs
+
+    name = "seed_fig10_case1"
+    text = (tiny_cases / f"{name}.toml").read_text()
+    case, _ = load_seed_case(name, tiny_cases, 24, ())
+    assert case.text != text and case.text.startswith(text.rstrip("\n"))
+    path = tmp_path / f"{name}.nc"
+    xr.Dataset({"load": ("t", [1.0])}, attrs={"case": case.text, "version": "0.1.0"}).to_netcdf(path)
+    assert check_outputs(tmp_path, {name: text}, [tiny_cases / f"{name}.toml"]) == {name: path}
+    with pytest.raises(FileExistsError, match="not a result of the shipped case seed_fig10_case1"):
+        check_outputs(tmp_path, {name: "# another case file\n" + text}, [])

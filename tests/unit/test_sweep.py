@@ -233,6 +233,12 @@ def test_cli_sweep_resumes_and_plots(tmp_path, transient_sweep, client, monkeypa
     ('"tangential.sliding_speed" = [0.01, -1.0]\n', "steady", "tangential.sliding_speed",
      "tangential.sliding_speed=-1"),
     ('"material.shear_modulus_long_term" = [2e6]\n', "steady", "material.shear_modulus_long_term", "<="),
+    # what the solver refuses before its first step (viscontact.guards, ...): refused before any run
+    ('"material.retardation_time" = [0.04, 0.002]\n', "transient", "tangential.steps_per_cell",
+     "use tangential.steps_per_cell = 16 (time.dt = 0.00025 s) (in the run material.retardation_time=0.002)"),
+    ('"normal.value" = [0.148, 1.0]\n', "steady", "grid.half_width", "(in the run normal.value=1)"),
+    ('"tangential.sliding_speed" = [0.0471, 0]\n[overrides]\n"tangential.mode" = "none"\n"time.dt" = 0.001\n',
+     "steady", "tangential.sliding_speed", "steady state, got 0.0 (in the run tangential.sliding_speed=0)"),
 ])
 def test_bad_sweep_file_fails_before_any_run(tmp_path, monkeypatch, capsys, parameters, solver, key, words):
     import viscontact.sweep.execute as execute
@@ -248,6 +254,19 @@ def test_bad_sweep_file_fails_before_any_run(tmp_path, monkeypatch, capsys, para
     assert err.count("\n") == 1 and err.startswith(f"viscontact: error: {key}: ") and "Traceback" not in err
     assert time.perf_counter() - started < 5
     assert not (tmp_path / "sweep.nc").exists() and not runs_dir(tmp_path / "sweep.nc").exists()
+
+
+def test_plan_leaves_the_warnings_of_the_guards_to_the_runs(tmp_path):
+    """A run the time-step guard only warns about (18.9 % at a retardation time of 12 ms) is planned,
+    even where warnings are errors; the one it refuses (8 ms) is not."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        the_plan = plan(write_sweep(tmp_path, parameters='"material.retardation_time" = [0.04, 0.012]\n'))
+    assert len(the_plan.runs) == 2
+    with pytest.raises(ParameterError, match=r"misses the creep .* \(in the run material.retardation_time=0.008\)"):
+        plan(write_sweep(tmp_path, parameters='"material.retardation_time" = [0.012, 0.008]\n'))
 
 
 def test_missing_base_and_unknown_sweep_key(tmp_path, monkeypatch):

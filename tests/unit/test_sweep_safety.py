@@ -11,7 +11,7 @@ import xarray as xr
 from test_sweep import BASE  # tests/unit is on sys.path
 
 from viscontact import cli
-from viscontact.sweep import plan
+from viscontact.sweep import plan, runs_dir
 
 
 @pytest.fixture
@@ -24,10 +24,14 @@ def no_cluster(monkeypatch):
     monkeypatch.setattr(execute, "cluster_client", refuse)
 
 
-def _sweep_file(folder: Path, base_text: str = BASE) -> Path:
+def _sweep_file(folder: Path, base_text: str = BASE, solver: str = "steady") -> Path:
+    """Two speeds of ``base_text``. With a height file or topography in place of the sphere, the
+    steady solver refuses the grid of BASE (its steady contact at G(inf) does not fit); the
+    transient one (t_end = 0.012 s) accepts it."""
     (folder / "base.toml").write_text(base_text)
     path = folder / "sweep.toml"
-    path.write_text('base = "base.toml"\nsolver = "steady"\n[parameters]\n"tangential.sliding_speed" = [0.05, 0.1]\n')
+    path.write_text(f'base = "base.toml"\nsolver = "{solver}"\n[parameters]\n'
+                    '"tangential.sliding_speed" = [0.05, 0.1]\n')
     return path
 
 
@@ -65,9 +69,85 @@ def test_a_changed_height_file_makes_its_runs_stale(tmp_path):
     np.save(heights, (xx**2 + yy**2) / 0.02)
     base = BASE.replace('shape = "sphere"\nradius = 0.01', 'shape = "surface"\nfile = "h.npy"')
     assert base != BASE
-    spec = _sweep_file(tmp_path, base)
+    spec = _sweep_file(tmp_path, base, "transient")
     before = [run.fingerprint for run in plan(spec).runs]
     assert [run.fingerprint for run in plan(spec).runs] == before  # the same files: reused
     np.save(heights, (xx**2 + yy**2) / 0.03)  # another indenter, same file name
     after = [run.fingerprint for run in plan(spec).runs]
     assert all(a != b for a, b in zip(after, before))
+
+
+# --- every file a case reads: in the fingerprint, never an output (red team, files items 2 and 4) -----
+SIDE, N = 2 * 1.507e-3, 16  # the BASE grid: 16 x 16 cells of [-1.507, 1.507] mm
+
+
+def _write_prony(path: Path, g1: float) -> None:
+    path.write_text(f"tau,g\ninf,0.193e6\n0.004,{g1!r}\n")
+
+
+def _write_topography(path: Path, radius: float) -> None:
+    """Heights (z up) of a sphere cap of ``radius`` [m] on the BASE grid, as SurfaceTopography writes them."""
+    st = pytest.importorskip("SurfaceTopography")
+    x = -SIDE / 2 + (np.arange(N) + 0.5) * SIDE / N
+    st.Topography(-(x[:, None] ** 2 + x[None, :] ** 2) / (2 * radius), (SIDE, SIDE), unit="m").to_netcdf(str(path))
+
+
+#: base cases that read a file, the file's name and how to write two versions of it
+READERS = {
+    "material.file": (BASE.replace('type = "zener"', 'type = "prony"\nfile = "pm.csv"').replace(
+        "shear_modulus_instantaneous = 1930000.0\nshear_modulus_long_term = 193000.0\nretardation_time = 0.04\n", ""),
+        "pm.csv", lambda path, version: _write_prony(path, (1.737e6, 0.8e6)[version])),
+    "indenter.file": (BASE.replace('shape = "sphere"\nradius = 0.01', 'shape = "topography"\nfile = "topo.nc"'),
+                      "topo.nc", lambda path, version: _write_topography(path, (0.01, 0.015)[version])),
+}
+
+
+def test_every_key_naming_a_file_is_an_input_file():
+    from viscontact.case import FILE_KEYS, case_keys
+
+    assert set(FILE_KEYS) == {key for key in case_keys() if key.rsplit(".", 1)[-1] == "file"} == set(READERS)
+
+
+@pytest.mark.parametrize("key", list(READERS))
+def test_a_changed_input_file_makes_its_runs_stale(tmp_path, key):
+    """Red team item 2: a new Prony table (or topography) under the same name was reused as if unchanged."""
+    base, name, write = READERS[key]
+    assert base != BASE
+    write(tmp_path / name, 0)
+    spec = _sweep_file(tmp_path, base, "transient")
+    the_plan = plan(spec)
+    assert the_plan.runs[0].case.input_files() == {key: tmp_path / name}
+    assert tmp_path / name in the_plan.input_files()
+    before = [run.fingerprint for run in the_plan.runs]
+    assert [run.fingerprint for run in plan(spec).runs] == before  # the same files: reused
+    write(tmp_path / name, 1)  # another material or indenter, same file name
+    after = [run.fingerprint for run in plan(spec).runs]
+    assert all(a != b for a, b in zip(after, before))
+
+
+@pytest.mark.parametrize("command", ["run", "steady", "sweep"])
+def test_force_never_replaces_a_netcdf_topography_the_case_reads(tmp_path, capsys, no_cluster, command):
+    """Red team item 4: a netCDF topography looks like a result file; ``--force`` replaced it."""
+    base, name, write = READERS["indenter.file"]
+    topography = tmp_path / name
+    write(topography, 0)
+    spec = _sweep_file(tmp_path, base, "transient")
+    before = topography.read_bytes()
+    source = spec if command == "sweep" else tmp_path / "base.toml"
+    assert cli.main([command, str(source), "--out", str(topography), "--force", "--quiet"]) == 2
+    err = _errors(capsys)
+    assert len(err) == 1 and f"is the input file {topography}" in err[0]
+    assert topography.read_bytes() == before
+
+
+def test_a_foreign_file_where_a_run_file_goes_is_refused_before_any_run(tmp_path, capsys, no_cluster):
+    """A run file is replaced only when it is a result (it used to be a failed run, after computing)."""
+    spec = _sweep_file(tmp_path)
+    out = tmp_path / "sweep.nc"
+    notes = runs_dir(out) / plan(spec).runs[1].name
+    notes.parent.mkdir()
+    notes.write_text("my notes")
+    assert cli.main(["sweep", str(spec), "--out", str(out), "--quiet"]) == 2
+    err = _errors(capsys)
+    assert len(err) == 1 and str(notes) in err[0] and "not a netCDF result file" in err[0]
+    assert notes.read_text() == "my notes" and not out.exists()

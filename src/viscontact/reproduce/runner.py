@@ -4,12 +4,15 @@ Each case of a figure (:data:`~viscontact.reproduce.figures.FIGURES`) runs from 
 (``seed_*.toml``; see their header comments for the seed's parameters), is saved as
 ``<case>.nc`` in the output folder, and the figure is drawn from those Datasets only. A saved
 result whose stored case text is that of the case to run (same overrides) is reused instead of
-being computed again, so ``fig8`` after ``fig6`` and ``fig7`` costs nothing.
+being computed again, so ``fig8`` after ``fig6`` and ``fig7`` costs nothing. ``<case>.nc`` replaces
+only a result of the same shipped case (any other file there is refused, before the first case
+runs: :func:`check_outputs`).
 """
 from __future__ import annotations
 
+import errno
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -21,8 +24,8 @@ if TYPE_CHECKING:
 
     from ..case import Case
 
-__all__ = ["draw", "find_cases_dir", "load_seed_case", "record_every", "reproduce", "run_seed_cases", "stable_steps",
-           "time_scale"]
+__all__ = ["check_outputs", "draw", "find_cases_dir", "load_seed_case", "record_every", "reproduce", "run_seed_cases",
+           "stable_steps", "time_scale"]
 
 #: progress(case_name, steps_done, steps_total)
 Progress = Callable[[str, int, int], None]
@@ -143,19 +146,73 @@ def load_seed_case(name: str, cases_dir: Path, n: int | None, times_tau: Sequenc
     return (case.with_overrides({"output.every": every}) if every != case.output.every else case), note
 
 
-def _cached(path: Path, case_text: str) -> xr.Dataset | None:
-    """The saved result at ``path`` when it is complete and was computed from ``case_text``."""
+def _saved(path: Path) -> xr.Dataset | None:
+    """The result saved at ``path``; None when there is no file or it is not a readable result."""
     if not path.is_file():
         return None
     from ..results import open_result
 
     try:
-        ds = open_result(path)
+        return open_result(path)
     except (OSError, ValueError):
         return None
-    if ds.attrs.get("case") == case_text and int(ds.attrs.get("complete", 0)) == 1:
+
+
+def _cached(path: Path, case_text: str) -> xr.Dataset | None:
+    """The saved result at ``path`` when it is complete and was computed from ``case_text``."""
+    ds = _saved(path)
+    if ds is not None and ds.attrs.get("case") == case_text and int(ds.attrs.get("complete", 0)) == 1:
         return ds
     return None
+
+
+def _made_from(path: Path, shipped_text: str) -> bool:
+    """Whether ``path`` is a result of the case file ``shipped_text``, at any ``--n`` or ``--set`` (its
+    stored case text is that text, the overrides appended as comments)."""
+    ds = _saved(path)
+    return ds is not None and str(ds.attrs.get("case", "")).startswith(shipped_text.rstrip("\n"))
+
+
+def check_outputs(out_dir: Path, shipped: Mapping[str, str], inputs: Iterable[Path]) -> dict[str, Path]:
+    """Refuse, before the first case runs, what ``reproduce`` must not write into ``out_dir``.
+
+    ``out_dir`` must be a folder or one that can be made. Each case's result ``<case>.nc`` is
+    replaced only when it is a result of that shipped case, made at any ``--n`` or ``--set`` (its
+    stored case text starts with the case file's text): any other file there is never replaced, so
+    ``reproduce`` needs no ``--force``. The figures are reproduce's own files and are replaced.
+
+    Parameters
+    ----------
+    out_dir
+        The output folder (``--out``).
+    shipped
+        Case name -> the text of its case file.
+    inputs
+        Files the cases read (never replaced).
+
+    Returns
+    -------
+    dict
+        Case name -> the path of its result.
+
+    Raises
+    ------
+    OSError
+        Naming the path and saying why.
+    """
+    from ..output_files import check_output_folder, check_output_path
+
+    check_output_folder(out_dir, option="--out")
+    inputs = list(inputs)
+    paths = {}
+    for name, text in shipped.items():
+        path = out_dir / f"{name}.nc"
+        if path.is_file() and not _made_from(path, text):
+            raise FileExistsError(errno.EEXIST, f"exists and is not a result of the shipped case {name}; reproduce "
+                                  "replaces only its own results: move it or choose another --out", str(path))
+        check_output_path(path, force=True, inputs=inputs)
+        paths[name] = path
+    return paths
 
 
 def run_seed_cases(names: Sequence[str], out_dir: str | Path, *, n: int | None = None,
@@ -169,7 +226,9 @@ def run_seed_cases(names: Sequence[str], out_dir: str | Path, *, n: int | None =
     names
         Case names (file stems in ``cases/``).
     out_dir
-        Folder for the result files (created).
+        Folder for the result files (created). An existing ``<name>.nc`` is replaced only when it is
+        a result of the same shipped case; anything else is refused before the first case runs
+        (:func:`check_outputs`).
     n
         Override ``grid.n`` (``time.dt`` follows: one cell of sliding per step).
     overrides
@@ -186,18 +245,23 @@ def run_seed_cases(names: Sequence[str], out_dir: str | Path, *, n: int | None =
         Reuse a complete saved result computed from the same case text.
     """
     from .. import api
+    from ..case import read_input_file
     from ..results import write_netcdf
 
     out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
     folder = find_cases_dir(cases_dir)
     cases = {name: load_seed_case(name, folder, n, times_tau, overrides) for name in names}  # errors first
+    shipped = {name: read_input_file(folder / f"{name}.toml", "case file") for name in names}
+    inputs = [folder / f"{name}.toml" for name in names]
+    inputs += [path for case, _ in cases.values() for path in case.input_files().values()]
+    paths = check_outputs(out_dir, shipped, inputs)  # every output, before the first case runs
+    out_dir.mkdir(parents=True, exist_ok=True)
     for name, (_, note) in cases.items():
         if note and notify is not None:
             notify(f"{name}: {note}")
     results: dict[str, xr.Dataset] = {}
     for name, (case, _) in cases.items():
-        path = out_dir / f"{name}.nc"
+        path = paths[name]
         ds = _cached(path, case.text) if reuse else None
         if ds is None:
             callback = (lambda done, total, _name=name: progress(_name, done, total)) if progress else None
@@ -217,7 +281,7 @@ def reproduce(figure: str, out_dir: str | Path, *, n: int | None = None, overrid
     figure
         One of ``fig4``, ``fig6``, ``fig7``, ``fig8``, ``fig9``, ``fig10``.
     out_dir
-        Folder for the figure(s) (PNG) and the results (``<case>.nc``).
+        Folder for the figure(s) (PNG) and the results (``<case>.nc``; see :func:`check_outputs`).
     n
         Override ``grid.n`` for a quick preview (the seed uses 256; ``time.dt`` follows, cut where the
         seed's scheme would be near its stability limit: :func:`stable_steps`).

@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable
 
 from ..errors import ParameterError, ViscontactWarning
-from ..output_files import remove_temporaries
+from ..output_files import check_output_path, remove_temporaries
 from .assemble import assemble, summarize
 from .spec import Plan, Run, SweepSpec, load_sweep, plan
 
@@ -139,10 +139,9 @@ def sweep(spec: SweepSpec | str | Path, client: Any = None, out: str | Path | No
     the_plan = plan(spec, fixed={} if user_set_workers else {"solver.workers": 1})
     if workers is not None and workers < 1:
         raise ParameterError("--workers", f"must be >= 1, got {workers}")
+    inputs = the_plan.input_files()
     if out is not None:
-        from ..output_files import check_output_path
-
-        check_output_path(out, force=force or _holds_sweep(out, spec), inputs=[spec.source, the_plan.base_path])
+        check_output_path(out, force=force or _holds_sweep(out, spec), inputs=inputs)
     folder = runs_dir(out) if out is not None else None
     transient = spec.solver == "transient"
     total = len(the_plan.runs)
@@ -175,8 +174,9 @@ def sweep(spec: SweepSpec | str | Path, client: Any = None, out: str | Path | No
     if todo:
         if folder is not None:
             folder.mkdir(parents=True, exist_ok=True)
-            for k in todo:  # temporary files of writes that were killed half way
-                remove_temporaries(folder / the_plan.runs[k].name)
+            for k in todo:  # temporary files of writes that were killed half way; a run file replaces
+                remove_temporaries(folder / the_plan.runs[k].name)  # a result only, never an input
+                check_output_path(folder / the_plan.runs[k].name, force=True, inputs=inputs)
         tasks = {k: _task(the_plan, the_plan.runs[k], folder) for k in todo}
         with cluster_client(client, workers) as cl:
             _submit_all(cl, tasks, tick)
