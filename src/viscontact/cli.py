@@ -6,7 +6,9 @@ numerical guard) exits with status 1, keeping the steps done in the result file 
 SIGINT / SIGTERM stop a run after its current step, keep the steps done (``complete = 0``) and
 exit with 130 / 143. ``run`` streams its records to ``RESULT.nc.partial`` and renames it to
 ``RESULT.nc`` when it ends (:mod:`viscontact.streaming`); after a kill the steps done are in
-``RESULT.nc.partial``. Every sub-command takes ``--quiet`` (no progress bar, summary or warnings) and
+``RESULT.nc.partial``. ``run``, ``steady`` and ``sweep`` lock their result file
+(:func:`viscontact.output_files.output_lock`) before checking it: a second command writing the same
+file is refused in one line. Every sub-command takes ``--quiet`` (no progress bar, summary or warnings) and
 ``--log-level`` (the messages of the ``viscontact`` logger shown on stderr; warnings are at level
 ``warning``).
 """

@@ -30,7 +30,8 @@ SIGTERM, a failed solve, a full disk) ends the file with ``complete = 0`` and ``
 renames it over ``OUT`` too, unless ``OUT`` holds a complete result: that one is never replaced by
 an incomplete one, and the steps done stay in ``OUT.partial``. After a kill (-9, power) the steps
 done are in ``OUT.partial``; ``--resume`` continues it from the checkpoint's step (dropping any
-later steps).
+later steps), once :func:`check_resumable` has found, reading it only, that it is the streamed file
+of the same case (attribute :data:`FINGERPRINT`, kept until the file is complete).
 """
 from __future__ import annotations
 
