@@ -19,7 +19,6 @@ and steady frictionless sliding at two speeds [m/s]:
 from __future__ import annotations
 
 import errno
-import os
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple
@@ -66,10 +65,14 @@ def prepare(case: CaseLike, *, transient: bool = True) -> tuple[Problem, str]:
     return problem, text
 
 
+#: what :func:`checkpoint_path` adds to the result file's name
+CHECKPOINT_SUFFIX = ".checkpoint.npz"
+
+
 def checkpoint_path(out: str | Path) -> Path:
     """Where ``viscontact run --out OUT --checkpoint-every N`` keeps its checkpoint: ``OUT.checkpoint.npz``."""
     out = Path(out)
-    return out.with_name(out.name + ".checkpoint.npz")
+    return out.with_name(out.name + CHECKPOINT_SUFFIX)
 
 
 def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
@@ -163,8 +166,11 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
         the records are in the streamed file.
     resume
         Continue from the checkpoint (written for the same case) and its streamed file (``OUT.partial``,
-        or an incomplete ``out`` left by a clean stop), dropping the records after the checkpoint's
-        step: the result equals that of an uninterrupted run, bit for bit.
+        or an incomplete ``out`` left by a clean stop; written for the same case too: its
+        ``problem_fingerprint``), dropping the records after the checkpoint's step: the result
+        equals that of an uninterrupted run, bit for bit. Without ``resume``, a checkpoint left by
+        an earlier run is removed once this run's streamed file is created (it could only be
+        resumed with the streamed file this run replaces).
     require_space
         The disk space of every record still to come is claimed before the first step
         (:class:`~viscontact.output_files.SpaceClaim`); True: a disk that cannot hold it is an
@@ -182,8 +188,12 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
     Raises
     ------
     ParameterError
-        Invalid input (before any step is computed), a checkpoint of another case or without its
-        streamed file.
+        Invalid input (before any step is computed), a checkpoint of another case, or a streamed
+        file to resume that is missing, unreadable or written for another case
+        (:func:`viscontact.streaming.check_resumable`; the file is left as it was).
+    BlockingIOError
+        Another process writes ``out`` (:func:`viscontact.output_files.output_lock`, held for the
+        whole run).
     OSError
         The result cannot be written: ``ENOSPC`` naming the file, the size needed and the space
         free (before the first step, or between two records with the steps done kept as below).
@@ -192,31 +202,43 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
         ``stopped_by``) named by ``exc.saved = (path, records)``: ``out``, or ``OUT.partial`` when
         ``out`` holds a complete result (never replaced by an incomplete one).
     """
-    import numpy as np
-
     from .checkpoint import load_checkpoint
-    from .observers import Checkpointer, StreamWriter, WakeWarning
-    from .output_files import link_target, move_atomically
+    from .output_files import link_target, output_lock
     from .records import records_from_arrays
     from .streaming import ResultStream, is_complete_result, partial_path
 
     problem, text = prepare(case)
     out = Path(out)
-    partial, checkpoint = partial_path(out), checkpoint_path(out)
-    start, extra = None, {}
-    if resume:
-        start, extra = load_checkpoint(checkpoint, problem)
-    if resume and "records" in extra:  # the records so far are in the streamed file
-        if not partial.exists() and out.exists() and not is_complete_result(out):
-            os.replace(link_target(out), partial)  # the file a clean stop published
-        try:
-            stream = ResultStream.reopen(partial, problem, int(extra["records"]), require_space=require_space)
-        except FileNotFoundError as exc:
-            raise ParameterError("--resume", f"{exc.filename}: {exc.strerror}") from None
-    else:
-        stream = ResultStream.create(partial, problem, case_text=text, history=history, require_space=require_space)
-        for record in records_from_arrays(extra):  # resuming from a checkpoint of :func:`run`: its records
-            stream.append(record)
+    with output_lock(out):
+        partial, checkpoint = partial_path(out), checkpoint_path(out)
+        start, extra = None, {}
+        if resume:
+            start, extra = load_checkpoint(checkpoint, problem)
+        if resume and "records" in extra:  # the records so far are in the streamed file
+            published = not partial.exists() and out.exists() and not is_complete_result(out)  # by a clean stop
+            stream = ResultStream.reopen(partial, problem, int(extra["records"]), require_space=require_space,
+                                         source=link_target(out) if published else None, history=history)
+        else:
+            stream = ResultStream.create(partial, problem, case_text=text, history=history,
+                                         require_space=require_space)
+            if not resume:  # a checkpoint of an earlier run: its streamed file was just replaced, or is stale
+                checkpoint.unlink(missing_ok=True)
+            for record in records_from_arrays(extra):  # resuming from a checkpoint of :func:`run`: its records
+                stream.append(record)
+        return _stream_run(problem, stream, out, checkpoint, checkpoint_every=checkpoint_every, resume=resume,
+                           start=start, progress=progress, should_stop=should_stop, finishing=finishing)
+
+
+def _stream_run(problem: Problem, stream: Any, out: Path, checkpoint: Path, *, checkpoint_every: int, resume: bool,
+                start: Any, progress: Callable[[int, int], None] | None,
+                should_stop: Callable[[], str | None] | None, finishing: Callable[[], None] | None) -> Written:
+    """The steps of :func:`run_to_file` into the open ``stream``, its end (finished and renamed to
+    ``out``, or stopped: :func:`_stopped`) and the removal of the checkpoint once ``out`` is complete."""
+    import numpy as np
+
+    from .observers import Checkpointer, StreamWriter, WakeWarning
+    from .output_files import move_atomically
+
     observers = [StreamWriter(problem, stream), WakeWarning()]
     if checkpoint_every or resume:
         observers.append(Checkpointer(checkpoint, problem, checkpoint_every,
@@ -231,7 +253,7 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
     if finishing is not None:
         finishing()
     stream.finish()
-    move_atomically(partial, out)
+    move_atomically(stream.path, out)
     checkpoint.unlink(missing_ok=True)
     return Written(out, stream.count)
 

@@ -6,7 +6,9 @@ numerical guard) exits with status 1, keeping the steps done in the result file 
 SIGINT / SIGTERM stop a run after its current step, keep the steps done (``complete = 0``) and
 exit with 130 / 143. ``run`` streams its records to ``RESULT.nc.partial`` and renames it to
 ``RESULT.nc`` when it ends (:mod:`viscontact.streaming`); after a kill the steps done are in
-``RESULT.nc.partial``. Every sub-command takes ``--quiet`` (no progress bar, summary or warnings) and
+``RESULT.nc.partial``. ``run``, ``steady`` and ``sweep`` lock their result file
+(:func:`viscontact.output_files.output_lock`) before checking it: a second command writing the same
+file is refused in one line. Every sub-command takes ``--quiet`` (no progress bar, summary or warnings) and
 ``--log-level`` (the messages of the ``viscontact`` logger shown on stderr; warnings are at level
 ``warning``).
 """
@@ -294,13 +296,24 @@ def _load(args: argparse.Namespace) -> Any:
     return case.with_overrides(overrides) if overrides else case
 
 
+@contextmanager
+def _writing(out: str, derived: Sequence[str] = ()) -> Iterator[None]:
+    """While the body runs, this process alone writes the result file ``out`` (a ``*.nc`` name):
+    :func:`viscontact.output_files.output_lock`, which first checks the names of the files
+    ``derived`` (suffixes) written beside it. Enter it before ``out`` is checked."""
+    from .output_files import output_lock
+
+    _check_result_name(out)
+    with output_lock(out, derived):
+        yield
+
+
 def _prepare(args: argparse.Namespace) -> Any:
     """The case with its overrides, after checking (before any computing) that the result file may
-    be written and that plotting is available."""
+    be written and that plotting is available (inside :func:`_writing`)."""
     from .output_files import check_output_path
 
     case = _load(args)
-    _check_result_name(args.out)
     check_output_path(args.out, force=args.force or getattr(args, "resume", False),
                       inputs=[args.case, *case.input_files().values()])
     if args.plots:
@@ -336,7 +349,19 @@ def _finish(ds: Any, args: argparse.Namespace, started: float) -> None:
 
 def _history_note(args: argparse.Namespace) -> str:
     """``by the command: viscontact ...`` for the result's ``history`` attribute ('' when unknown)."""
-    return f"by the command: {PROG} {shlex.join(args.argv)}" if getattr(args, "argv", None) is not None else ""
+    return f"by the command: {PROG} {_command_line(args.argv)}" if getattr(args, "argv", None) is not None else ""
+
+
+def _command_line(argv: Sequence[str]) -> str:
+    """The arguments ``argv`` as one shell-quoted line of valid UTF-8 (what a result's ``history``
+    and the log record): a byte of an argument that is not UTF-8 (which Python carries as a lone
+    surrogate) is written ``\\xNN``."""
+    line = shlex.join(argv)
+    try:
+        raw = line.encode("utf-8", "surrogateescape")
+    except UnicodeEncodeError:  # a lone surrogate that is no escaped byte (an argv given in Python)
+        raw = line.encode("utf-8", "backslashreplace")
+    return raw.decode("utf-8", "backslashreplace")
 
 
 def _report(ds: Any, records: int, args: argparse.Namespace, started: float) -> None:
@@ -353,14 +378,24 @@ def _report(ds: Any, records: int, args: argparse.Namespace, started: float) -> 
 def _cmd_run(args: argparse.Namespace) -> int:
     """The records are streamed to RESULT.nc.partial as the run goes and renamed to RESULT.nc at the
     end (:func:`viscontact.api.run_to_file`): memory does not grow with the number of steps."""
+    from .api import CHECKPOINT_SUFFIX
+    from .streaming import PARTIAL_SUFFIX
+
+    started = time.perf_counter()
+    if args.checkpoint_every < 0:
+        raise ParameterError("--checkpoint-every", f"must be >= 0 steps, got {args.checkpoint_every}")
+    with _writing(args.out, (PARTIAL_SUFFIX, CHECKPOINT_SUFFIX)):
+        return _run_locked(args, started)
+
+
+def _run_locked(args: argparse.Namespace, started: float) -> int:
+    """``viscontact run`` once this process alone writes ``--out`` (:func:`_writing`): an
+    ``OUT.partial`` there is the steps of an interrupted run, not of a run going on."""
     from . import api
     from .resources import check_resources, describe
     from .results import open_result
     from .streaming import partial_path
 
-    started = time.perf_counter()
-    if args.checkpoint_every < 0:
-        raise ParameterError("--checkpoint-every", f"must be >= 0 steps, got {args.checkpoint_every}")
     case = _prepare(args)
     partial = partial_path(args.out)
     if partial.exists() and not (args.force or args.resume):
@@ -433,8 +468,9 @@ def _cmd_steady(args: argparse.Namespace) -> int:
 
     started = time.perf_counter()
     speeds = _parse_positive(args.speeds, "--speeds", "m/s", "0.01,0.1,1") if args.speeds else None
-    case = _prepare(args)
-    _finish(api.run_steady(case, speeds), args, started)
+    with _writing(args.out):
+        case = _prepare(args)
+        _finish(api.run_steady(case, speeds), args, started)
     return 0
 
 
@@ -556,7 +592,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             args = _parser().parse_args(argv)
             args.argv = list(sys.argv[1:] if argv is None else argv)
             _configure_logging(args.log_level, args.quiet)
-            log.debug("%s %s: %s", PROG, _version(), shlex.join(args.argv))
+            log.debug("%s %s: %s", PROG, _version(), _command_line(args.argv))
             with _warnings_as_lines(args.quiet):
                 return args.handler(args)
     except ParameterError as exc:

@@ -14,6 +14,9 @@ line:
   names the file, the size needed and the space free; no temporary file is left behind.
 * :func:`signals_deferred`: SIGINT and SIGTERM arriving while a file is written are held and
   delivered once it is complete, so a finished run is never discarded half-written.
+* :func:`output_lock`: an advisory lock (``flock``) on ``OUT.lock`` held for the whole command, taken
+  before the output is checked: a second command writing the same file is refused in one line
+  naming the process that writes it, instead of replacing that process's file under it.
 * :class:`SpaceClaim`: the disk space a file growing as the run goes (a streamed result) will
   need, claimed before the run in an unnamed file and handed back piece by piece just before each
   write, which first checks that its piece is free: a full disk stops the run cleanly, between two
@@ -25,7 +28,6 @@ target (the link itself is kept), and the checks apply to the target.
 from __future__ import annotations
 
 import errno
-import fcntl
 import glob
 import os
 import shutil
@@ -40,14 +42,26 @@ from typing import BinaryIO
 
 from .resources import format_size
 
-__all__ = ["SpaceClaim", "check_output_folder", "check_output_path", "disk_full_error", "link_target",
-           "move_atomically", "remove_temporaries", "signals_deferred", "write_atomically"]
+try:
+    import fcntl
+except ImportError:  # pragma: no cover - Windows: no inode flags, no advisory lock
+    fcntl = None  # type: ignore[assignment]
+
+__all__ = ["SpaceClaim", "check_derived_names", "check_output_folder", "check_output_path", "disk_full_error",
+           "link_target", "lock_path", "move_atomically", "output_lock", "remove_temporaries", "signals_deferred",
+           "write_atomically"]
 
 #: first bytes of the files a result may be: netCDF-4 (HDF5) and classic netCDF
 RESULT_SIGNATURES = (b"\x89HDF\r\n\x1a\n", b"CDF\x01", b"CDF\x02")
 #: ``FS_IOC_GETFLAGS`` and the inode flags that forbid replacing a file (Linux ``chattr +i / +a``)
 _FS_IOC_GETFLAGS, _FS_IMMUTABLE_FL, _FS_APPEND_FL = 0x80086601, 0x10, 0x20
 _DISK_FULL = (errno.ENOSPC, errno.EDQUOT)
+#: what :func:`write_atomically` adds to a file's name for its temporary file (``tempfile.mkstemp``
+#: appends 8 random characters to the prefix ``NAME.tmp``)
+TEMPORARY_SUFFIX = ".tmp"
+TEMPORARY_RANDOM = 8
+#: the suffix of the lock file of :func:`output_lock`
+LOCK_SUFFIX = ".lock"
 
 
 def link_target(path: Path) -> Path:
@@ -68,6 +82,8 @@ def _existing_folder(path: Path) -> Path:
 
 def _protected_flags(path: Path) -> str:
     """'immutable' / 'append-only' when the file carries that inode flag, else ''."""
+    if fcntl is None:  # pragma: no cover - Windows
+        return ""
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     except OSError:
@@ -199,10 +215,132 @@ def remove_temporaries(path: str | Path) -> list[Path]:
     """Remove what writes of ``path`` killed half way (SIGKILL, power loss) left: ``NAME.tmp*`` beside
     it. Call it only when no other process writes ``path`` (resuming a run or a sweep)."""
     target = link_target(Path(path))
-    found = list(target.parent.glob(f"{glob.escape(target.name)}.tmp*")) if target.parent.is_dir() else []
+    found = list(target.parent.glob(f"{glob.escape(target.name)}{TEMPORARY_SUFFIX}*")) if target.parent.is_dir() else []
     for tmp in found:
         tmp.unlink(missing_ok=True)
     return found
+
+
+def check_derived_names(out: str | Path, suffixes: Iterable[str] = (), plain: Iterable[str] = ()) -> None:
+    """Refuse, before any computing, an ``out`` whose files written beside it would be longer than
+    the folder's longest file name (``NAME_MAX``): ``out`` followed by each of ``suffixes`` (e.g.
+    ``.partial``; ``out`` itself too), each written atomically (:func:`write_atomically`: plus its
+    temporary suffix), and by each of ``plain`` (written as they are).
+
+    Raises
+    ------
+    OSError
+        ``ENAMETOOLONG`` naming ``out``, the longest suffix and the limit.
+    """
+    path = Path(out)
+    target = link_target(path)
+    try:
+        limit = os.pathconf(_existing_folder(target), "PC_NAME_MAX")
+    except (OSError, ValueError, AttributeError):  # no such limit known (or not POSIX): the usual one
+        limit = 255
+    temporary = f"{TEMPORARY_SUFFIX}{'X' * TEMPORARY_RANDOM}"
+    endings = [f"{suffix}{temporary}" for suffix in ("", *suffixes)] + list(plain)
+    longest = max(endings, key=lambda ending: len(os.fsencode(ending)))
+    size = len(os.fsencode(target.name + longest))
+    if size > limit:
+        raise OSError(errno.ENAMETOOLONG, f"is too long: the run also writes its name followed by {longest!r} "
+                      f"({size} bytes) where the folder allows {limit}; choose a shorter --out", str(path))
+
+
+def lock_path(out: str | Path) -> Path:
+    """The lock file of :func:`output_lock`: ``OUT.lock`` beside the file ``out`` names (beside its
+    target when ``out`` is a symbolic link, as the streamed ``OUT.partial``)."""
+    target = link_target(Path(out))
+    return target.with_name(target.name + LOCK_SUFFIX)
+
+
+#: the lock files this process holds (:func:`output_lock` is re-entrant within a process)
+_HELD: dict[str, int] = {}
+
+
+@contextmanager
+def output_lock(out: str | Path, derived: Iterable[str] = ()) -> Iterator[Path | None]:
+    """Hold an exclusive advisory lock on the output ``out`` while the body runs: ``flock`` on
+    :func:`lock_path` (created, holding this process's id, and removed at the end). Take it before
+    ``out`` (or the files beside it) is checked or written, so that what the checks see stays true.
+    First the names of the lock file and of the files ``derived`` (suffixes of ``out``, e.g.
+    ``.partial``) written beside ``out`` are checked (:func:`check_derived_names`).
+
+    A second process asking for the lock of the same ``out`` is refused at once; within one process
+    the lock is re-entrant. A lock file left by a killed process holds no lock and is reused. A
+    folder of ``out`` that does not exist is created for the lock file (and removed at the end when
+    left empty). Without ``fcntl`` (Windows) nothing is locked. Yields the lock file (None when
+    nothing is locked).
+
+    Raises
+    ------
+    BlockingIOError
+        Another process holds the lock: ``"is being written by another viscontact process (pid N)"``,
+        naming ``out``.
+    OSError
+        The lock file cannot be created (read-only folder, a path under a regular file), or a name
+        is too long (``ENAMETOOLONG``), naming ``out``.
+    """
+    path = Path(out)
+    check_derived_names(path, derived, plain=(LOCK_SUFFIX,))
+    lock = lock_path(path)
+    key = os.path.abspath(lock)
+    if fcntl is None:  # pragma: no cover - Windows
+        yield None
+        return
+    if key in _HELD:  # this process holds it already
+        _HELD[key] += 1
+        try:
+            yield lock
+        finally:
+            _HELD[key] -= 1
+        return
+    existing = _existing_folder(link_target(path))
+    _probe_writable(existing, path)
+    lock.parent.mkdir(parents=True, exist_ok=True)
+    fd = _acquire(lock, path)
+    _HELD[key] = 1
+    try:
+        yield lock
+    finally:
+        del _HELD[key]
+        lock.unlink(missing_ok=True)  # while still held: a process waiting on this file retries (_acquire)
+        os.close(fd)
+        folder = lock.parent
+        while folder != existing and folder.is_dir() and not any(folder.iterdir()):
+            try:
+                folder.rmdir()
+            except OSError:  # another process writes there now
+                break
+            folder = folder.parent
+
+
+def _acquire(lock: Path, out: Path) -> int:
+    """Open and ``flock`` the lock file ``lock`` of ``out``; its file descriptor. A file removed or
+    replaced between the open and the lock (its holder ended) is opened again."""
+    while True:
+        fd = os.open(lock, os.O_RDWR | os.O_CREAT | getattr(os, "O_CLOEXEC", 0), 0o644 & ~_umask())
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            try:
+                holder = os.read(fd, 32).decode("ascii", "replace").strip() or "unknown"
+            finally:
+                os.close(fd)
+            raise BlockingIOError(errno.EWOULDBLOCK, f"is being written by another viscontact process (pid {holder}); "
+                                  "wait for it to end or choose another --out", str(out)) from None
+        except BaseException:
+            os.close(fd)
+            raise
+        try:
+            same = os.path.samestat(os.fstat(fd), os.stat(lock))
+        except FileNotFoundError:
+            same = False
+        if same:
+            os.ftruncate(fd, 0)
+            os.write(fd, f"{os.getpid()}\n".encode())
+            return fd
+        os.close(fd)  # the holder removed it after we opened it: lock the file at that path now
 
 
 def disk_full_error(path: Path, needed: int, what: str = "") -> OSError:
@@ -343,7 +481,7 @@ def write_atomically(path: str | Path, content: bytes | memoryview | Callable[[B
         size = memoryview(content).nbytes
     with signals_deferred():
         target.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f"{target.name}.tmp", dir=target.parent)
+        fd, tmp = tempfile.mkstemp(prefix=f"{target.name}{TEMPORARY_SUFFIX}", dir=target.parent)
         try:
             with os.fdopen(fd, "wb") as fh:
                 if size:

@@ -220,8 +220,15 @@ def global_attrs(problem: Problem, case_text: str = "") -> dict[str, Any]:
         "Conventions": "CF-1.8",
         "source": f"viscontact {__version__}: boundary elements with DC-FFT convolutions",
         "references": REFERENCES,
-        "history": f"{datetime.now(timezone.utc).strftime('%Y-%m-%dT%H:%M:%SZ')} created by viscontact {__version__}",
+        "history": history_stamp("created"),
     }
+
+
+def history_stamp(action: str) -> str:
+    """``<UTC time> <action> by viscontact <version>``: an entry of a result's ``history`` attribute."""
+    from . import __version__
+
+    return f"{datetime.now(timezone.utc).strftime('%Y-%m-%dT%H:%M:%SZ')} {action} by viscontact {__version__}"
 
 
 def _substrate_attrs(problem: Problem) -> dict[str, Any]:

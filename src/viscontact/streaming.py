@@ -30,7 +30,8 @@ SIGTERM, a failed solve, a full disk) ends the file with ``complete = 0`` and ``
 renames it over ``OUT`` too, unless ``OUT`` holds a complete result: that one is never replaced by
 an incomplete one, and the steps done stay in ``OUT.partial``. After a kill (-9, power) the steps
 done are in ``OUT.partial``; ``--resume`` continues it from the checkpoint's step (dropping any
-later steps).
+later steps), once :func:`check_resumable` has found, reading it only, that it is the streamed file
+of the same case (attribute :data:`FINGERPRINT`, kept until the file is complete).
 """
 from __future__ import annotations
 
@@ -49,11 +50,15 @@ from .problem import Problem
 from .records import StepRecord
 from .resources import recorded_steps, stream_bytes
 
-__all__ = ["ResultStream", "is_complete_result", "layout_bytes", "partial_path"]
+__all__ = ["FINGERPRINT", "ResultStream", "check_resumable", "is_complete_result", "layout_bytes", "partial_path"]
 
 #: what to do when the disk fills during a streamed run (the end of the error line)
 DISK_FULL_HINT = ("free some space or write elsewhere (--out); the steps done are kept (complete = 0) and "
                   "--resume continues from the last checkpoint (--checkpoint-every)")
+
+
+#: what :func:`partial_path` adds to the result file's name
+PARTIAL_SUFFIX = ".partial"
 
 
 def partial_path(out: str | Path) -> Path:
@@ -61,7 +66,7 @@ def partial_path(out: str | Path) -> Path:
     ``out`` names (beside its target when ``out`` is a symbolic link: the final rename replaces the
     target, and must stay on its filesystem)."""
     out = link_target(Path(out))
-    return out.with_name(out.name + ".partial")
+    return out.with_name(out.name + PARTIAL_SUFFIX)
 
 
 #: threads compressing the queued record's fields while the run computes the next step (zlib releases
@@ -104,11 +109,12 @@ def is_complete_result(path: str | Path) -> bool:
         return False
 
 
-def layout_bytes(problem: Problem, *, case_text: str = "", history: str = "") -> bytes:
+def layout_bytes(problem: Problem, *, case_text: str = "", history: str = "",
+                 attrs: dict[str, Any] | None = None) -> bytes:
     """The streamed result file of no record (its layout), as bytes: what
     ``to_dataset([], problem).to_netcdf(engine="h5netcdf", unlimited_dims=("t",),
     encoding=netcdf_encoding(ds, streamed=True))`` writes, written with h5netcdf alone. ``history``
-    is appended to the attribute ``history``.
+    is appended to the attribute ``history``; ``attrs`` are further global attributes.
 
     xarray's encoding of these variables, done here: booleans stored as ``int8`` with the attribute
     ``dtype = "bool"``, floating data variables with ``_FillValue = NaN``, coordinates with none,
@@ -121,7 +127,8 @@ def layout_bytes(problem: Problem, *, case_text: str = "", history: str = "") ->
 
     from .results import result_layout, scale_variables, variable_encoding
 
-    data_vars, coords, attrs = result_layout([], problem, case_text=case_text)
+    data_vars, coords, layout_attrs = result_layout([], problem, case_text=case_text)
+    attrs = {**layout_attrs, **(attrs or {})}
     attrs["history"] = f"{attrs.get('history', '')} {history}".strip()
     variables = {**data_vars, **coords, **scale_variables(attrs)}  # the order of the Dataset's variables
     auxiliary = {name: dims for name, (dims, _, _) in coords.items() if name not in dims}
@@ -157,6 +164,55 @@ def layout_bytes(problem: Problem, *, case_text: str = "", history: str = "") ->
             if data.size:
                 var[...] = data
     return buffer.getvalue()
+
+
+#: the global attribute of a streamed file that is not complete: the fingerprint of its problem
+#: (:func:`viscontact.checkpoint.problem_fingerprint`), which a resume checks against its checkpoint's
+FINGERPRINT = "problem_fingerprint"
+
+
+def check_resumable(path: str | Path, problem: Problem, records: int) -> None:
+    """Check, reading it only, that ``path`` is the streamed result file of ``problem`` holding at least
+    ``records`` records: what :meth:`ResultStream.reopen` continues.
+
+    Raises
+    ------
+    ParameterError
+        (key ``--resume``) One line naming ``path``: missing, unreadable (truncated, not HDF5), not a
+        streamed result (a steady result, a foreign netCDF file), written for another case or other
+        output settings (its :data:`FINGERPRINT`), or too few records.
+    """
+    import h5py
+
+    from .checkpoint import problem_fingerprint
+    from .errors import ParameterError
+
+    def refuse(why: str) -> ParameterError:
+        return ParameterError("--resume", f"{path}: {why}")
+
+    start_over = "start over with --force instead of --resume (it is then replaced)"
+    if not os.path.exists(path):
+        raise refuse("is missing: the streamed records of the checkpointed run are not there; run without --resume")
+    try:
+        with h5py.File(path, "r") as f:
+            t = f.get("t")
+            if not isinstance(t, h5py.Dataset) or t.maxshape[:1] != (None,) or "step" not in f:
+                raise refuse(f"is not the streamed result of a viscontact run; {start_over}")
+            if FINGERPRINT not in f.attrs:
+                raise refuse(f"is not the unfinished streamed result of a viscontact run (it has no {FINGERPRINT}); "
+                             f"{start_over}")
+            if _text(f.attrs[FINGERPRINT]) != problem_fingerprint(problem):
+                raise refuse(f"was written for another case or other output settings than the checkpoint; {start_over}")
+            count = int(t.shape[0])
+    except OSError as exc:
+        raise refuse(f"cannot be read as a netCDF-4 file ({' '.join(str(exc).split())[:120]}); {start_over}") from None
+    if count < records:
+        raise refuse(f"holds {count} records, the checkpoint {records}; run without --resume")
+
+
+def _text(value: Any) -> str:
+    """An HDF5 string attribute as ``str`` (h5py returns bytes for some)."""
+    return value.decode("utf-8", "replace") if isinstance(value, bytes) else str(value)
 
 
 class ResultStream:
@@ -210,7 +266,8 @@ class ResultStream:
     @classmethod
     def create(cls, path: str | Path, problem: Problem, *, case_text: str = "", history: str = "",
                require_space: bool = True) -> ResultStream:
-        """A new file at ``path`` (replaced if there) holding no step yet (``complete = 0``);
+        """A new file at ``path`` (replaced if there) holding no step yet (``complete = 0``) and the
+        fingerprint of ``problem`` (attribute :data:`FINGERPRINT`, checked by :meth:`reopen`);
         ``history`` is appended to its ``history`` attribute. The disk space of every record is
         claimed (``require_space``: or the disk-full error; else go on without a claim).
 
@@ -220,9 +277,12 @@ class ResultStream:
             The file cannot be written, or (``ENOSPC``) the disk cannot hold the result: no file
             is left behind.
         """
+        from .checkpoint import problem_fingerprint
+
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
-        write_atomically(path, layout_bytes(problem, case_text=case_text, history=history), hint=DISK_FULL_HINT)
+        write_atomically(path, layout_bytes(problem, case_text=case_text, history=history,
+                                            attrs={FINGERPRINT: problem_fingerprint(problem)}), hint=DISK_FULL_HINT)
         try:
             return cls(path, problem, require_space=require_space)
         except BaseException:
@@ -230,26 +290,37 @@ class ResultStream:
             raise
 
     @classmethod
-    def reopen(cls, path: str | Path, problem: Problem, records: int, *, require_space: bool = True) -> ResultStream:
+    def reopen(cls, path: str | Path, problem: Problem, records: int, *, require_space: bool = True,
+               source: str | Path | None = None, history: str = "") -> ResultStream:
         """Continue the file at ``path`` after its first ``records`` records (later ones are dropped).
+
+        The file (``source``, renamed to ``path`` once checked, when given) is first checked read-only
+        (:func:`check_resumable`): nothing is changed in a file that is refused. Reopened, it loses
+        ``stopped_by`` (the run goes on) and its ``history`` records the resume (with ``history``,
+        e.g. the command).
 
         Raises
         ------
-        FileNotFoundError
-            No file at ``path``, or it holds fewer than ``records`` records.
+        ParameterError
+            (key ``--resume``) No such file, a file that is not the streamed result of ``problem``
+            (another case, not a result, unreadable) or that holds fewer than ``records`` records:
+            one line naming the file.
         """
+        from .results import history_stamp
+
         path = Path(path)
-        if not path.exists():
-            raise FileNotFoundError(errno.ENOENT, "the streamed records of the checkpointed run are missing; "
-                                    "run without --resume", str(path))
+        source = path if source is None else Path(source)
+        check_resumable(source, problem, records)
+        if source != path:
+            os.replace(source, path)
         stream = cls(path, problem, require_space=require_space)
-        if stream.count < records:
-            stream.close()
-            raise FileNotFoundError(errno.ENOENT, f"holds {stream.count} records, the checkpoint {records}; "
-                                    "run without --resume", str(path))
         with signals_deferred():
             stream._resize(records)
-            stream.file.attrs["complete"] = 0
+            attrs = stream.file.attrs
+            attrs["complete"] = 0
+            if "stopped_by" in attrs:
+                del attrs["stopped_by"]
+            attrs["history"] = f"{_text(attrs.get('history', ''))}; {history_stamp('resumed')} {history}".strip()
             stream.flush()
         return stream
 
@@ -379,6 +450,8 @@ class ResultStream:
                 f.attrs[key] = value
                 if key in SCALES and key in f:  # also a scalar variable (to_dataset's scales)
                     f[key][()] = float(value)
+            if final["complete"] == 1 and FINGERPRINT in f.attrs:  # nothing to resume: the in-memory result's attributes
+                del f.attrs[FINGERPRINT]
             subsurface = _FileRecords(self.along_t, t) if self.problem.output.subsurface_depths and len(t) else None
             if subsurface is not None:
                 from .results import subsurface_variables

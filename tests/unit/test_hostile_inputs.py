@@ -159,3 +159,13 @@ def test_damaged_checkpoint_is_one_line(stopped_run, capsys, damage):
     code, err = _main(capsys, "run", case, "--out", out, "--resume", *SMALL)
     _one_line(code, err, "--resume")
     assert str(ckpt) in err[0]
+
+
+def test_a_byte_that_is_not_utf8_in_the_command_line_is_escaped_in_history(tmp_path, capsys):
+    """A file name or --set value with a byte that is not UTF-8 (Python carries it as a lone
+    surrogate) is written into the result's history as \\xNN, not a UnicodeEncodeError."""
+    out = tmp_path / "\udcff.nc"  # the file name b"\xff.nc"
+    code, err = _main(capsys, "run", ROOT / "cases" / "creep_indentation.toml", "--out", out, *SMALL, "--quiet")
+    assert code == 0, err
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        assert f"--out '{tmp_path}/\\xff.nc' --set" in ds.attrs["history"]

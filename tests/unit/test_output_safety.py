@@ -497,3 +497,66 @@ def test_resume_removes_what_a_killed_write_left(tmp_path):
     removed = output_files.remove_temporaries(out) + output_files.remove_temporaries(str(out) + ".checkpoint.npz")
     assert sorted(removed) == sorted(stale) and other.exists()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["x.nc.tmp123"]
+
+
+# --- one writer per output (red team item 3), names that fit (item 12) ---------------------------
+HOLD_LOCK = """
+import sys, time
+from viscontact.output_files import output_lock
+with output_lock(sys.argv[1]):
+    print("locked", flush=True)
+    time.sleep(120)
+"""
+
+
+@pytest.fixture
+def locked_by_another_process(tmp_path):
+    """A process holding the output lock of ``tmp_path / "r.nc"``, as a run writing it does."""
+    proc = subprocess.Popen([sys.executable, "-c", HOLD_LOCK, str(tmp_path / "r.nc")], stdout=subprocess.PIPE,
+                            text=True, env={**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)})
+    assert proc.stdout.readline().strip() == "locked"
+    yield proc
+    proc.kill()
+    proc.wait()
+
+
+@pytest.mark.parametrize("command", [("run",), ("run", "--force"), ("run", "--resume"), ("run", "--dry-run"),
+                                     ("steady", "--force")])
+def test_a_second_command_on_an_output_being_written_is_refused(tmp_path, capsys, locked_by_another_process,
+                                                                command):
+    """Whatever the options: one line naming the file and the process writing it, exit 2, and
+    nothing of what that process writes touched (not the "interrupted run" message either: the
+    run is not interrupted)."""
+    out = tmp_path / "r.nc"
+    out.write_bytes(b"")  # what the other process has written so far
+    (tmp_path / "r.nc.partial").write_bytes(b"steps being written")
+    code = cli.main([command[0], str(CREEP), "--out", str(out), *command[1:], *SMALL[:4], "--quiet"])
+    err = _err_lines(capsys)
+    assert code == 2 and len(err) == 1, err
+    assert err[0] == (f"viscontact: error: {out}: is being written by another viscontact process "
+                      f"(pid {locked_by_another_process.pid}); wait for it to end or choose another --out")
+    assert out.read_bytes() == b"" and (tmp_path / "r.nc.partial").read_bytes() == b"steps being written"
+
+
+def test_the_lock_is_released_and_its_file_removed_at_the_end(tmp_path, capsys):
+    """A lock file left by a killed run (no process holds it) does not stop the next run; each
+    run removes its lock file, and a folder it created only for it."""
+    out = tmp_path / "r.nc"
+    (tmp_path / "r.nc.lock").write_text("4194305\n")  # left by a run killed with -9
+    assert cli.main(["run", str(CREEP), "--out", str(out), *SMALL, "--quiet"]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.nc"]
+    code = cli.main(["run", str(tmp_path / "missing.toml"), "--out", str(tmp_path / "new" / "r.nc"), "--quiet"])
+    assert code == 2 and not (tmp_path / "new").exists()
+
+
+def test_output_names_too_long_for_the_files_beside_it_are_refused_before_the_run(tmp_path, capsys):
+    """The checkpoint's temporary file is the longest name a run writes beside --out: a name that
+    leaves no room for it is refused before any step, not at the first checkpoint."""
+    limit = os.pathconf(tmp_path, "PC_NAME_MAX")
+    out = tmp_path / ("e" * (limit - len(".nc.checkpoint.npz.tmpXXXXXXXX") + 1) + ".nc")
+    code = cli.main(["run", str(CREEP), "--out", str(out), *SMALL, "--checkpoint-every", "5", "--quiet"])
+    err = _err_lines(capsys)
+    assert code == 2 and len(err) == 1 and "is too long" in err[0] and "shorter --out" in err[0], err
+    assert list(tmp_path.iterdir()) == []
+    fits = tmp_path / ("e" * (limit - len(".nc.checkpoint.npz.tmpXXXXXXXX")) + ".nc")
+    assert cli.main(["run", str(CREEP), "--out", str(fits), *SMALL, "--checkpoint-every", "5", "--quiet"]) == 0

@@ -151,3 +151,26 @@ def test_a_foreign_file_where_a_run_file_goes_is_refused_before_any_run(tmp_path
     err = _errors(capsys)
     assert len(err) == 1 and str(notes) in err[0] and "not a netCDF result file" in err[0]
     assert notes.read_text() == "my notes" and not out.exists()
+
+
+def test_a_sweep_whose_output_another_process_writes_is_refused(tmp_path, capsys, no_cluster):
+    """Two sweeps on the same SWEEP.nc would replace each other's run files and result: the second
+    is refused in one line naming the process, before any run (output_files.output_lock)."""
+    import os
+    import subprocess
+    import sys
+
+    from test_output_safety import HOLD_LOCK
+
+    spec, out = _sweep_file(tmp_path), tmp_path / "sweep.nc"
+    holder = subprocess.Popen([sys.executable, "-c", HOLD_LOCK, str(out)], stdout=subprocess.PIPE, text=True,
+                              env={**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)})
+    try:
+        assert holder.stdout.readline().strip() == "locked"
+        assert cli.main(["sweep", str(spec), "--out", str(out), "--force", "--quiet"]) == 2
+        err = _errors(capsys)
+        assert len(err) == 1 and f"another viscontact process (pid {holder.pid})" in err[0] and str(out) in err[0]
+        assert not out.exists() and not (tmp_path / "sweep.runs").exists()
+    finally:
+        holder.kill()
+        holder.wait()

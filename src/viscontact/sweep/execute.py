@@ -116,7 +116,8 @@ def sweep(spec: SweepSpec | str | Path, client: Any = None, out: str | Path | No
         The sweep's netCDF file; the runs' result files go to ``SWEEP.runs/`` beside it, and complete
         ones found there are reused (resume). An existing ``out`` is replaced when it holds this same
         sweep (resuming) or with ``force``; never the sweep file or the base case. Checked before any
-        run. None: no files, nothing reused.
+        run, under a lock held until the end (:func:`viscontact.output_files.output_lock`: a sweep
+        writing the same ``out`` in another process is refused). None: no files, nothing reused.
     progress
         Called as ``progress(done, failed, total)`` after each finished (or reused) run.
     workers
@@ -139,11 +140,21 @@ def sweep(spec: SweepSpec | str | Path, client: Any = None, out: str | Path | No
     the_plan = plan(spec, fixed={} if user_set_workers else {"solver.workers": 1})
     if workers is not None and workers < 1:
         raise ParameterError("--workers", f"must be >= 1, got {workers}")
+    if out is None:
+        return _sweep(the_plan, client, None, progress, workers)
+    from ..output_files import output_lock
+
+    with output_lock(out):  # another sweep writing ``out`` (and its runs) is refused
+        check_output_path(out, force=force or _holds_sweep(out, spec), inputs=the_plan.input_files())
+        return _sweep(the_plan, client, out, progress, workers)
+
+
+def _sweep(the_plan: Plan, client: Any, out: str | Path | None,
+           progress: Callable[[int, int, int], None] | None, workers: int | None) -> xr.Dataset:
+    """:func:`sweep` of the checked plan ``the_plan``, ``out`` (when given) checked and locked."""
     inputs = the_plan.input_files()
-    if out is not None:
-        check_output_path(out, force=force or _holds_sweep(out, spec), inputs=inputs)
     folder = runs_dir(out) if out is not None else None
-    transient = spec.solver == "transient"
+    transient = the_plan.spec.solver == "transient"
     total = len(the_plan.runs)
     results: dict[int, dict[str, Any]] = {}
     done = failed = 0
