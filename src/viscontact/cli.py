@@ -328,13 +328,17 @@ def _check_result_name(out: str) -> None:
 
 
 def _parse_positive(text: str, option: str, unit: str, example: str) -> list[float]:
-    """Comma-separated finite numbers > 0 (``--speeds``, ``--times``)."""
+    """Comma-separated finite numbers > 0, each once (``--speeds``, ``--times``)."""
     try:
         values = [float(s) for s in text.split(",") if s.strip()]
     except ValueError:
         raise ParameterError(option, f"expected comma-separated numbers in {unit} (e.g. {example}), got {text!r}") from None
     if not values or any(not (v > 0 and v < float("inf")) for v in values):
         raise ParameterError(option, f"every value must be a finite number > 0 {unit}, got {text!r}")
+    twice = sorted({v for v in values if values.count(v) > 1})
+    if twice:  # a result along them would have a coordinate with repeated values
+        raise ParameterError(option, f"{', '.join(f'{v:g}' for v in twice)} {unit} is listed more than once, "
+                             f"got {text!r}")
     return values
 
 

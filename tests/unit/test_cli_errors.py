@@ -141,6 +141,16 @@ def test_python_dash_m_is_the_command(tmp_path: Path) -> None:
     assert_one_line_error(proc, "case file")
 
 
+@pytest.mark.parametrize("command", ["steady", "plot"])
+def test_a_speed_or_time_listed_twice_is_refused(tmp_path: Path, command: str) -> None:
+    """``steady --speeds 0.01,0.01`` wrote a result whose speed coordinate repeated a value."""
+    option = "--speeds" if command == "steady" else "--times"
+    proc = viscontact(command, "case.toml" if command == "steady" else "r.nc", "--out", "r.nc" if command == "steady"
+                      else "figs", option, "0.01,0.02,1e-2", cwd=tmp_path)
+    assert_one_line_error(proc, option)
+    assert "0.01" in proc.stderr and "more than once" in proc.stderr
+
+
 def test_plot_refuses_a_file_that_is_not_a_result(tmp_path: Path) -> None:
     (tmp_path / "notes.nc").write_text("not a netCDF file")
     proc = viscontact("plot", "notes.nc", "--out", "figs", cwd=tmp_path)
