@@ -27,7 +27,7 @@ import stat
 import typing
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, Callable, Literal
 
 import numpy as np
 import tomllib
@@ -640,12 +640,23 @@ class Case(_Section):
 
     def to_problem(self) -> Problem:
         """The :class:`~viscontact.problem.Problem` the solvers consume."""
+        return self._problem(lambda grid: self.gap(grid))
+
+    def problem_outline(self) -> Problem:
+        """:meth:`to_problem` without the gap: in its place a read-only zero-stride array of zeros of
+        the grid's shape (no memory). Sizes, steps, modes and settings are the problem's: what the
+        estimate of a run's memory, disk and time needs
+        (:func:`viscontact.resources.check_resources`), before any n x n array is allocated (at
+        n = 16384 the problem alone takes 8 GB)."""
+        return self._problem(lambda grid: np.broadcast_to(np.float64(0.0), (grid.n, grid.n)))
+
+    def _problem(self, gap: Callable[[Grid], np.ndarray]) -> Problem:
         grid = Grid(self.grid.n, self.grid.half_width, self.grid.periodic)
         fields = tuple(f for f in StepRecord.FIELDS if f in self.output.fields)
         return Problem(
             material=self.material.build(self._base_dir),
             grid=grid,
-            gap=self.gap(grid),
+            gap=gap(grid),
             normal=self.normal.build(),
             tangential=self.tangential.build(),
             time=TimeStepping(self.time.t_end, self.default_dt(), self.time.scheme),

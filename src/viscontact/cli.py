@@ -405,10 +405,10 @@ def _run_locked(args: argparse.Namespace, started: float) -> int:
     if partial.exists() and not (args.force or args.resume):
         raise FileExistsError(errno.EEXIST, "holds the steps of an interrupted run: --resume continues it (with its "
                               "checkpoint), --force starts over", str(partial))
-    problem, _ = api.prepare(case)
     written = partial.stat().st_size if args.resume and partial.exists() else 0  # a resume's records so far
-    estimate = check_resources(problem, args.out, force=args.force, checkpoints=bool(args.checkpoint_every),
-                               written_bytes=written)
+    estimate = check_resources(case.problem_outline(), args.out, force=args.force,  # before any n x n array
+                               checkpoints=bool(args.checkpoint_every), written_bytes=written)
+    problem, _ = api.prepare(case)
     if args.dry_run:
         from .transient import validate
 

@@ -131,6 +131,23 @@ def test_dry_run_time_counts_the_start_and_the_tangential_mode(tmp_path, capsys)
     assert said["seed_table3_case4"] > 1.5 * said["seed_table3_case1"] > 1.5 * resources.START_SECONDS
 
 
+def test_a_run_too_big_is_refused_before_its_problem_is_built(tmp_path, capsys, monkeypatch):
+    """At n = 16384 the problem alone (gap, checks) took 8.5 GB and 28 s before the estimate that
+    refuses the run was made; the estimate now comes from the case's outline, so the problem is
+    never built (Case.to_problem would raise here)."""
+    from viscontact.case import Case
+
+    def built(self):
+        raise AssertionError("the problem was built before the estimate")
+
+    monkeypatch.setattr(Case, "to_problem", built)
+    code = cli.main(["run", str(ROOT / "cases" / "creep_indentation.toml"), "--out", str(tmp_path / "r.nc"),
+                     "--dry-run", "--set", "grid.n=16384"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and "GiB" in err[0]  # the disk, else the memory (24 GiB), else the time
+    assert err[0].split(":")[2].strip() in ("output.every", "grid.n", "time.t_end")
+
+
 def test_refuses_when_the_disk_cannot_hold_the_result(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr(shutil, "disk_usage", lambda path: shutil._ntuple_diskusage(10**9, 10**9 - 1000, 1000))
     code = cli.main(["run", str(ROOT / "cases" / "creep_indentation.toml"), "--out", str(tmp_path / "r.nc")])
