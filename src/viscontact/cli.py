@@ -408,10 +408,10 @@ def _run_locked(args: argparse.Namespace, started: float) -> int:
     written = partial.stat().st_size if args.resume and partial.exists() else 0  # a resume's records so far
     estimate = check_resources(case.problem_outline(), args.out, force=args.force,  # before any n x n array
                                checkpoints=bool(args.checkpoint_every), written_bytes=written)
-    problem, _ = api.prepare(case)
-    if args.dry_run:
+    if args.dry_run:  # a run prepares its problem in run_to_file
         from .transient import validate
 
+        problem, _ = api.prepare(case)
         validate(problem)
         print(describe(problem, estimate))
         return 0
