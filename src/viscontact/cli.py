@@ -271,6 +271,11 @@ def _overrides(items: Sequence[str]) -> dict[str, Any]:
         key, sep, value = item.partition("=")
         if not sep or not key.strip():
             raise ParameterError("--set", f"expected KEY=VALUE (e.g. tangential.sliding_speed=0.1), got {item!r}")
+        try:  # a case file is UTF-8 text, and so is what the result stores of it (title, case text)
+            item.encode("utf-8")
+        except UnicodeEncodeError:
+            raise ParameterError("--set", f"{item!r} holds bytes that are not UTF-8 text (shown as \\udcNN); "
+                                 "type it in a UTF-8 terminal or put it in the case file") from None
         overrides[key.strip()] = _parse_value(value.strip())
     return overrides
 

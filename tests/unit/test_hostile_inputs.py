@@ -169,3 +169,14 @@ def test_a_byte_that_is_not_utf8_in_the_command_line_is_escaped_in_history(tmp_p
     assert code == 0, err
     with xr.open_dataset(out, engine="h5netcdf") as ds:
         assert f"--out '{tmp_path}/\\xff.nc' --set" in ds.attrs["history"]
+
+
+@pytest.mark.parametrize("command", ["run", "steady"])
+def test_a_set_value_that_is_not_utf8_is_one_line(tmp_path, capsys, command):
+    """``--set title=caf\\xe9`` from a Latin-1 terminal reached the result's title attribute and ended in
+    a UnicodeEncodeError traceback from h5py; it is refused in one line before anything is written."""
+    case = ROOT / "cases" / ("creep_indentation.toml" if command == "run" else "seed_table1_v0.8.toml")
+    out = tmp_path / "r.nc"
+    code, err = _main(capsys, command, case, "--out", out, "--set", "title=caf\udce9", "--quiet")
+    assert code == 2 and len(err) == 1 and err[0].startswith("viscontact: error: --set: ") and "UTF-8" in err[0]
+    assert list(tmp_path.iterdir()) == []
