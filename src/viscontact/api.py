@@ -70,8 +70,12 @@ CHECKPOINT_SUFFIX = ".checkpoint.npz"
 
 
 def checkpoint_path(out: str | Path) -> Path:
-    """Where ``viscontact run --out OUT --checkpoint-every N`` keeps its checkpoint: ``OUT.checkpoint.npz``."""
-    out = Path(out)
+    """Where ``viscontact run --out OUT --checkpoint-every N`` keeps its checkpoint: ``OUT.checkpoint.npz``
+    beside the file ``out`` names (beside its target when ``out`` is a symbolic link, as the streamed
+    ``OUT.partial`` and the lock: the checks of the names written beside the result are the target's)."""
+    from .output_files import link_target
+
+    out = link_target(Path(out))
     return out.with_name(out.name + CHECKPOINT_SUFFIX)
 
 

@@ -560,3 +560,19 @@ def test_output_names_too_long_for_the_files_beside_it_are_refused_before_the_ru
     assert list(tmp_path.iterdir()) == []
     fits = tmp_path / ("e" * (limit - len(".nc.checkpoint.npz.tmpXXXXXXXX")) + ".nc")
     assert cli.main(["run", str(CREEP), "--out", str(fits), *SMALL, "--checkpoint-every", "5", "--quiet"]) == 0
+
+
+def test_a_long_symbolic_link_name_checkpoints_beside_its_target(tmp_path, capsys):
+    """The names written beside the result are checked against its target's name, but the checkpoint
+    went beside the link, under the link's name: a 235-byte link to t.nc passed the check and the run
+    died at its first checkpoint (File name too long), after computing. It now goes beside the target,
+    as OUT.partial and the lock do."""
+    target = tmp_path / "t.nc"
+    assert cli.main(["run", str(CREEP), "--out", str(target), *SMALL, "--quiet"]) == 0
+    link = tmp_path / ("L" * 232 + ".nc")
+    link.symlink_to(target.name)
+    code = cli.main(["run", str(CREEP), "--out", str(link), *SMALL, "--checkpoint-every", "5", "--force", "--quiet"])
+    assert code == 0, capsys.readouterr().err
+    assert link.is_symlink() and sorted(p.name for p in tmp_path.iterdir()) == sorted([target.name, link.name])
+    with xr.open_dataset(target) as ds:
+        assert ds.attrs["complete"] == 1
