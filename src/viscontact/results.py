@@ -148,28 +148,21 @@ def hertz_scale(problem: Problem) -> tuple[float, float]:
     return float(h.radius), float(h.peak_pressure)
 
 
-#: the curvature fit of :func:`equivalent_radius` covers a disc of this fraction of the domain's
+#: the curvature fit of :func:`equivalent_radius` starts on a disc of this fraction of the domain's
 #: half-width (the scale of the contact the domain is sized for) ...
 CURVATURE_FIT_FRACTION = 0.5
-#: ... and at least this many cells in radius
-CURVATURE_FIT_CELLS = 3
+#: ... shrinks to this many Hertz radii of the fitted curvature (at G(inf), the largest contact) ...
+CURVATURE_FIT_CONTACTS = 2.0
+#: ... over at most this many rounds, and covers at least this many cells in radius
+CURVATURE_FIT_ROUNDS, CURVATURE_FIT_CELLS = 4, 3
 
 
-def equivalent_radius(problem: Problem) -> float:
-    """Radius [m] of the sphere with the gap's mean curvature about its lowest point; NaN where the gap
-    is not convex there (a flat punch, a tilted plane).
-
-    2 / laplacian of the least-squares paraboloid h = c0 + c1 x + c2 y + c3 x^2 + c4 y^2 + c5 x y
-    fitted over the cells within :data:`CURVATURE_FIT_FRACTION` of the half-width (at least
-    :data:`CURVATURE_FIT_CELLS` cells) of the lowest point: exact for a paraboloid, and roughness on a
-    smaller scale averages out (the curvature at one cell was the roughness's: a sphere of 10 mm with
-    1 um of roughness gave 0.2 mm).
-    """
+def _fitted_radius(problem: Problem, reach: float) -> float:
+    """2 / laplacian [m] of the least-squares paraboloid h = c0 + c1 x + c2 y + c3 x^2 + c4 y^2 + c5 x y
+    fitted over the cells within ``reach`` [m] of the gap's lowest point; NaN when not convex."""
     h = problem.gap
-    grid = problem.grid
-    x, y = grid.mesh()
+    x, y = problem.grid.mesh()
     j, i = np.unravel_index(np.argmin(h), h.shape)
-    reach = max(CURVATURE_FIT_FRACTION * grid.half_width, CURVATURE_FIT_CELLS * grid.spacing)
     dx, dy = x - x[j, i], y - y[j, i]
     near = dx**2 + dy**2 <= reach**2
     u, v = dx[near] / reach, dy[near] / reach  # scaled: a well-conditioned fit
@@ -179,6 +172,36 @@ def equivalent_radius(problem: Problem) -> float:
     coef = np.linalg.lstsq(basis, h[near], rcond=None)[0]
     lap = 2.0 * (coef[3] + coef[4]) / reach**2
     return float(2.0 / lap) if lap > 0 else float("nan")
+
+
+def equivalent_radius(problem: Problem) -> float:
+    """Radius [m] of the sphere with the gap's mean curvature about its lowest point, on the scale of
+    the contact; NaN where the gap is not convex there (a flat punch, a tilted plane).
+
+    2 / laplacian of the least-squares paraboloid (:func:`_fitted_radius`) over a disc about the
+    lowest point: first :data:`CURVATURE_FIT_FRACTION` of the half-width, then
+    :data:`CURVATURE_FIT_CONTACTS` Hertz radii of the fitted sphere under the run's largest load (or
+    approach) at G(inf), refitted until the disc stops shrinking (at least
+    :data:`CURVATURE_FIT_CELLS` cells). Exact for a paraboloid; roughness on a smaller scale averages
+    out (the curvature at one cell was the roughness's: a sphere of 10 mm with 1 um of roughness gave
+    0.2 mm); a tip or the lowest of several asperities is measured on its own contact's scale.
+    """
+    grid = problem.grid
+    smallest = CURVATURE_FIT_CELLS * grid.spacing
+    reach = max(CURVATURE_FIT_FRACTION * grid.half_width, smallest)
+    mat, reference = problem.material, problem.normal.history.reference
+    radius = float("nan")
+    for _ in range(CURVATURE_FIT_ROUNDS):
+        radius = _fitted_radius(problem, reach)
+        if not (np.isfinite(radius) and reference > 0):
+            return radius
+        build = hertz_from_load if problem.normal.control == "load" else hertz_from_approach
+        contact = build(reference, radius, mat.shear_modulus_long_term, mat.poisson_ratio).radius
+        shrunk = max(CURVATURE_FIT_CONTACTS * contact, smallest)
+        if shrunk >= 0.95 * reach:
+            break
+        reach = shrunk
+    return radius
 
 
 def retardation_time(problem: Problem) -> float:

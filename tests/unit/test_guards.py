@@ -222,3 +222,17 @@ def test_equivalent_radius_of_a_measured_rough_sphere():
     assert hertz_scale(rough)[0] == pytest.approx(hertz_scale(smooth)[0], rel=0.01)
     x, _ = smooth.grid.mesh()
     assert math.isnan(equivalent_radius(replace(smooth, gap=1e-3 * (x - x.min()), radius=None)))
+
+
+def test_equivalent_radius_is_measured_on_the_scale_of_the_contact():
+    """Two asperities: a 2 mm sphere and, 3 mm away and 10 um higher, a 20 mm one. On a stiff body
+    (G = 50 MPa, 0.15 N) the first alone touches (Hertz: delta = 6.7 um < 10 um, a = 0.12 mm), so
+    the truth is 2 mm; the first fit, over half the half-width (1.5 mm), reaches the other asperity
+    and gives about 3.9 mm. Refitted over two contact radii it gives the 2 mm."""
+    from viscontact.results import equivalent_radius
+
+    pb = sphere_problem(Material.elastic(50e6, 0.3), 128, 3e-3, t_end=1e-3, dt=5e-4)
+    x, y = pb.grid.mesh()
+    near = ((x + 1.5e-3) ** 2 + y**2) / (2 * 2e-3)
+    far = ((x - 1.5e-3) ** 2 + y**2) / (2 * 20e-3) + 10e-6
+    assert equivalent_radius(replace(pb, gap=np.minimum(near, far), radius=None)) == pytest.approx(2e-3, rel=1e-6)
