@@ -401,6 +401,7 @@ def _run_locked(args: argparse.Namespace, started: float) -> int:
     """``viscontact run`` once this process alone writes ``--out`` (:func:`_writing`): an
     ``OUT.partial`` there is the steps of an interrupted run, not of a run going on."""
     from . import api
+    from .guards import check_material
     from .resources import check_resources, describe
     from .results import open_result
     from .streaming import partial_path
@@ -411,8 +412,10 @@ def _run_locked(args: argparse.Namespace, started: float) -> int:
         raise FileExistsError(errno.EEXIST, "holds the steps of an interrupted run: --resume continues it (with its "
                               "checkpoint), --force starts over", str(partial))
     written = partial.stat().st_size if args.resume and partial.exists() else 0  # a resume's records so far
-    estimate = check_resources(case.problem_outline(), args.out, force=args.force,  # before any n x n array
-                               checkpoints=bool(args.checkpoint_every), written_bytes=written)
+    outline = case.problem_outline()  # the estimate's sizes, before any n x n array
+    check_material(outline.material)  # the estimate reads its creep spectrum
+    estimate = check_resources(outline, args.out, force=args.force, checkpoints=bool(args.checkpoint_every),
+                               written_bytes=written)
     if args.dry_run:  # a run prepares its problem in run_to_file
         from .transient import validate
 

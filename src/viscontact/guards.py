@@ -44,7 +44,7 @@ from .materials import Material
 from .problem import Problem
 from .schemes import stable_step_limit, step_coefficients
 
-__all__ = ["ContactEstimate", "check_problem", "check_solution", "contact_estimate", "grid_suggestion",
+__all__ = ["ContactEstimate", "check_material", "check_problem", "check_solution", "contact_estimate", "grid_suggestion",
            "peak_pressure_error", "time_step_error"]
 
 #: estimated relative errors of the peak pressure above which a run is refused / warned about
@@ -344,8 +344,10 @@ def _time_step_suggestion(problem: Problem) -> str:
     return f"use a much smaller time.dt{linear}"
 
 
-def _check_material(material: Material) -> None:
-    """G(0)/G(inf) at most :data:`MAX_MODULUS_RATIO` and a finite creep spectrum."""
+def check_material(material: Material) -> None:
+    """Refuse (:class:`~viscontact.errors.ParameterError`) a material whose G(0)/G(inf) exceeds
+    :data:`MAX_MODULUS_RATIO` or whose creep spectrum is not finite: the first check of
+    :func:`check_problem`, and of anything that reads the creep spectrum before it (the resource estimate)."""
     ratio = material.shear_modulus_instantaneous / material.shear_modulus_long_term
     key = {"zener": "material.shear_modulus_long_term", "prony": "material.g_inf"}.get(material.name, "material")
     if not ratio <= MAX_MODULUS_RATIO:
@@ -374,7 +376,7 @@ def check_problem(problem: Problem, *, transient: bool = True) -> None:
     ParameterError
         Naming the key to change and a value that will work.
     """
-    _check_material(problem.material)
+    check_material(problem.material)
     _check_space(problem, transient)
     if transient:
         _check_time(problem)
