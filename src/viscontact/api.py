@@ -201,6 +201,10 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
     OSError
         The result cannot be written: ``ENOSPC`` naming the file, the size needed and the space
         free (before the first step, or between two records with the steps done kept as below).
+    OutputReplacedError
+        Another process replaced ``OUT.partial`` under the run (its lock file was removed): nothing
+        is renamed to ``out``; the run's own file is kept as ``OUT.orphan-PID.nc`` where it can be
+        copied (``exc.kept``).
     ConvergenceError, NumericalGuardError, RunInterrupted, KeyboardInterrupt
         The run stopped. When steps were recorded, they are in the file (``complete = 0``,
         ``stopped_by``) named by ``exc.saved = (path, records)``: ``out``, or ``OUT.partial`` when
@@ -241,7 +245,6 @@ def _stream_run(problem: Problem, stream: Any, out: Path, checkpoint: Path, *, c
     import numpy as np
 
     from .observers import Checkpointer, StreamWriter, WakeWarning
-    from .output_files import move_atomically
 
     observers = [StreamWriter(problem, stream), WakeWarning()]
     if checkpoint_every or resume:
@@ -257,7 +260,7 @@ def _stream_run(problem: Problem, stream: Any, out: Path, checkpoint: Path, *, c
     if finishing is not None:
         finishing()
     stream.finish()
-    move_atomically(stream.path, out)
+    stream.publish(out)
     checkpoint.unlink(missing_ok=True)
     return Written(out, stream.count)
 
@@ -265,8 +268,14 @@ def _stream_run(problem: Problem, stream: Any, out: Path, checkpoint: Path, *, c
 def _stopped(stream: Any, out: Path, reason: str) -> tuple[Path, int] | None:
     """End the streamed file of a run stopped for ``reason`` (``complete = 0``, ``stopped_by``) and
     publish it as ``out`` unless ``out`` is a complete result. Returns (where, records), or None
-    (and no file) when no record was written."""
-    from .output_files import move_atomically
+    (and no file) when no record was written.
+
+    Raises
+    ------
+    OutputReplacedError
+        Another process replaced the streamed file (:meth:`~viscontact.streaming.ResultStream.publish`).
+    """
+    from .errors import OutputReplacedError
     from .streaming import is_complete_result
 
     if not stream.broken:
@@ -277,17 +286,22 @@ def _stopped(stream: Any, out: Path, reason: str) -> tuple[Path, int] | None:
     if stream.broken:  # a write failed and so did saving the file: it holds its last flush (complete = 0)
         return stream.path, stream.count
     if stream.count == 0:
+        own = stream.owned()
         stream.close()
-        stream.path.unlink(missing_ok=True)
+        if own:  # never another process's file renamed over it
+            stream.path.unlink(missing_ok=True)
         return None
     try:
         stream.finish({"complete": 0, "stopped_by": reason})
+    except OutputReplacedError:
+        raise
     except Exception:  # noqa: BLE001 - interrupted inside a write: the file holds the last flush
         stream.close()
         return stream.path, stream.count
     if out.exists() and is_complete_result(out):
+        stream.close()
         return stream.path, stream.count
-    move_atomically(stream.path, out)
+    stream.publish(out)
     return out, stream.count
 
 

@@ -8,7 +8,9 @@ exit with 130 / 143. ``run`` streams its records to ``RESULT.nc.partial`` and re
 ``RESULT.nc`` when it ends (:mod:`viscontact.streaming`); after a kill the steps done are in
 ``RESULT.nc.partial``. ``run``, ``steady`` and ``sweep`` lock their result file
 (:func:`viscontact.output_files.output_lock`) before checking it: a second command writing the same
-file is refused in one line. Every sub-command takes ``--quiet`` (no progress bar, summary or warnings) and
+file is refused in one line (should the lock file be removed under a run and another run replace
+its ``RESULT.nc.partial``, the first renames nothing, keeps its own file as
+``RESULT.nc.orphan-PID.nc`` and exits with status 1). Every sub-command takes ``--quiet`` (no progress bar, summary or warnings) and
 ``--log-level`` (the messages of the ``viscontact`` logger shown on stderr; warnings are at level
 ``warning``).
 """
@@ -29,8 +31,8 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-from .errors import (EXIT_INTERRUPTED, ConvergenceError, NumericalGuardError, ParameterError, RunInterrupted,
-                     ViscontactWarning, raised_by_interrupt)
+from .errors import (EXIT_INTERRUPTED, ConvergenceError, NumericalGuardError, OutputReplacedError, ParameterError,
+                     RunInterrupted, ViscontactWarning, raised_by_interrupt)
 
 PROG = "viscontact"
 EXIT_FAILED, EXIT_USAGE, EXIT_TERMINATED = 1, 2, 143
@@ -615,6 +617,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _error(f"{where}: {exc.strerror or exc}{saved}", EXIT_USAGE)
     except (ConvergenceError, NumericalGuardError) as exc:
         return _error(f"{type(exc).__name__}: {exc}{_saved_note(exc)}", EXIT_FAILED)
+    except OutputReplacedError as exc:  # the run's file was replaced under it: nothing renamed
+        return _error(str(exc), EXIT_FAILED)
     except RunInterrupted as exc:
         code = EXIT_TERMINATED if exc.reason == "SIGTERM" else EXIT_INTERRUPTED
         return _error(f"stopped by {exc.reason} after the current step{_saved_note(exc)}", code)

@@ -38,6 +38,19 @@ class RunInterrupted(ViscontactError):
         super().__init__(f"interrupted by {reason}")
 
 
+class OutputReplacedError(ViscontactError, RuntimeError):
+    """Another process replaced the file a run was writing, by its name (possible only when the run's
+    lock file was removed under it): the run renames nothing. ``path`` is that file; ``kept`` is
+    where this run's own result was saved instead, or None when it could not be saved."""
+
+    def __init__(self, path: str, kept: str | None, why: str = "") -> None:
+        self.path, self.kept = path, kept
+        saved = (f"this run's result is kept in {kept}" if kept is not None
+                 else f"this run's result could not be kept{f' ({why})' if why else ''} and is lost")
+        super().__init__(f"{path}: another process replaced this file while this run was writing it (its lock "
+                         f"file was removed); nothing was renamed, {saved}")
+
+
 class ViscontactWarning(UserWarning):
     """A result is usable but something may bias it (history dropped, coarse time step, ...)."""
 

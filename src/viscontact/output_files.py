@@ -16,7 +16,10 @@ line:
   delivered once it is complete, so a finished run is never discarded half-written.
 * :func:`output_lock`: an advisory lock (``flock``) on ``OUT.lock`` held for the whole command, taken
   before the output is checked: a second command writing the same file is refused in one line
-  naming the process that writes it, instead of replacing that process's file under it.
+  naming the process that writes it, instead of replacing that process's file under it. Should the
+  lock file be removed under a run all the same, the file it streams is checked to be its own before
+  it is renamed (:func:`move_atomically` with ``expected``), and its end leaves the other
+  process's lock file alone.
 * :class:`SpaceClaim`: the disk space a file growing as the run goes (a streamed result) will
   need, claimed before the run in an unnamed file and handed back piece by piece just before each
   write, which first checks that its piece is free: a full disk stops the run cleanly, between two
@@ -48,8 +51,8 @@ except ImportError:  # pragma: no cover - Windows: no inode flags, no advisory l
     fcntl = None  # type: ignore[assignment]
 
 __all__ = ["SpaceClaim", "check_derived_names", "check_output_folder", "check_output_path", "disk_full_error",
-           "link_target", "lock_path", "move_atomically", "output_lock", "remove_temporaries", "signals_deferred",
-           "write_atomically"]
+           "is_same_file", "link_target", "lock_path", "move_atomically", "output_lock", "remove_temporaries",
+           "signals_deferred", "write_atomically"]
 
 #: first bytes of the files a result may be: netCDF-4 (HDF5) and classic netCDF
 RESULT_SIGNATURES = (b"\x89HDF\r\n\x1a\n", b"CDF\x01", b"CDF\x02")
@@ -304,7 +307,8 @@ def output_lock(out: str | Path, derived: Iterable[str] = ()) -> Iterator[Path |
         yield lock
     finally:
         del _HELD[key]
-        lock.unlink(missing_ok=True)  # while still held: a process waiting on this file retries (_acquire)
+        if is_same_file(os.fstat(fd), lock):  # never the lock file of another process (ours was removed)
+            lock.unlink(missing_ok=True)  # while still held: a process waiting on this file retries (_acquire)
         os.close(fd)
         folder = lock.parent
         while folder != existing and folder.is_dir() and not any(folder.iterdir()):
@@ -332,15 +336,20 @@ def _acquire(lock: Path, out: Path) -> int:
         except BaseException:
             os.close(fd)
             raise
-        try:
-            same = os.path.samestat(os.fstat(fd), os.stat(lock))
-        except FileNotFoundError:
-            same = False
-        if same:
+        if is_same_file(os.fstat(fd), lock):
             os.ftruncate(fd, 0)
             os.write(fd, f"{os.getpid()}\n".encode())
             return fd
         os.close(fd)  # the holder removed it after we opened it: lock the file at that path now
+
+
+def is_same_file(identity: os.stat_result, path: str | Path) -> bool:
+    """Whether ``path`` still names the file ``identity`` (``os.fstat`` of an open file) is of: False
+    when another file was renamed over it, or it was removed."""
+    try:
+        return os.path.samestat(identity, os.stat(path))
+    except FileNotFoundError:
+        return False
 
 
 def disk_full_error(path: Path, needed: int, what: str = "") -> OSError:
@@ -511,12 +520,30 @@ def write_atomically(path: str | Path, content: bytes | memoryview | Callable[[B
     return target
 
 
-def move_atomically(source: str | Path, path: str | Path) -> Path:
+def move_atomically(source: str | Path, path: str | Path, *, expected: os.stat_result | None = None) -> Path:
     """Rename the finished file ``source`` (in the same folder) over ``path`` (over its target when
     ``path`` is a symbolic link) with SIGINT / SIGTERM held, and fsync the folder so that the
-    rename outlives a crash. Returns the file replaced."""
+    rename outlives a crash. Returns the file replaced.
+
+    Parameters
+    ----------
+    source, path
+        The file renamed and its new name.
+    expected
+        ``os.fstat`` of the file the caller wrote as ``source``: when ``source`` names another file
+        now (another process replaced it), nothing is renamed.
+
+    Raises
+    ------
+    OutputReplacedError
+        ``source`` is not the file ``expected`` is of (its data is not kept: the caller keeps it).
+    """
+    from .errors import OutputReplacedError
+
     target = link_target(Path(path))
     with signals_deferred():
+        if expected is not None and not is_same_file(expected, source):
+            raise OutputReplacedError(str(source), None)
         os.replace(source, target)
         try:
             fd = os.open(target.parent, os.O_RDONLY)

@@ -31,7 +31,10 @@ renames it over ``OUT`` too, unless ``OUT`` holds a complete result: that one is
 an incomplete one, and the steps done stay in ``OUT.partial``. After a kill (-9, power) the steps
 done are in ``OUT.partial``; ``--resume`` continues it from the checkpoint's step (dropping any
 later steps), once :func:`check_resumable` has found, reading it only, that it is the streamed file
-of the same case (attribute :data:`FINGERPRINT`, kept until the file is complete).
+of the same case (attribute :data:`FINGERPRINT`, kept until the file is complete). The stream holds
+the file it writes open: should another process rename its own file over ``OUT.partial`` (the
+run's lock file removed under it), nothing is finished or renamed in its place, the run's own file
+is copied to ``OUT.orphan-PID.nc`` and the run fails (:class:`~viscontact.errors.OutputReplacedError`).
 """
 from __future__ import annotations
 
@@ -45,7 +48,9 @@ from typing import Any
 
 import numpy as np
 
-from .output_files import SpaceClaim, disk_full_error, link_target, signals_deferred, write_atomically
+from .errors import OutputReplacedError
+from .output_files import (SpaceClaim, disk_full_error, is_same_file, link_target, move_atomically, signals_deferred,
+                           write_atomically)
 from .problem import Problem
 from .records import StepRecord
 from .resources import recorded_steps, stream_bytes
@@ -225,10 +230,17 @@ class ResultStream:
     (:func:`chunk_encoder`) while the run computes the next step, then written whole with the next
     append, :meth:`drain` or :meth:`finish`.
 
+    The stream holds the file written, not only its name: should another process rename its own
+    file over :attr:`path` (possible only when the run's lock file was removed under it), this one
+    is neither finished nor renamed in its place; it is copied out instead
+    (:class:`~viscontact.errors.OutputReplacedError`).
+
     Attributes
     ----------
     path
         The file written.
+    identity
+        ``os.fstat`` of the file written.
     count
         Records in the file (the queued one, :attr:`queued`, not counted).
     """
@@ -241,6 +253,15 @@ class ResultStream:
         # rewritten in place, 4 KiB); HDF5's default cache of 1 MiB per variable grew the process by
         # ~20 MiB over the first steps at 256^2 and kept creeping (allocator fragmentation)
         self.file = h5py.File(self.path, "a", rdcc_nbytes=0)
+        #: a descriptor of the file written (whatever its name becomes, until :meth:`close`) and its
+        #: ``os.fstat``: :meth:`finish` and :meth:`publish` check that :attr:`path` still names it
+        self.identity = os.fstat(self.file.id.get_vfd_handle())
+        self._own = os.open(self.path, os.O_RDONLY | getattr(os, "O_CLOEXEC", 0))  # not a dup: no HDF5 file lock
+        if not os.path.samestat(os.fstat(self._own), self.identity):  # pragma: no cover - replaced this very moment
+            os.close(self._own)
+            self._own = -1
+            self.close()
+            raise OutputReplacedError(str(self.path), None, "replaced as it was opened")
         #: every variable along ``t`` by name (the coordinates ``t``, ``step``, the series, the fields)
         self.along_t = {name: var for name, var in self.file.items()
                         if isinstance(var, h5py.Dataset) and var.maxshape[:1] == (None,)}
@@ -437,6 +458,15 @@ class ResultStream:
         from .results import SCALES, completeness, t_gross_sliding
 
         self.drain()
+        if not self.owned():
+            error = self._replaced()
+            self.close()
+            if error.kept is not None:
+                try:
+                    ResultStream(error.kept, self.problem, require_space=False).finish(attrs)
+                except (OSError, RuntimeError, OutputReplacedError):  # the copy holds the records (complete = 0)
+                    pass
+            raise error
         f = self.file
         self.space.close()  # what is left of the claim is for the finishing writes
         self._stop_threads()
@@ -460,9 +490,52 @@ class ResultStream:
             f.close()
             if subsurface is not None:
                 _append_variables(self.path, {**coords, **variables})
-            with open(self.path, "rb+") as fh:
-                os.fsync(fh.fileno())
+            os.fsync(self._own)
         return self.path
+
+    def owned(self) -> bool:
+        """Whether :attr:`path` still names the file this stream writes."""
+        return is_same_file(self.identity, self.path)
+
+    def publish(self, out: str | Path) -> Path:
+        """Rename the finished file over ``out`` (:func:`~viscontact.output_files.move_atomically`) when
+        :attr:`path` still names it, and let it go (:meth:`close`). Returns the file replaced.
+
+        Raises
+        ------
+        OutputReplacedError
+            Another process replaced :attr:`path`: nothing is renamed, and this stream's file is kept
+            as a copy (:meth:`_replaced`).
+        """
+        try:
+            return move_atomically(self.path, out, expected=self.identity)
+        except OutputReplacedError:
+            raise self._replaced() from None
+        finally:
+            self.close()
+
+    def _replaced(self) -> OutputReplacedError:
+        """The error of a file replaced by another process, once this stream's file (flushed: valid as
+        it is) is copied to ``NAME.orphan-PID.nc`` beside it (``NAME``: :attr:`path` less
+        :data:`PARTIAL_SUFFIX`), read from the descriptor the stream holds."""
+        name = self.path.name.removesuffix(PARTIAL_SUFFIX)
+        kept = self.path.with_name(f"{name}.orphan-{os.getpid()}.nc")
+        size = os.fstat(self._own).st_size
+
+        def copy(fh: Any) -> None:
+            offset = 0
+            while offset < size:
+                chunk = os.pread(self._own, min(size - offset, 1 << 24), offset)
+                if not chunk:
+                    break
+                fh.write(chunk)
+                offset += len(chunk)
+
+        try:
+            write_atomically(kept, copy, size=size)
+        except OSError as exc:
+            return OutputReplacedError(str(self.path), None, exc.strerror or str(exc))
+        return OutputReplacedError(str(self.path), str(kept))
 
     def close(self) -> None:
         """Close without finishing (the file stays valid, ``complete = 0``, holding the records
@@ -474,6 +547,9 @@ class ResultStream:
         space = getattr(self, "space", None)
         if space is not None:
             space.close()
+        if getattr(self, "_own", -1) >= 0:
+            os.close(self._own)
+            self._own = -1
 
     def _stop_threads(self) -> None:
         """Let the compression thread finish what it has and end it."""

@@ -549,6 +549,38 @@ def test_the_lock_is_released_and_its_file_removed_at_the_end(tmp_path, capsys):
     assert code == 2 and not (tmp_path / "new").exists()
 
 
+#: the slow writer slowing down the final rename of a streamed run (after its file is finished)
+PUBLISH = "viscontact.streaming:ResultStream:publish"
+
+
+@pytest.mark.parametrize("slow", [FINISH, PUBLISH])
+def test_a_run_whose_partial_file_was_replaced_renames_nothing_and_keeps_its_own(tmp_path, slow):
+    """Red team round 2, item 3: the lock file is removed under a run and another run (--force) puts
+    its own r.nc.partial (and r.nc.lock) in place. The first run, at its end (before finishing its
+    file, or before renaming it), renames nothing: one line, exit 1; the other run's files are left
+    as they are; its own finished result is kept, as r.nc.orphan-PID.nc."""
+    out = tmp_path / "r.nc"
+    proc, flag = _slow_writer(tmp_path, CREEP, "--out", out, "--quiet", *SMALL, slow=slow)
+    _wait_for(flag, proc)
+    foreign, lock = b"\x89HDF\r\n\x1a\n: the other run's steps", b"4194305\n"
+    (tmp_path / "r.nc.lock").unlink()
+    (tmp_path / "r.nc.lock").write_bytes(lock)  # the other run's lock
+    (tmp_path / "other").write_bytes(foreign)
+    os.replace(tmp_path / "other", tmp_path / "r.nc.partial")  # as ResultStream.create does
+    _, err = proc.communicate(timeout=120)
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert proc.returncode == 1 and len(lines) == 1 and "Traceback" not in err, err
+    kept = tmp_path / f"r.nc.orphan-{proc.pid}.nc"
+    assert lines[0] == (f"viscontact: error: {tmp_path / 'r.nc.partial'}: another process replaced this file while "
+                        "this run was writing it (its lock file was removed); nothing was renamed, this run's result "
+                        f"is kept in {kept}")
+    assert (tmp_path / "r.nc.partial").read_bytes() == foreign and (tmp_path / "r.nc.lock").read_bytes() == lock
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(["r.nc.partial", "r.nc.lock", kept.name, "writing"])
+    with xr.open_dataset(kept) as ds:
+        assert ds.attrs["complete"] == 1 and ds.sizes["t"] == 41 and "problem_fingerprint" not in ds.attrs
+        assert np.all(np.isfinite(ds["displacement_z"].values))
+
+
 def test_output_names_too_long_for_the_files_beside_it_are_refused_before_the_run(tmp_path, capsys):
     """The checkpoint's temporary file is the longest name a run writes beside --out: a name that
     leaves no room for it is refused before any step, not at the first checkpoint."""

@@ -163,7 +163,8 @@ def test_reproduce_checks_every_result_path_before_the_first_case(tiny_cases, tm
 
 
 def test_reproduce_replaces_its_own_results_at_any_grid(tiny_cases, tmp_path):
-    """A result of the same shipped case (its case text, overrides appended) is reproduce's own."""
+    """A result reproduce saved (attribute written_by) of the same shipped case (its case text,
+    overrides appended) is reproduce's own."""
     import xarray as xr
 
     from viscontact.reproduce.runner import check_outputs
@@ -173,7 +174,31 @@ def test_reproduce_replaces_its_own_results_at_any_grid(tiny_cases, tmp_path):
     case, _ = load_seed_case(name, tiny_cases, 24, ())
     assert case.text != text and case.text.startswith(text.rstrip("\n"))
     path = tmp_path / f"{name}.nc"
-    xr.Dataset({"load": ("t", [1.0])}, attrs={"case": case.text, "version": "0.1.0"}).to_netcdf(path)
+    xr.Dataset({"load": ("t", [1.0])}, attrs={"case": case.text, "version": "0.1.0",
+                                              "written_by": "viscontact reproduce"}).to_netcdf(path)
     assert check_outputs(tmp_path, {name: text}, [tiny_cases / f"{name}.toml"]) == {name: path}
     with pytest.raises(FileExistsError, match="not a result of the shipped case seed_fig10_case1"):
         check_outputs(tmp_path, {name: "# another case file\n" + text}, [])
+
+
+def test_reproduce_never_replaces_a_run_of_the_shipped_case_it_did_not_save(tiny_cases, tmp_path, capsys):
+    """Red team round 2, item 4: the user's own `viscontact run` of a shipped case (a finer grid, hours
+    at the seed's 256^2) at the path reproduce saves that case to is refused in one line before any
+    case runs, and kept byte for byte; a result reproduce saved there itself is replaced."""
+    first, second, third = (tmp_path / f"{name}.nc" for name in FIGURES["fig10"].cases)
+    assert cli.main(["run", str(tiny_cases / f"{first.stem}.toml"), "--out", str(first), "--set", "grid.n=24",
+                     "--quiet"]) == 0
+    before = first.read_bytes()
+    reproduce = ["reproduce", "fig10", "--out", str(tmp_path), "--cases", str(tiny_cases), "--quiet"]
+    assert cli.main(reproduce) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"viscontact: error: {first}: exists and is not a result of the shipped case {first.stem} saved "
+                   "by reproduce; reproduce replaces only its own results: move it or choose another --out"]
+    assert first.read_bytes() == before and not second.exists() and not third.exists()
+    first.unlink()
+    assert cli.main(reproduce) == 0  # n = 16
+    assert open_result(first).attrs["written_by"] == "viscontact reproduce"
+    assert cli.main([*reproduce, "--set", "tangential.friction_coefficient=0.4"]) == 0  # its own, replaced
+    for path in (first, second, third):
+        ds = open_result(path)
+        assert "friction_coefficient = 0.4" in ds.attrs["case"] and ds.attrs["written_by"] == "viscontact reproduce"

@@ -4,9 +4,11 @@ Each case of a figure (:data:`~viscontact.reproduce.figures.FIGURES`) runs from 
 (``seed_*.toml``; see their header comments for the seed's parameters), is saved as
 ``<case>.nc`` in the output folder, and the figure is drawn from those Datasets only. A saved
 result whose stored case text is that of the case to run (same overrides) is reused instead of
-being computed again, so ``fig8`` after ``fig6`` and ``fig7`` costs nothing. ``<case>.nc`` replaces
-only a result of the same shipped case (any other file there is refused, before the first case
-runs: :func:`check_outputs`).
+being computed again, so ``fig8`` after ``fig6`` and ``fig7`` costs nothing. Each saved result is
+marked as reproduce's own (global attribute :data:`WRITTEN_BY` = :data:`REPRODUCE`), and
+``<case>.nc`` replaces only such a result of the same shipped case: any other file there (a
+``viscontact run`` of that very case included) is refused, before the first case runs
+(:func:`check_outputs`).
 """
 from __future__ import annotations
 
@@ -26,6 +28,9 @@ if TYPE_CHECKING:
 
 __all__ = ["check_outputs", "draw", "find_cases_dir", "load_seed_case", "record_every", "reproduce", "run_seed_cases",
            "stable_steps", "time_scale"]
+
+#: the global attribute marking the results ``reproduce`` saved, and its value: the only files it replaces
+WRITTEN_BY, REPRODUCE = "written_by", "viscontact reproduce"
 
 #: progress(case_name, steps_done, steps_total)
 Progress = Callable[[str, int, int], None]
@@ -166,19 +171,22 @@ def _cached(path: Path, case_text: str) -> xr.Dataset | None:
     return None
 
 
-def _made_from(path: Path, shipped_text: str) -> bool:
-    """Whether ``path`` is a result of the case file ``shipped_text``, at any ``--n`` or ``--set`` (its
-    stored case text is that text, the overrides appended as comments)."""
+def _own_result(path: Path, shipped_text: str) -> bool:
+    """Whether ``path`` is a result ``reproduce`` saved (attribute :data:`WRITTEN_BY`) of the case file
+    ``shipped_text``, at any ``--n`` or ``--set`` (its stored case text is that text, the overrides
+    appended as comments)."""
     ds = _saved(path)
-    return ds is not None and str(ds.attrs.get("case", "")).startswith(shipped_text.rstrip("\n"))
+    return (ds is not None and ds.attrs.get(WRITTEN_BY) == REPRODUCE
+            and str(ds.attrs.get("case", "")).startswith(shipped_text.rstrip("\n")))
 
 
 def check_outputs(out_dir: Path, shipped: Mapping[str, str], inputs: Iterable[Path]) -> dict[str, Path]:
     """Refuse, before the first case runs, what ``reproduce`` must not write into ``out_dir``.
 
     ``out_dir`` must be a folder or one that can be made. Each case's result ``<case>.nc`` is
-    replaced only when it is a result of that shipped case, made at any ``--n`` or ``--set`` (its
-    stored case text starts with the case file's text): any other file there is never replaced, so
+    replaced only when ``reproduce`` saved it (attribute :data:`WRITTEN_BY`) from that shipped case,
+    at any ``--n`` or ``--set`` (its stored case text starts with the case file's text): any other
+    file there, a result of the same case made by ``viscontact run`` included, is never replaced, so
     ``reproduce`` needs no ``--force``. The figures are reproduce's own files and are replaced.
 
     Parameters
@@ -207,9 +215,10 @@ def check_outputs(out_dir: Path, shipped: Mapping[str, str], inputs: Iterable[Pa
     paths = {}
     for name, text in shipped.items():
         path = out_dir / f"{name}.nc"
-        if path.is_file() and not _made_from(path, text):
-            raise FileExistsError(errno.EEXIST, f"exists and is not a result of the shipped case {name}; reproduce "
-                                  "replaces only its own results: move it or choose another --out", str(path))
+        if path.is_file() and not _own_result(path, text):
+            raise FileExistsError(errno.EEXIST, f"exists and is not a result of the shipped case {name} saved by "
+                                  "reproduce; reproduce replaces only its own results: move it or choose another --out",
+                                  str(path))
         check_output_path(path, force=True, inputs=inputs)
         paths[name] = path
     return paths
@@ -226,8 +235,9 @@ def run_seed_cases(names: Sequence[str], out_dir: str | Path, *, n: int | None =
     names
         Case names (file stems in ``cases/``).
     out_dir
-        Folder for the result files (created). An existing ``<name>.nc`` is replaced only when it is
-        a result of the same shipped case; anything else is refused before the first case runs
+        Folder for the result files (created), each marked as reproduce's (attribute
+        :data:`WRITTEN_BY`). An existing ``<name>.nc`` is replaced only when reproduce saved it from
+        the same shipped case; anything else is refused before the first case runs
         (:func:`check_outputs`).
     n
         Override ``grid.n`` (``time.dt`` follows: one cell of sliding per step).
@@ -266,6 +276,7 @@ def run_seed_cases(names: Sequence[str], out_dir: str | Path, *, n: int | None =
         if ds is None:
             callback = (lambda done, total, _name=name: progress(_name, done, total)) if progress else None
             ds = api.run(case, progress=callback)
+            ds.attrs[WRITTEN_BY] = REPRODUCE
             write_netcdf(ds, path, force=True)
         results[name] = ds
     return results
