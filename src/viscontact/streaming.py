@@ -253,8 +253,8 @@ class ResultStream:
         # rewritten in place, 4 KiB); HDF5's default cache of 1 MiB per variable grew the process by
         # ~20 MiB over the first steps at 256^2 and kept creeping (allocator fragmentation)
         self.file = h5py.File(self.path, "a", rdcc_nbytes=0)
-        #: a descriptor of the file written (whatever its name becomes, until :meth:`close`) and its
-        #: ``os.fstat``: :meth:`finish` and :meth:`publish` check that :attr:`path` still names it
+        # a descriptor of the file written (whatever its name becomes, until close()) and its
+        # os.fstat: finish() and publish() check that self.path still names it
         self.identity = os.fstat(self.file.id.get_vfd_handle())
         self._own = os.open(self.path, os.O_RDONLY | getattr(os, "O_CLOEXEC", 0))  # not a dup: no HDF5 file lock
         if not os.path.samestat(os.fstat(self._own), self.identity):  # pragma: no cover - replaced this very moment
