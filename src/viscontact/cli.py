@@ -10,9 +10,9 @@ exit with 130 / 143. ``run`` streams its records to ``RESULT.nc.partial`` and re
 (:func:`viscontact.output_files.output_lock`) before checking it: a second command writing the same
 file is refused in one line (should the lock file be removed under a run and another run replace
 its ``RESULT.nc.partial``, the first renames nothing, keeps its own file as
-``RESULT.nc.orphan-PID.nc`` and exits with status 1). Every sub-command takes ``--quiet`` (no progress bar, summary or warnings) and
-``--log-level`` (the messages of the ``viscontact`` logger shown on stderr; warnings are at level
-``warning``).
+``RESULT.nc.orphan-PID.nc`` and exits with status 1). Every sub-command takes ``--quiet`` (no
+progress bar, summary or warnings) and ``--log-level`` (the messages of the ``viscontact`` logger
+shown on stderr; warnings are at level ``warning``).
 """
 from __future__ import annotations
 
@@ -532,7 +532,7 @@ def _cmd_plot(args: argparse.Namespace) -> int:
 def _cmd_sweep(args: argparse.Namespace) -> int:
     """0 when every run succeeded, 1 when some failed (the sweep file is written all the same), 130
     when interrupted (the finished runs are kept)."""
-    from .sweep import load_sweep, plan, runs_dir, sweep
+    from .sweep import load_sweep, planned, runs_dir, sweep
 
     started = time.perf_counter()
     if args.workers is not None and args.scheduler:
@@ -540,8 +540,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     if args.workers is not None and args.workers < 1:
         raise ParameterError("--workers", f"must be >= 1, got {args.workers}")
     _check_result_name(args.out)
-    spec = load_sweep(args.sweep)
-    plan(spec)  # every problem with the sweep file, before connecting to anything
+    the_plan = planned(load_sweep(args.sweep))  # every run checked, before connecting to anything
     if args.plots:
         _check_figures(args)
     client = None
@@ -554,7 +553,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
             except (OSError, TimeoutError) as exc:
                 raise ParameterError("--scheduler", f"cannot connect to {args.scheduler}: {exc}") from None
         with _bar(args, "run") as bar:
-            ds = sweep(spec, client=client, out=args.out, workers=args.workers, force=args.force,
+            ds = sweep(the_plan, client=client, out=args.out, workers=args.workers, force=args.force,
                        progress=lambda done, failed, total: bar.update(done + failed, total, done=done, failed=failed))
     except KeyboardInterrupt as exc:
         exc.note = (f"; the finished runs are kept in {runs_dir(args.out)}/ - run the same "  # type: ignore[attr-defined]

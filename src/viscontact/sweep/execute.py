@@ -99,7 +99,17 @@ def runs_dir(out: str | Path) -> Path:
     return out.with_name(out.stem + ".runs") if out.suffix else out.with_name(out.name + ".runs")
 
 
-def sweep(spec: SweepSpec | str | Path, client: Any = None, out: str | Path | None = None,
+def planned(spec: SweepSpec | str | Path) -> Plan:
+    """The checked plan :func:`sweep` runs (:func:`~viscontact.sweep.spec.plan`): each run on one
+    thread (``solver.workers = 1``: the cluster's processes share the cores) unless the sweep sets
+    ``solver.workers`` itself."""
+    if not isinstance(spec, SweepSpec):
+        spec = load_sweep(spec)
+    user_set_workers = "solver.workers" in spec.parameters or "solver.workers" in spec.overrides
+    return plan(spec, fixed={} if user_set_workers else {"solver.workers": 1})
+
+
+def sweep(spec: SweepSpec | Plan | str | Path, client: Any = None, out: str | Path | None = None,
           progress: Callable[[int, int, int], None] | None = None, *, workers: int | None = None,
           force: bool = False) -> xr.Dataset:
     """Run every point of a sweep on a dask.distributed cluster and gather the results.
@@ -107,8 +117,9 @@ def sweep(spec: SweepSpec | str | Path, client: Any = None, out: str | Path | No
     Parameters
     ----------
     spec
-        A sweep file path or a :class:`SweepSpec`. Checked completely (keys, values, every run's
-        case) before anything is submitted.
+        A sweep file path or a :class:`SweepSpec`, checked completely (keys, values, every run's
+        case and the solver's pre-run checks: :func:`planned`) before anything is submitted; or the
+        :class:`Plan` :func:`planned` made of it.
     client
         A ``distributed.Client``. None: a ``LocalCluster`` of ``workers`` processes (default one
         per core) with one thread each is started for the call and closed after it.
@@ -134,10 +145,8 @@ def sweep(spec: SweepSpec | str | Path, client: Any = None, out: str | Path | No
     A failed run is NaN in the Dataset, its message is in ``error`` and it is reported with a
     :class:`~viscontact.errors.ViscontactWarning`; the other runs still finish.
     """
-    if not isinstance(spec, SweepSpec):
-        spec = load_sweep(spec)
-    user_set_workers = "solver.workers" in spec.parameters or "solver.workers" in spec.overrides
-    the_plan = plan(spec, fixed={} if user_set_workers else {"solver.workers": 1})
+    the_plan = spec if isinstance(spec, Plan) else planned(spec)
+    spec = the_plan.spec
     if workers is not None and workers < 1:
         raise ParameterError("--workers", f"must be >= 1, got {workers}")
     if out is None:
