@@ -463,7 +463,11 @@ class ResultStream:
             self.close()
             if error.kept is not None:
                 try:
-                    ResultStream(error.kept, self.problem, require_space=False).finish(attrs)
+                    orphan = ResultStream(error.kept, self.problem, require_space=False)
+                    try:
+                        orphan.finish(attrs)
+                    finally:
+                        orphan.close()
                 except (OSError, RuntimeError, OutputReplacedError):  # the copy holds the records (complete = 0)
                     pass
             raise error
@@ -480,7 +484,7 @@ class ResultStream:
                 f.attrs[key] = value
                 if key in SCALES and key in f:  # also a scalar variable (to_dataset's scales)
                     f[key][()] = float(value)
-            if final["complete"] == 1 and FINGERPRINT in f.attrs:  # nothing to resume: the in-memory result's attributes
+            if final["complete"] == 1 and FINGERPRINT in f.attrs:  # nothing to resume: in-memory results have none
                 del f.attrs[FINGERPRINT]
             subsurface = _FileRecords(self.along_t, t) if self.problem.output.subsurface_depths and len(t) else None
             if subsurface is not None:
