@@ -44,8 +44,8 @@ from .materials import Material
 from .problem import Problem
 from .schemes import stable_step_limit, step_coefficients
 
-__all__ = ["ContactEstimate", "check_material", "check_problem", "check_solution", "contact_estimate", "grid_suggestion",
-           "peak_pressure_error", "time_step_error"]
+__all__ = ["ContactEstimate", "check_material", "check_problem", "check_solution", "contact_estimate",
+           "grid_suggestion", "peak_pressure_error", "time_step_error"]
 
 #: estimated relative errors of the peak pressure above which a run is refused / warned about
 ERROR_LIMIT, WARNING_LIMIT = 0.10, 0.05
@@ -323,7 +323,8 @@ def _check_end(problem: Problem) -> None:
     if t_end - last > END_SHORTFALL * t_end:
         warnings.warn(f"time.t_end = {t_end:.4g} s is not a multiple of time.dt = {dt:.4g} s: the run ends at "
                       f"t = {last:.4g} s, {100 * (t_end - last) / t_end:.2g} % short; use time.t_end = "
-                      f"{last + dt:.4g} s (one step more) or a time.dt that divides it", ViscontactWarning, stacklevel=3)
+                      f"{last + dt:.4g} s (one step more) or a time.dt that divides it", ViscontactWarning,
+                      stacklevel=3)
 
 
 def _time_step_suggestion(problem: Problem) -> str:

@@ -157,19 +157,16 @@ CURVATURE_FIT_CONTACTS = 2.0
 CURVATURE_FIT_ROUNDS, CURVATURE_FIT_CELLS = 4, 3
 
 
-def _fitted_radius(problem: Problem, reach: float) -> float:
+def _fitted_radius(gap: np.ndarray, dx: np.ndarray, dy: np.ndarray, reach: float) -> float:
     """2 / laplacian [m] of the least-squares paraboloid h = c0 + c1 x + c2 y + c3 x^2 + c4 y^2 + c5 x y
-    fitted over the cells within ``reach`` [m] of the gap's lowest point; NaN when not convex."""
-    h = problem.gap
-    x, y = problem.grid.mesh()
-    j, i = np.unravel_index(np.argmin(h), h.shape)
-    dx, dy = x - x[j, i], y - y[j, i]
+    fitted to ``gap`` [m] over the cells within ``reach`` [m] of a point, (``dx``, ``dy``) [m] from it;
+    NaN when not convex."""
     near = dx**2 + dy**2 <= reach**2
     u, v = dx[near] / reach, dy[near] / reach  # scaled: a well-conditioned fit
     basis = np.column_stack([np.ones_like(u), u, v, u * u, v * v, u * v])
     if np.linalg.matrix_rank(basis) < basis.shape[1]:
         return float("nan")
-    coef = np.linalg.lstsq(basis, h[near], rcond=None)[0]
+    coef = np.linalg.lstsq(basis, gap[near], rcond=None)[0]
     lap = 2.0 * (coef[3] + coef[4]) / reach**2
     return float(2.0 / lap) if lap > 0 else float("nan")
 
@@ -186,16 +183,19 @@ def equivalent_radius(problem: Problem) -> float:
     out (the curvature at one cell was the roughness's: a sphere of 10 mm with 1 um of roughness gave
     0.2 mm); a tip or the lowest of several asperities is measured on its own contact's scale.
     """
-    grid = problem.grid
+    grid, h = problem.grid, problem.gap
+    x, y = grid.mesh()
+    j, i = np.unravel_index(np.argmin(h), h.shape)
+    dx, dy = x - x[j, i], y - y[j, i]
     smallest = CURVATURE_FIT_CELLS * grid.spacing
     reach = max(CURVATURE_FIT_FRACTION * grid.half_width, smallest)
     mat, reference = problem.material, problem.normal.history.reference
+    build = hertz_from_load if problem.normal.control == "load" else hertz_from_approach
     radius = float("nan")
     for _ in range(CURVATURE_FIT_ROUNDS):
-        radius = _fitted_radius(problem, reach)
+        radius = _fitted_radius(h, dx, dy, reach)
         if not (np.isfinite(radius) and reference > 0):
             return radius
-        build = hertz_from_load if problem.normal.control == "load" else hertz_from_approach
         contact = build(reference, radius, mat.shear_modulus_long_term, mat.poisson_ratio).radius
         shrunk = max(CURVATURE_FIT_CONTACTS * contact, smallest)
         if shrunk >= 0.95 * reach:

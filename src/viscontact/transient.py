@@ -302,6 +302,8 @@ def _relative_change(new: np.ndarray, old: np.ndarray) -> float:
 
 #: smallest relaxation weight of the coupling iteration (:func:`relaxation_weight`)
 MIN_RELAXATION = 0.02
+#: a coupling pass whose change is above this fraction of the last pass's contracts too slowly for
+#: the plain fixed point (:func:`solve_coupled`; the seed's cases shrink by about 0.1 a pass)
 SLOW_CONTRACTION = 0.7
 
 
