@@ -142,10 +142,12 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
     # a scalar lower bound and no upper one (the normal problem): the points at the bound are exactly
     # those not free, which spares the release test its element-wise passes on x
     plain_bounds = np.ndim(lower) == 0 and np.ndim(upper) == 0 and np.isposinf(upper)
-    lower = np.broadcast_to(np.asarray(lower, dtype=float), b.shape)
-    upper = np.broadcast_to(np.asarray(upper, dtype=float), b.shape)
-    x = np.clip(np.array(x0, dtype=float), lower, upper)
-    fixed = lower >= upper
+    # scalar bounds stay Python floats, array bounds are fields of b's library (:mod:`viscontact.arrays`)
+    lower, upper = _bound(lower), _bound(upper)
+    x = x0.astype(float)  # a copy, clipped in place
+    np.clip(x, lower, upper, out=x)
+    # fixed points (lower = upper): a field, or one flag for scalar bounds
+    fixed = np.greater_equal(lower, upper) if np.ndim(lower) or np.ndim(upper) else lower >= upper
     scale_start = 1.0
     if total is not None:
         if total <= 0:
@@ -153,7 +155,7 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             g = apply_k(zero) - b
             return ConstrainedSolution(zero, g - g.min(), float(g.min()), 0, 0.0)
         if x.sum() <= 0:
-            x = np.where(fixed, 0.0, 1.0)
+            x = np.where(fixed, 0.0, 1.0) if np.ndim(fixed) else np.full_like(x, 0.0 if fixed else 1.0)
             start_product = None
         scale_start = total / (cell_area * x.sum())
         x *= scale_start
@@ -168,14 +170,13 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
     # mixed precision: the search direction, the preconditioned gradient and K d are float32 fields
     # (any direction serves; x and K x move by it exactly, in double), which halves their traffic
     single = apply_k_increment is not None
-    direction = np.zeros(x.shape, dtype=np.float32 if single else float)
-    free_gradient = np.zeros(x.shape, dtype=np.float32) if single and preconditioner is not None else work
-    free, bound, mask, mask2 = (np.empty(x.shape, dtype=bool) for _ in range(4))
-    movable = ~fixed
+    direction = np.zeros_like(x, dtype=np.float32 if single else float)
+    free_gradient = np.zeros_like(x, dtype=np.float32) if single and preconditioner is not None else work
+    free, bound, mask, mask2 = (np.empty_like(x, dtype=bool) for _ in range(4))
+    movable = np.logical_not(fixed)
     # the normal problem has no upper bound and no negative x: skip their element-wise passes
     bounded_above = not bool(np.isposinf(upper).all())
-    nonnegative = bool(lower.min() >= 0)
-    lower_value = float(lower.flat[0])
+    nonnegative = bool(np.min(lower) >= 0)
     b_scale = float(np.max(np.abs(b)))
     # mixed precision: bound on the error the single-precision increments have left in K x since its
     # last full product, and the bound at which K x is recomputed (module docstring)
@@ -189,7 +190,7 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
     if start_product is not None:
         kx = np.multiply(start_product, scale_start)  # own copy: updated in place below
     else:
-        kx = np.array(apply_k(x), dtype=float)
+        kx = apply_k(x).astype(float)  # own copy: updated in place below
 
     def solution(it: int, residual: float) -> ConstrainedSolution:
         """The solve's result from the current x and K x: the sum constraint imposed to round-off
@@ -207,7 +208,7 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         if bounded_above:
             free &= np.less(x, upper, out=mask)
         if it % 25 == 0 or drift > drift_limit:  # refresh the incrementally updated K x against drift
-            kx = np.array(apply_k(x), dtype=float)
+            kx = apply_k(x).astype(float)
             drift = 0.0
         np.subtract(kx, b, out=g)
         n_free = int(np.count_nonzero(free))
@@ -220,7 +221,7 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             # in one iteration: another step would divide round-off by round-off): release the bound
             # points whose gradient points inwards, or stop
             inward = ((x <= lower) & (g < 0)) | ((x >= upper) & (g > 0))
-            inward &= ~fixed & ~free
+            inward &= movable & ~free
             if not inward.any():
                 return solution(it, 0.0)
             free |= inward
@@ -255,7 +256,7 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         change = abs(step) * float(np.abs(direction, out=free_gradient).sum())
         x -= np.multiply(direction, step, out=work)  # the direction vanishes off the free set
         if plain_bounds:
-            clipped = float(x.min()) < lower_value
+            clipped = float(x.min()) < lower
         else:
             clipped = bool(np.less(x, lower, out=mask).any() or bounded_above and np.greater(x, upper, out=mask).any())
         if clipped:  # x_linear: x before the bound corrections (the clip and the release below)
@@ -294,7 +295,7 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
                 kx += k_correction
                 drift += SINGLE_ERROR * _max_abs(k_correction)
             else:
-                kx = np.array(apply_k(x), dtype=float)
+                kx = apply_k(x).astype(float)
             change += float(np.abs(correction, out=correction).sum())  # the triangle inequality: a bound
         if total is not None:
             s = float(x.sum())
@@ -312,6 +313,12 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             return solution(it, residual)
     raise ConvergenceError(what, max_iterations, residual, tolerance,
                            hint="raise solver.max_iterations or refine the grid")
+
+
+def _bound(value: np.ndarray | float) -> np.ndarray | float:
+    """A bound as the iteration takes it: a scalar as a Python float, a field as a float field of
+    its own library."""
+    return float(value) if np.ndim(value) == 0 else value.astype(float, copy=False)
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> float:
@@ -338,6 +345,8 @@ def _max_abs(field: np.ndarray) -> float:
 
 
 def _free_mean(field: np.ndarray, free: np.ndarray, n_free: int) -> float:
-    """Mean of ``field`` over the ``n_free`` points of the mask ``free``, without a masked copy (summed
-    in double whatever the field's precision)."""
-    return float(np.sum(field, where=free, dtype=np.float64)) / n_free
+    """Mean of ``field`` over the ``n_free`` points of the mask ``free``, without a masked copy: one
+    pass, summed in double whatever the field's precision (an einsum: device libraries have no
+    ``np.sum(..., where=...)``; as fast on the CPU)."""
+    axes = "ijklmn"[:field.ndim]
+    return float(np.einsum(f"{axes},{axes}->", field, free, dtype=np.float64)) / n_free

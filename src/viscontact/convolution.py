@@ -16,7 +16,7 @@ from typing import Iterable, Mapping
 import numpy as np
 import scipy.fft
 
-from .fftbackends import DCFFTTransforms, ZeroBlockTransforms, fft_threads
+from .fftbackends import DCFFTTransforms, ZeroBlockTransforms, fft_keywords
 from .grid import Grid
 from .kernels import influence_coefficients
 
@@ -70,11 +70,12 @@ class Convolver:
     def from_kernels(cls, n: int, kernels: Mapping[str, np.ndarray], workers: int = -1, *,
                      xp: ModuleType = np, fft: ModuleType = scipy.fft,
                      transforms: DCFFTTransforms | None = None) -> "Convolver":
-        """Spectra of kernels given on the (2n, 2n) offset grid (the kernels are kept for
-        :meth:`apply_sparse`)."""
+        """Spectra of kernels given on the (2n, 2n) offset grid, numpy arrays or fields of ``xp`` (moved
+        there first; the kernels are kept for :meth:`apply_sparse`)."""
+        kernels = {k: xp.asarray(v) for k, v in kernels.items()}
         centred = {k: xp.roll(v, (n - 1, n - 1), axis=(0, 1)) for k, v in kernels.items()}
-        return cls(n, {k: fft.rfft2(v, workers=workers) for k, v in kernels.items()}, workers, centred, xp, fft,
-                   transforms)
+        threads = fft_keywords(fft, workers, 4 * n * n)
+        return cls(n, {k: fft.rfft2(v, **threads) for k, v in kernels.items()}, workers, centred, xp, fft, transforms)
 
     def apply_sparse(self, name: str, field: np.ndarray, factor: float = 1.0) -> np.ndarray:
         """Same as :meth:`apply` (times ``factor``) for a field with few non-zeros, by direct sum of
@@ -234,12 +235,13 @@ class FourierPreconditioner:
     @classmethod
     def for_kernel(cls, kernel: np.ndarray, factor: float = 1.0, workers: int = -1, *,
                    fft: ModuleType = scipy.fft) -> "FourierPreconditioner":
-        """From a kernel on the (2n, 2n) DC-FFT offset grid, times the scalar ``factor``."""
+        """From a kernel on the (2n, 2n) DC-FFT offset grid (a field of ``fft``'s library), times the
+        scalar ``factor``."""
         n = kernel.shape[0] // 2
-        idx = np.arange(n)
-        idx = np.where(idx <= n // 2, idx, idx + n)  # offsets 0..n/2, then -(n/2-1)..-1
-        wrapped = kernel[np.ix_(idx, idx)]
-        symbol = factor * np.abs(fft.rfft2(wrapped, workers=workers).real)
+        half = n // 2 + 1  # offsets 0..n/2, then -(n/2-1)..-1 (at n + n/2 + 1 .. 2n - 1)
+        wrapped = np.concatenate((kernel[:half], kernel[n + half:]), axis=0)
+        wrapped = np.concatenate((wrapped[:, :half], wrapped[:, n + half:]), axis=1)
+        symbol = factor * np.abs(fft.rfft2(wrapped, **fft_keywords(fft, workers, n * n)).real)
         symbol = np.maximum(symbol, symbol.max() * 1e-12)
         return cls(1.0 / symbol, workers, fft)
 
@@ -250,9 +252,9 @@ class FourierPreconditioner:
 
     def __call__(self, residual: np.ndarray) -> np.ndarray:
         """F^-1[F[residual] / K^] (in float32 when ``inverse_symbol`` is: :meth:`single`)."""
-        workers = fft_threads(self.workers, residual.size)
+        threads = fft_keywords(self.fft, self.workers, residual.size)
         if self.inverse_symbol.dtype == np.float32:  # the single-precision preconditioner
             residual = residual.astype(np.float32, copy=False)
-        spectrum = self.fft.rfft2(residual, workers=workers)
+        spectrum = self.fft.rfft2(residual, **threads)
         spectrum *= self.inverse_symbol
-        return self.fft.irfft2(spectrum, s=residual.shape, workers=workers, overwrite_x=True)
+        return self.fft.irfft2(spectrum, s=residual.shape, overwrite_x=True, **threads)

@@ -32,7 +32,7 @@ import numpy as np
 import scipy.fft
 
 __all__ = ["BACKENDS", "DCFFTTransforms", "FFTWTransforms", "SINGLE_THREAD_SIZE", "ZeroBlockTransforms",
-           "dcfft_transforms", "fft_threads"]
+           "dcfft_transforms", "fft_keywords", "fft_threads"]
 
 #: grids of up to this many cells (n x n) transform on one thread when ``workers = -1``: a second pocketfft
 #: thread costs more wall time than it saves below (2-core machine, quiet, padded pair of the DC-FFT:
@@ -46,6 +46,12 @@ def fft_threads(workers: int, cells: int) -> int:
     ``-1`` (the default, "all cores where they win") is 1 up to :data:`SINGLE_THREAD_SIZE` cells and -1
     (all cores) above; an explicit count is used as given."""
     return 1 if workers == -1 and cells <= SINGLE_THREAD_SIZE else workers
+
+
+def fft_keywords(fft: ModuleType, workers: int, cells: int) -> dict[str, int]:
+    """The thread keyword of a transform by ``fft`` on ``cells`` points: ``workers`` (:func:`fft_threads`)
+    for ``scipy.fft``; none for other modules (``cupyx.scipy.fft`` takes no ``workers``)."""
+    return {"workers": fft_threads(workers, cells)} if fft is scipy.fft else {}
 
 
 class DCFFTTransforms(Protocol):
@@ -82,7 +88,7 @@ class ZeroBlockTransforms:
         self.n = n
         self.workers = workers
         self.fft = fft
-        self._kw = {"workers": fft_threads(workers, n * n)} if fft is scipy.fft else {}
+        self._kw = fft_keywords(fft, workers, n * n)
         self._overwrite = {"overwrite_x": True} if fft is scipy.fft else {}
 
     def forward(self, field: np.ndarray) -> np.ndarray:
@@ -94,7 +100,7 @@ class ZeroBlockTransforms:
         rows = np.empty_like(field, shape=(n, 2 * n))
         rows[:, :n] = field
         rows[:, n:] = 0.0
-        spectrum = np.empty((2 * n, n + 1), dtype=np.result_type(field.dtype, np.complex64))
+        spectrum = np.empty_like(field, shape=(2 * n, n + 1), dtype=np.result_type(field.dtype, np.complex64))
         spectrum[:n] = fft.rfft(rows, axis=1, **self._kw)          # (n, n+1): the non-zero rows
         spectrum[n:] = 0.0                                         # the zero rows
         return fft.fft(spectrum, axis=0, **self._kw, **self._overwrite)  # in place with scipy.fft

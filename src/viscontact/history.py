@@ -34,6 +34,7 @@ the leading (+x) edge.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from types import ModuleType
 from typing import Protocol
 
 import numpy as np
@@ -70,8 +71,10 @@ class PronyHistory:
     previous: np.ndarray
 
     @classmethod
-    def zeros(cls, n_modes: int, n: int) -> "PronyHistory":
-        return cls(np.zeros((n_modes, n, n)), np.zeros((n, n)))
+    def zeros(cls, n_modes: int, n: int, xp: ModuleType = np) -> "PronyHistory":
+        """The history before the first step, its fields made by the array namespace ``xp``
+        (:mod:`viscontact.arrays`)."""
+        return cls(xp.zeros((n_modes, n, n)), xp.zeros((n, n)))
 
     def known(self, coef: StepCoefficients, t: float) -> np.ndarray:
         """r_k = sum_m J_m (beta_m p_{k-1} - A_m H_m,k-1) [m/Pa x Pa, to convolve with IC at G = 1]."""
@@ -90,7 +93,7 @@ class PronyHistory:
             for m in range(internal.shape[0]):
                 np.multiply(self.internal[m], coef.decay[m], out=internal[m])
                 internal[m] += coef.weight[m] * inc
-        return PronyHistory(internal, np.array(current, dtype=float, copy=True))
+        return PronyHistory(internal, current.astype(float))  # a copy
 
     def shifted(self, cells: int, coef: StepCoefficients, wrap: bool = False) -> tuple["PronyHistory", np.ndarray]:
         """Moved with the frame; also returns the dropped internal columns (M, n, cells)."""

@@ -21,7 +21,8 @@ solvers use, and is all a new substrate has to provide:
 * :meth:`~TermSubstrate.advanced`, :meth:`~TermSubstrate.shifted`: the history after a step / a
   frame shift (new objects; nothing is mutated);
 * :meth:`~TermSubstrate.steady_convolver`: the effective kernel of steady sliding at a speed;
-* ``xp`` (array namespace) and ``fft`` (FFT backend) used by the convolver.
+* ``backend`` (:class:`~viscontact.arrays.ArrayBackend`: the array namespace ``xp`` and the FFT
+  module ``fft`` of the fields, ``to_host`` for what the results keep).
 
 :class:`HalfSpace` is the homogeneous half-space with constant Poisson ratio (Boussinesq-Cerruti
 kernels of :mod:`viscontact.kernels`, all four terms sharing the material's creep compliance, so
@@ -44,11 +45,11 @@ from types import ModuleType
 from typing import Callable, Mapping, Sequence
 
 import numpy as np
-import scipy.fft
 
+from .arrays import CPU, ArrayBackend
 from .convolution import Convolver, FourierPreconditioner
 from .errors import ParameterError
-from .fftbackends import dcfft_transforms
+from .fftbackends import ZeroBlockTransforms, dcfft_transforms
 from .grid import Grid
 from .history import DirectHistory, History, PronyHistory
 from .kernels import influence_coefficients
@@ -139,12 +140,18 @@ class TermSubstrate:
         Steady shape (:class:`~viscontact.steady_kernels.SteadyShape`) of each kernel, by name, for
         :meth:`steady_convolver` on DC-FFT grids (kernels whose response has no retardation modes
         need none).
+    backend
+        Where the fields live (:mod:`viscontact.arrays`): ``convolver`` and ``preconditioners`` hold
+        fields of it. The literal hereditary sum (``direct``) is CPU-only.
     """
 
     def __init__(self, grid: Grid, terms: Sequence[Term], responses: Mapping[str, CreepSpectrum],
                  convolver: Convolver, preconditioners: Mapping[str, FourierPreconditioner],
                  scheme: str | TimeScheme, dt: float, direct: bool = False, periodic: bool = False,
-                 steady_shapes: Mapping[str, SteadyShape] | None = None) -> None:
+                 steady_shapes: Mapping[str, SteadyShape] | None = None, backend: ArrayBackend = CPU) -> None:
+        if direct and not backend.is_cpu:
+            raise ParameterError("solver.history", f"'direct' (the reference sum) runs on the CPU only, not on "
+                                 f"{backend.name!r}")
         self.grid = grid
         self.terms = tuple(terms)
         self.responses = dict(responses)
@@ -155,6 +162,7 @@ class TermSubstrate:
         self.direct = direct
         self.periodic = periodic
         self.steady_shapes = dict(steady_shapes or {})
+        self.backend = backend
         #: traction component each history carries
         self.history_traction = {t.history: t.traction for t in self.terms}
         #: the history of the normal self-term (what leaves the frame as the wake)
@@ -167,13 +175,13 @@ class TermSubstrate:
 
     @property
     def xp(self) -> ModuleType:
-        """Array namespace of the fields (numpy)."""
-        return self.convolver.xp
+        """Array namespace of the fields (:attr:`backend`'s: numpy on the CPU)."""
+        return self.backend.xp
 
     @property
     def fft(self) -> ModuleType:
-        """FFT backend (scipy.fft)."""
-        return self.convolver.fft
+        """FFT module of the fields (:attr:`backend`'s: scipy.fft on the CPU)."""
+        return self.backend.fft
 
     def _step_coefficients(self, first: bool) -> dict[str, StepCoefficients]:
         by_spectrum: dict[int, StepCoefficients] = {}
@@ -201,7 +209,7 @@ class TermSubstrate:
         n = self.grid.n
         if self.direct:
             return {key: DirectHistory(n) for key in self.history_traction}
-        return {key: PronyHistory.zeros(self.responses[key].retardation_times.size, n)
+        return {key: PronyHistory.zeros(self.responses[key].retardation_times.size, n, self.xp)
                 for key in self.history_traction}
 
     def advanced(self, histories: Mapping[str, History], tractions: Mapping[str, Array], t: float,
@@ -213,12 +221,13 @@ class TermSubstrate:
     def shifted(self, histories: Mapping[str, History], cells: int = 1
                 ) -> tuple[dict[str, History], dict[str, Array]]:
         """Histories after the frame moved by ``cells`` towards -x, and the internal fields
-        (M, n, cells) of each that left at the trailing edge (none when periodic: they wrap around)."""
+        (M, n, cells) of each that left at the trailing edge, on the host (none when periodic: they
+        wrap around)."""
         coef = self.coefficients(False)
         out, dropped = {}, {}
         for key, h in histories.items():
             out[key], dropped[key] = h.shifted(cells, coef[key], wrap=self.periodic)
-        return out, ({} if self.periodic else dropped)
+        return out, ({} if self.periodic else {key: self.backend.to_host(d) for key, d in dropped.items()})
 
     def known_displacement(self, histories: Mapping[str, History], t: float, first: bool,
                            need_x: bool) -> tuple[Array, Array | None]:
@@ -257,7 +266,7 @@ class TermSubstrate:
         term = self.response_term()
         if term is None:
             return None
-        return PronyHistory.zeros(self.responses[term.history].retardation_times.size, self.grid.n)
+        return PronyHistory.zeros(self.responses[term.history].retardation_times.size, self.grid.n, self.xp)
 
     def known_from_response(self, response: PronyHistory, t: float, first: bool) -> Array:
         """u_z [m] of the past increments from the response history (:meth:`initial_response`)."""
@@ -441,29 +450,34 @@ class HalfSpace(TermSubstrate):
     workers
         FFT worker threads (-1: all cores above 512^2 cells, one below: :func:`~viscontact.fftbackends.fft_threads`).
     fft
-        DC-FFT transforms by backend name (:func:`~viscontact.fftbackends.dcfft_transforms`).
-    grid, scheme, dt, direct
-        As for :class:`TermSubstrate`.
+        DC-FFT transforms by backend name (:func:`~viscontact.fftbackends.dcfft_transforms`; on a device
+        ``backend``, its own FFT module's zero-block transforms).
+    grid, scheme, dt, direct, backend
+        As for :class:`TermSubstrate` (periodic grids: CPU only so far).
     """
 
     ORDER = ("zz", "zx", "xz", "xx")
 
     def __init__(self, grid: Grid, material: Material, components: Sequence[str], scheme: str | TimeScheme,
-                 dt: float, *, workers: int = -1, direct: bool = False, fft: str = "scipy") -> None:
+                 dt: float, *, workers: int = -1, direct: bool = False, fft: str = "scipy",
+                 backend: ArrayBackend = CPU) -> None:
         comps = [c for c in self.ORDER if c in set(components) | {"zz"}]
         if grid.periodic:
+            _require_cpu(backend, "a periodic grid")
             conv = PeriodicConvolver.for_grid(grid, material.poisson_ratio, workers, comps)
             precond = {c: conv.preconditioner(c) for c in ("zz", "xx") if c in comps}
         else:
-            ics = influence_coefficients(grid, material.poisson_ratio, comps)
-            conv = Convolver.from_kernels(grid.n, {c: ics[c] for c in comps}, workers, xp=np, fft=scipy.fft,
-                                          transforms=dcfft_transforms(fft, grid.n, workers))
-            precond = {c: FourierPreconditioner.for_kernel(ics[c], 1.0, workers, fft=scipy.fft)
+            ics = {c: backend.to_device(k) for c, k in influence_coefficients(grid, material.poisson_ratio, comps).items()}
+            transforms = (dcfft_transforms(fft, grid.n, workers) if backend.is_cpu
+                          else ZeroBlockTransforms(grid.n, workers, backend.fft))
+            conv = Convolver.from_kernels(grid.n, {c: ics[c] for c in comps}, workers, xp=backend.xp,
+                                          fft=backend.fft, transforms=transforms)
+            precond = {c: FourierPreconditioner.for_kernel(ics[c], 1.0, workers, fft=backend.fft)
                        for c in ("zz", "xx") if c in comps}
         terms = [Term(c[0], c[1], c, c[1]) for c in comps]
         creep = material.creep
         super().__init__(grid, terms, {t.history: creep for t in terms}, conv, precond, scheme, dt, direct,
-                         periodic=grid.periodic)
+                         periodic=grid.periodic, backend=backend)
         self.material = material
         self.workers = workers
         self._steady_builders: dict[tuple[str, ...], SteadyKernelBuilder] = {}
@@ -485,7 +499,7 @@ class HalfSpace(TermSubstrate):
                                       transforms=self.convolver.transforms), kernels
 
 
-def substrate_for(problem, components: Sequence[str] | None = None) -> TermSubstrate:
+def substrate_for(problem, components: Sequence[str] | None = None, backend: ArrayBackend = CPU) -> TermSubstrate:
     """The substrate of a :class:`~viscontact.problem.Problem` (the one place that chooses it).
 
     ``components``: the kernels to build; by default what the transient needs: ``zz``, ``xx`` for
@@ -495,6 +509,9 @@ def substrate_for(problem, components: Sequence[str] | None = None) -> TermSubst
     ``problem.layer``: the layer's terms (:func:`layer_terms`); ``problem.bulk_modulus``: the
     half-space with nu(t) (:func:`viscontact.poisson.half_space_terms`, two histories per traction
     component); else the :class:`HalfSpace` with constant nu.
+
+    ``backend``: where the fields live (:mod:`viscontact.arrays`; the layer and nu(t) bodies and
+    periodic grids are CPU-only so far).
     """
     if components is None:
         nu = problem.material.poisson_ratio
@@ -505,9 +522,10 @@ def substrate_for(problem, components: Sequence[str] | None = None) -> TermSubst
     if problem.layer is None and problem.bulk_modulus is None:
         return HalfSpace(problem.grid, problem.material, components, problem.time.scheme, problem.time.dt,
                          workers=problem.solver.workers, direct=problem.solver.history == "direct",
-                         fft=problem.solver.fft)
+                         fft=problem.solver.fft, backend=backend)
     from .compliance_terms import term_substrate
 
+    _require_cpu(backend, "a layer" if problem.layer is not None else "a time-dependent Poisson ratio")
     comps = tuple(c for c in HalfSpace.ORDER if c in set(components) | {"zz"})
     if problem.layer is not None:
         terms = layer_terms(problem.grid, problem.layer, problem.material, comps)
@@ -517,6 +535,12 @@ def substrate_for(problem, components: Sequence[str] | None = None) -> TermSubst
         terms = half_space_terms(problem.grid, BulkElasticMaterial(problem.material, problem.bulk_modulus), comps)
     return term_substrate(problem.grid, terms, problem.time.scheme, problem.time.dt,
                           workers=problem.solver.workers, direct=problem.solver.history == "direct")
+
+
+def _require_cpu(backend: ArrayBackend, what: str) -> None:
+    """Refuse a device ``backend`` for a body that runs on the CPU only so far."""
+    if not backend.is_cpu:
+        raise ParameterError("solver.device", f"{what} runs on the CPU only so far, not on {backend.name!r}")
 
 
 def _shift_node_body(problem) -> bool:

@@ -98,12 +98,12 @@ def init(problem: Problem, substrate: TermSubstrate | None = None) -> State:
     """State before the first step (t = 0 is solved by the first call of :func:`step`)."""
     validate(problem)
     substrate = substrate or substrate_for(problem)
-    n = problem.grid.n
+    n, xp = problem.grid.n, substrate.xp
     mode = problem.tangential.mode
     phase = {"none": PHASE_INDENTATION, "partial_slip": PHASE_PARTIAL_SLIP}.get(mode, PHASE_GROSS_SLIDING)
-    return State(step=-1, t=-problem.time.dt, phase=phase, pressure=np.zeros((n, n)),
-                 shear_x=np.zeros((n, n)), histories=substrate.initial_histories(),
-                 pressure_previous=np.zeros((n, n)), shear_previous=np.zeros((n, n)),
+    return State(step=-1, t=-problem.time.dt, phase=phase, pressure=xp.zeros((n, n)),
+                 shear_x=xp.zeros((n, n)), histories=substrate.initial_histories(),
+                 pressure_previous=xp.zeros((n, n)), shear_previous=xp.zeros((n, n)),
                  t_gross_sliding=0.0 if phase == PHASE_GROSS_SLIDING else None,
                  response=substrate.initial_response())
 
@@ -436,16 +436,21 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
         known_uz, known_ux = substrate.known_from_response(state.response, t, first), None
     else:
         known_uz, known_ux = substrate.known_displacement(state.histories, t, first, need_x=solver.solves_shear)
-    ctx = StepContext(problem, substrate, k, t, first, problem.frame_gap(offset), known_uz, known_ux,
+    gap = problem.frame_gap(offset)
+    ctx = StepContext(problem, substrate, k, t, first, substrate.backend.to_device(gap), known_uz, known_ux,
                       problem.normal.history(t), state.delta_x)
     p0, p0_product = _warm_start(substrate, state, k)
     q0 = 2.0 * state.shear_x - state.shear_previous if k > 1 else state.shear_x
     sol = solve_coupled(solver, ctx, p0, q0, p0_product)
     p, q = sol.pressure, sol.shear_x
+    # what the record keeps, on the host (the same arrays on the CPU: :mod:`viscontact.arrays`)
+    to_host = substrate.backend.to_host
+    p_host, q_host, u_z = to_host(p), to_host(q), to_host(sol.displacement_z)
 
-    contact = p > 0
+    contact = p_host > 0
     n_contact = int(contact.sum())
-    stick = contact & (np.abs(q) < mu * p * (1 - STICK_MARGIN)) if solver.solves_shear else np.zeros_like(contact)
+    stick = (contact & (np.abs(q_host) < mu * p_host * (1 - STICK_MARGIN)) if solver.solves_shear
+             else np.zeros_like(contact))
     stick_ratio = float(stick.sum()) / n_contact if n_contact else 0.0
 
     # -- commit
@@ -462,19 +467,19 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
                     substrate.advanced_response(state.response, p, sol.pressure_product, t, first))
 
     # -- record
-    load = float(p.sum() * grid.cell_area)
-    check_solution(problem, p, load, ctx.value)
-    f_t = hysteresis_force(p, sol.displacement_z, grid, grid.periodic) if tan.slides else 0.0
-    wake = _wake_loss(problem, substrate, state, p, f_t / load if load > 0 else 0.0, sol.delta_z)
+    load = float(p_host.sum() * grid.cell_area)
+    check_solution(problem, p_host, load, ctx.value)
+    f_t = hysteresis_force(p_host, u_z, grid, grid.periodic) if tan.slides else 0.0
+    wake = _wake_loss(problem, substrate, state, p_host, f_t / load if load > 0 else 0.0, sol.delta_z)
     record = StepRecord(
         step=k, t=t, phase=phase, load=load, delta_z=sol.delta_z, delta_x=state.delta_x,
         sliding_distance=state.sliding_distance, contact_area=n_contact * grid.cell_area,
-        stick_ratio=stick_ratio, friction_force=float(q.sum() * grid.cell_area),
+        stick_ratio=stick_ratio, friction_force=float(q_host.sum() * grid.cell_area),
         hysteresis_force=f_t, mu_app=f_t / load if load > 0 else 0.0,
-        contact_shift=pressure_centroid(p, grid) - offset, frame_offset=offset, wake_loss=wake,
+        contact_shift=pressure_centroid(p_host, grid) - offset, frame_offset=offset, wake_loss=wake,
         iterations=sol.iterations, coupling_iterations=sol.coupling_iterations,
-        **asdict(roughness_metrics(p, ctx.gap + sol.displacement_z - sol.delta_z, grid.periodic)),
-        pressure=p, shear_x=q, stick=stick, displacement_z=sol.displacement_z,
+        **asdict(roughness_metrics(p_host, gap + u_z - sol.delta_z, grid.periodic)),
+        pressure=p_host, shear_x=q_host, stick=stick, displacement_z=u_z,
     )
     return state, record
 

@@ -1,0 +1,100 @@
+"""Array backends: where the solver's fields live and which library transforms them.
+
+The transient's numerics (:mod:`viscontact.constrained`, :mod:`viscontact.convolution`,
+:mod:`viscontact.history`, :mod:`viscontact.support_window`, :mod:`viscontact.transient`) are
+written against a numpy-compatible array namespace ``xp`` and a ``scipy.fft``-compatible FFT module,
+which an :class:`ArrayBackend` names. The CPU backend :data:`CPU` is numpy and ``scipy.fft``; a
+device library such as CuPy (with ``cupyx.scipy.fft``) follows numpy's API, and numpy's functions
+dispatch to its arrays (``__array_function__``, ``__array_ufunc__``), so the same code carries its
+fields if it keeps to these rules (the array seam):
+
+* fields are made by the backend (``xp.zeros``) or from another field (``np.zeros_like(field)``,
+  ``np.empty_like(field, shape=..., dtype=...)``: numpy hands those to the field's library), never by
+  numpy from a shape;
+* what is built once on the host (kernels, preconditioner symbols, the indenter's gap) moves to the
+  device with :meth:`ArrayBackend.to_device`; what the results keep comes back with
+  :attr:`ArrayBackend.to_host` (the record of each step: scalars and fields);
+* no implicit conversion of a field (``np.asarray(field)``, ``np.array(field)``), no host array of
+  one or more dimensions in an operation with fields, no ``.flat``;
+* the FFT's ``workers`` only for ``scipy.fft`` (:func:`~viscontact.fftbackends.fft_keywords`),
+  no ``where`` in reductions.
+
+On the CPU backend every one of these is free: ``to_device`` and ``to_host`` return their argument,
+and the arithmetic is the same. The test suite runs the transient on an emulated device (numpy
+behind CuPy's rules, ``tests/emulated_device.py``) and checks that it equals the numpy run bit for
+bit. ``solver.device = "gpu"`` (CuPy, :func:`cupy_backend`) is refused until that suite has run on a
+GPU. CPU-only so far: the steady solver, checkpoints, the literal hereditary sum, periodic grids,
+the layered and nu(t) bodies (refused in one line), and the direct solve of a gross-sliding step whose
+coupling is too strong for the fixed point (:meth:`~viscontact.transient.NormalContact.solve_direct`:
+its GMRES keeps its Krylov basis on the host).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from types import ModuleType
+from typing import Any, Callable
+
+import numpy as np
+import scipy.fft
+
+__all__ = ["ArrayBackend", "CPU", "cupy_backend"]
+
+
+@dataclass(frozen=True)
+class ArrayBackend:
+    """An array namespace and its FFT module.
+
+    Attributes
+    ----------
+    name
+        Its name in messages (``"cpu"``).
+    xp
+        Array namespace with numpy's API (``numpy``, ``cupy``).
+    fft
+        FFT module with ``scipy.fft``'s 1-D and 2-D real and complex transforms (``scipy.fft``,
+        ``cupyx.scipy.fft``).
+    to_host
+        A field of ``xp`` -> a numpy array (``numpy.asarray``: the same array; ``cupy.asnumpy``: a copy).
+    """
+
+    name: str
+    xp: ModuleType
+    fft: ModuleType
+    to_host: Callable[[Any], np.ndarray]
+
+    def to_device(self, array: Any) -> Any:
+        """``array`` (numpy, built on the host) as a field of this backend (on the CPU: itself)."""
+        return self.xp.asarray(array)
+
+    @property
+    def is_cpu(self) -> bool:
+        """Whether the fields are numpy arrays."""
+        return self.xp is np
+
+
+#: numpy and scipy.fft (pocketfft)
+CPU = ArrayBackend("cpu", np, scipy.fft, np.asarray)
+
+
+def cupy_backend() -> ArrayBackend:
+    """CuPy and ``cupyx.scipy.fft`` on the current CUDA device.
+
+    Not yet validated on a GPU (no session of this project has had one): the test suite's backend
+    tests run on it where CuPy finds a device, and ``solver.device = "gpu"`` stays refused until they
+    have passed there.
+
+    Raises
+    ------
+    ImportError
+        CuPy is not installed, or finds no CUDA device.
+    """
+    import cupy
+    import cupyx.scipy.fft
+
+    try:
+        devices = cupy.cuda.runtime.getDeviceCount()
+    except Exception as exc:  # CUDA's own error types: no driver, no runtime
+        raise ImportError(f"CuPy finds no CUDA device: {exc}") from exc
+    if not devices:
+        raise ImportError("CuPy finds no CUDA device")
+    return ArrayBackend("gpu", cupy, cupyx.scipy.fft, cupy.asnumpy)

@@ -1,0 +1,168 @@
+"""The array seam (viscontact.arrays): the transient on a device array library.
+
+Every transient mode of the half-space runs on an emulated device (tests/emulated_device.py: numpy
+behind CuPy's rules, so a host array leaking into the device path raises) and must equal the numpy
+run bit for bit, its state held in device arrays. Where CuPy finds a CUDA device, the same runs go
+on the GPU (equal to round-off: cuFFT's arithmetic is not pocketfft's).
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+import scipy.fft
+
+import emulated_device
+from emulated_device import DeviceArray, HostArrayError
+from viscontact.arrays import CPU, cupy_backend
+from viscontact.constrained import constrained_cg
+from viscontact.convolution import Convolver, FourierPreconditioner
+from viscontact.errors import ParameterError
+from viscontact.grid import Grid
+from viscontact.kernels import influence_coefficients
+from viscontact.problem import SolverSettings
+from viscontact.substrate import substrate_for
+from viscontact.transient import steps
+from vc_testing import SEED_A0, SEED_TAU, seed_material, sphere_problem
+
+
+def _backends() -> list:
+    out = [pytest.param(emulated_device.BACKEND, id="emulated")]
+    try:
+        out.append(pytest.param(cupy_backend(), id="cupy"))
+    except ImportError:
+        pass
+    return out
+
+
+BACKENDS = _backends()
+
+
+def _exact(backend) -> bool:
+    """Whether the backend does numpy's arithmetic (the emulation): results equal bit for bit."""
+    return backend is emulated_device.BACKEND
+
+
+def _assert_same(ours, reference, backend, what: str) -> None:
+    if _exact(backend):
+        np.testing.assert_array_equal(ours, reference, err_msg=what)
+    else:
+        np.testing.assert_allclose(ours, reference, rtol=1e-8, atol=1e-8 * np.max(np.abs(reference)), err_msg=what)
+
+
+# --- the emulation itself refuses what a device library refuses ------------------------------------
+
+def test_the_emulated_device_refuses_host_arrays_and_cpu_only_keywords():
+    dev = emulated_device.xp.zeros((4, 4))
+    with pytest.raises(HostArrayError):
+        np.asarray(dev)
+    with pytest.raises(HostArrayError):
+        dev + np.ones((4, 4))
+    with pytest.raises(HostArrayError):
+        dev[np.zeros((4, 4), dtype=bool)] = 1.0
+    with pytest.raises(HostArrayError):
+        emulated_device.fft.rfft2(np.ones((4, 4)))
+    with pytest.raises(TypeError, match="workers"):
+        emulated_device.fft.rfft2(dev, workers=1)
+    with pytest.raises(TypeError, match="where"):
+        np.sum(dev, where=dev > 0)
+    with pytest.raises(AttributeError):
+        dev.flat  # noqa: B018
+    # what is allowed: numpy's functions dispatched, scalars, explicit transfers
+    out = np.maximum(dev + 1.0, 0.5)
+    assert isinstance(out, DeviceArray) and float(out.sum()) == 16.0
+    assert isinstance(np.zeros_like(dev), DeviceArray)
+    assert isinstance(emulated_device.to_host(out), np.ndarray)
+    with pytest.raises(HostArrayError):
+        emulated_device.to_host(np.ones(3))
+
+
+def test_the_cpu_backend_moves_nothing():
+    field = np.ones((3, 3))
+    assert CPU.to_device(field) is field and CPU.to_host(field) is field and CPU.is_cpu
+
+
+# --- the numerics on the device --------------------------------------------------------------------
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_dcfft_preconditioned_cg_on_the_device_equals_numpy(backend):
+    """Hertz contact (elastic, load control), mixed precision: convolver, preconditioner and CG."""
+    grid = Grid(32, 1.5e-3)
+    x, y = grid.mesh()
+    gap = (x**2 + y**2) / (2 * 0.01)
+    ics = influence_coefficients(grid, 0.3, ("zz",))
+
+    def solve(xp, fft, to_device, to_host):
+        kernel = to_device(ics["zz"])
+        conv = Convolver.from_kernels(grid.n, {"zz": kernel}, xp=xp, fft=fft)
+        precond = FourierPreconditioner.for_kernel(kernel, 1.0 / 1e6, fft=fft)
+        sol = constrained_cg(lambda p: conv.apply("zz", p) / 1e6, -to_device(gap), xp.zeros((grid.n, grid.n)), 0.0,
+                             np.inf, total=0.15, cell_area=grid.cell_area, tolerance=1e-10,
+                             preconditioner=precond.single(), apply_k_sparse=lambda p: conv.apply_sparse("zz", p, 1e-6),
+                             apply_k_increment=lambda p: conv.apply("zz", p, single=True) / 1e6)
+        return sol, to_host(sol.x), to_host(sol.gradient)
+
+    ref, p_ref, g_ref = solve(np, scipy.fft, np.asarray, np.asarray)
+    sol, p, g = solve(backend.xp, backend.fft, backend.to_device, backend.to_host)
+    assert not isinstance(sol.x, np.ndarray)
+    _assert_same(p, p_ref, backend, "pressure")
+    _assert_same(g, g_ref, backend, "gap")
+    assert sol.iterations == ref.iterations if _exact(backend) else abs(sol.iterations - ref.iterations) <= 2
+    assert sol.multiplier == ref.multiplier if _exact(backend) else sol.multiplier == pytest.approx(ref.multiplier, 1e-8)
+
+
+def _transient(mode: str):
+    """A short run of every transient mode on the seed's material (n = 32)."""
+    material = seed_material()
+    if mode == "creep":
+        return sphere_problem(material, 32, 2.5 * SEED_A0, t_end=10 * SEED_TAU / 20)
+    if mode == "displacement":
+        return sphere_problem(material, 32, 2.5 * SEED_A0, control="displacement", value=20e-6,
+                              t_end=6 * SEED_TAU / 20, scheme="linear")
+    if mode == "frictionless_sliding":  # frame shifts, the wake
+        return sphere_problem(material, 32, 2.5 * SEED_A0, mode="frictionless_sliding", speed=0.05,
+                              t_end=12 * 2.5 * SEED_A0 / 16 / 0.05)
+    if mode == "gross_sliding":  # with the normal-tangential coupling
+        return sphere_problem(material, 32, 2.5 * SEED_A0, mode="gross_sliding", friction=0.5, speed=0.05,
+                              t_end=6 * 2.5 * SEED_A0 / 16 / 0.05)
+    # partial slip (6 steps), then gross sliding (5)
+    return sphere_problem(material, 32, 2.5 * SEED_A0, mode="partial_slip", friction=0.5, rate=0.003, speed=0.02,
+                          t_end=10 * 2.5 * SEED_A0 / 16 / 0.02, scheme="linear")
+
+
+@pytest.mark.parametrize("mode", ["creep", "displacement", "frictionless_sliding", "gross_sliding", "partial_slip"])
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_the_transient_on_the_device_equals_numpy(backend, mode):
+    problem = _transient(mode)
+    reference = list(steps(problem))
+    ours = list(steps(problem, substrate=substrate_for(problem, backend=backend)))
+    assert len(ours) == len(reference) == problem.time.n_steps
+    for (state, record), (_, expected) in zip(ours, reference):
+        for f in dataclasses.fields(record):
+            value, want = getattr(record, f.name), getattr(expected, f.name)
+            if isinstance(want, np.ndarray):
+                assert isinstance(value, np.ndarray), f.name  # records are on the host
+                _assert_same(value, want, backend, f"{f.name} at step {record.step}")
+            elif isinstance(want, float) and not _exact(backend):
+                assert value == pytest.approx(want, rel=1e-8, abs=1e-12), f.name
+            elif f.name != "iterations" or _exact(backend):
+                assert value == want, f"{f.name} at step {record.step}"
+    final = ours[-1][0]
+    assert not isinstance(final.pressure, np.ndarray)  # the state stayed on the device
+    assert all(not isinstance(h.internal, np.ndarray) for h in final.histories.values())
+    if problem.tangential.slides:
+        assert final.wake.strips  # the frame moved and history left it (on the host)
+    if mode == "partial_slip":
+        assert {r.phase for _, r in ours} == {1, 2} and max(r.stick_ratio for _, r in ours) > 0.5
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_cpu_only_bodies_refuse_a_device_in_one_line(backend):
+    problem = _transient("creep")
+    with pytest.raises(ParameterError, match="solver.history"):
+        substrate_for(dataclasses.replace(problem, solver=SolverSettings(history="direct")), backend=backend)
+    periodic = sphere_problem(seed_material(), 16, 2.5 * SEED_A0, t_end=SEED_TAU / 20)
+    periodic = dataclasses.replace(periodic, grid=Grid(16, 2.5 * SEED_A0, periodic=True))
+    with pytest.raises(ParameterError, match="periodic grid runs on the CPU only"):
+        substrate_for(periodic, backend=backend)
