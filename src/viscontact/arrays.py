@@ -23,9 +23,8 @@ On the CPU backend every one of these is free: ``to_device`` and ``to_host`` ret
 and the arithmetic is the same. The test suite runs the transient on an emulated device (numpy
 behind CuPy's rules, ``tests/emulated_device.py``) and checks that it equals the numpy run bit for
 bit. ``solver.device = "gpu"`` (CuPy, :func:`cupy_backend`) is refused until that suite has run on a
-GPU. CPU-only so far: the steady solver, checkpoints, the literal hereditary sum, periodic grids,
-the layered and nu(t) bodies (refused in one line), and the direct solve of a gross-sliding step whose
-coupling is too strong for the fixed point (:meth:`~viscontact.transient.NormalContact.solve_direct`:
+GPU. CPU-only so far: the steady solver, checkpoints, the literal hereditary sum (refused in one
+line), and the direct solve of a gross-sliding step whose coupling is too strong for the fixed point (:meth:`~viscontact.transient.NormalContact.solve_direct`:
 its GMRES keeps its Krylov basis on the host).
 """
 from __future__ import annotations

@@ -105,15 +105,15 @@ def history_key(term: ComplianceTerm) -> str:
 
 
 def term_substrate(grid, terms: Iterable[ComplianceTerm], scheme, dt: float, *, workers: int = -1,
-                   direct: bool = False):
+                   direct: bool = False, backend=None):
     """A :class:`~viscontact.substrate.TermSubstrate` of compliance terms: each term a kernel named
     after it, terms with the same :func:`history_key` sharing one history (they must share the
     response), Fourier preconditioners for the self (zz, xx) kernels, the terms' steady shapes. On
     a periodic grid the kernels are periodic (n x n) and the convolver is the unpadded
     :class:`~viscontact.periodic.PeriodicConvolver`; otherwise DC-FFT. For the solvers'
-    ``substrate=`` argument (e.g. :func:`viscontact.transient.steps`)."""
-    import scipy.fft
-
+    ``substrate=`` argument (e.g. :func:`viscontact.transient.steps`). ``backend``: where the fields
+    live (an :class:`~viscontact.arrays.ArrayBackend`; None: the CPU)."""
+    from .arrays import CPU
     from .convolution import Convolver, FourierPreconditioner
     from .periodic import PeriodicConvolver
     from .substrate import Term, TermSubstrate
@@ -125,15 +125,16 @@ def term_substrate(grid, terms: Iterable[ComplianceTerm], scheme, dt: float, *, 
         if key in responses and responses[key] is not term.response:
             raise ValueError(f"terms reading history {key!r} have different responses")
         responses[key] = term.response
-    kernels = {t.name: t.kernel for t in terms}
+    backend = backend or CPU
+    kernels = {t.name: backend.to_device(t.kernel) for t in terms}
     selves = [t.name for t in terms if t.displacement == t.traction]
     if grid.periodic:
-        conv = PeriodicConvolver.from_kernels(grid.n, kernels, workers, xp=np, fft=scipy.fft)
+        conv = PeriodicConvolver.from_kernels(grid.n, kernels, workers, xp=backend.xp, fft=backend.fft)
         precond = {name: conv.preconditioner(name) for name in selves}
     else:
-        conv = Convolver.from_kernels(grid.n, kernels, workers, xp=np, fft=scipy.fft)
-        precond = {name: FourierPreconditioner.for_kernel(kernels[name], 1.0, workers, fft=scipy.fft)
+        conv = Convolver.from_kernels(grid.n, kernels, workers, xp=backend.xp, fft=backend.fft)
+        precond = {name: FourierPreconditioner.for_kernel(kernels[name], 1.0, workers, fft=backend.fft)
                    for name in selves}
     core_terms = [Term(t.displacement, t.traction, t.name, history_key(t)) for t in terms]
     return TermSubstrate(grid, core_terms, responses, conv, precond, scheme, dt, direct, periodic=grid.periodic,
-                         steady_shapes={t.name: t.steady for t in terms if t.steady is not None})
+                         steady_shapes={t.name: t.steady for t in terms if t.steady is not None}, backend=backend)

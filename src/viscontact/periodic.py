@@ -56,7 +56,7 @@ import scipy.fft
 from scipy.special import erfc, gammainc
 
 from .convolution import Convolver, FourierPreconditioner, operand
-from .fftbackends import fft_threads
+from .fftbackends import fft_keywords
 from .errors import ParameterError
 from .grid import Grid
 from .kernels import COMPONENTS, rectangle_influence
@@ -194,24 +194,30 @@ class PeriodicConvolver(Convolver):
     @classmethod
     def from_kernels(cls, n: int, kernels: Mapping[str, np.ndarray], workers: int = -1, *,
                      xp: ModuleType = np, fft: ModuleType = scipy.fft) -> "PeriodicConvolver":
-        """From periodic kernels on the n x n grid in wrap-around order."""
+        """From periodic kernels on the n x n grid in wrap-around order, numpy arrays or fields of ``xp``
+        (moved there first)."""
+        kernels = {k: xp.asarray(v) for k, v in kernels.items()}
         centred = {k: xp.roll(xp.tile(v, (2, 2)), (n - 1, n - 1), axis=(0, 1)) for k, v in kernels.items()}
-        return cls(n, {k: fft.rfft2(v, workers=workers) for k, v in kernels.items()}, workers, centred, xp, fft)
+        threads = fft_keywords(fft, workers, n * n)
+        return cls(n, {k: fft.rfft2(v, **threads) for k, v in kernels.items()}, workers, centred, xp, fft)
 
     @classmethod
     def for_grid(cls, grid: Grid, poisson_ratio: float, workers: int = -1,
-                 components: Iterable[str] = COMPONENTS) -> "PeriodicConvolver":
-        """Convolver of the periodic half-space influence coefficients at unit shear modulus."""
-        return cls.from_kernels(grid.n, periodic_influence_coefficients(grid, poisson_ratio, components), workers)
+                 components: Iterable[str] = COMPONENTS, *, xp: ModuleType = np,
+                 fft: ModuleType = scipy.fft) -> "PeriodicConvolver":
+        """Convolver of the periodic half-space influence coefficients at unit shear modulus (array
+        namespace ``xp``, FFT module ``fft``: :mod:`viscontact.arrays`)."""
+        return cls.from_kernels(grid.n, periodic_influence_coefficients(grid, poisson_ratio, components), workers,
+                                xp=xp, fft=fft)
 
     def spectrum(self, field: np.ndarray) -> np.ndarray:
         """Real FFT (n, n // 2 + 1) of ``field`` (n, n), no padding."""
-        return self.fft.rfft2(field, workers=fft_threads(self.workers, field.size))
+        return self.fft.rfft2(field, **fft_keywords(self.fft, self.workers, field.size))
 
     def inverse(self, spectrum: np.ndarray) -> np.ndarray:
         """Inverse real FFT (n, n) of a (n, n // 2 + 1) spectrum (which it may overwrite)."""
-        return self.fft.irfft2(spectrum, s=(self.n, self.n), workers=fft_threads(self.workers, self.n * self.n),
-                               overwrite_x=True)
+        return self.fft.irfft2(spectrum, s=(self.n, self.n), overwrite_x=True,
+                               **fft_keywords(self.fft, self.workers, self.n * self.n))
 
     def apply(self, name: str, field: np.ndarray, *, single: bool = False) -> np.ndarray:
         """sum_j K_name(x_i - x_j) field_j over the period (unpadded transforms; float32 when ``single``)."""

@@ -453,7 +453,7 @@ class HalfSpace(TermSubstrate):
         DC-FFT transforms by backend name (:func:`~viscontact.fftbackends.dcfft_transforms`; on a device
         ``backend``, its own FFT module's zero-block transforms).
     grid, scheme, dt, direct, backend
-        As for :class:`TermSubstrate` (periodic grids: CPU only so far).
+        As for :class:`TermSubstrate`.
     """
 
     ORDER = ("zz", "zx", "xz", "xx")
@@ -463,8 +463,8 @@ class HalfSpace(TermSubstrate):
                  backend: ArrayBackend = CPU) -> None:
         comps = [c for c in self.ORDER if c in set(components) | {"zz"}]
         if grid.periodic:
-            _require_cpu(backend, "a periodic grid")
-            conv = PeriodicConvolver.for_grid(grid, material.poisson_ratio, workers, comps)
+            conv = PeriodicConvolver.for_grid(grid, material.poisson_ratio, workers, comps, xp=backend.xp,
+                                              fft=backend.fft)
             precond = {c: conv.preconditioner(c) for c in ("zz", "xx") if c in comps}
         else:
             ics = {c: backend.to_device(k) for c, k in influence_coefficients(grid, material.poisson_ratio, comps).items()}
@@ -510,8 +510,7 @@ def substrate_for(problem, components: Sequence[str] | None = None, backend: Arr
     half-space with nu(t) (:func:`viscontact.poisson.half_space_terms`, two histories per traction
     component); else the :class:`HalfSpace` with constant nu.
 
-    ``backend``: where the fields live (:mod:`viscontact.arrays`; the layer and nu(t) bodies and
-    periodic grids are CPU-only so far).
+    ``backend``: where the fields live (:mod:`viscontact.arrays`).
     """
     if components is None:
         nu = problem.material.poisson_ratio
@@ -525,7 +524,6 @@ def substrate_for(problem, components: Sequence[str] | None = None, backend: Arr
                          fft=problem.solver.fft, backend=backend)
     from .compliance_terms import term_substrate
 
-    _require_cpu(backend, "a layer" if problem.layer is not None else "a time-dependent Poisson ratio")
     comps = tuple(c for c in HalfSpace.ORDER if c in set(components) | {"zz"})
     if problem.layer is not None:
         terms = layer_terms(problem.grid, problem.layer, problem.material, comps)
@@ -534,13 +532,7 @@ def substrate_for(problem, components: Sequence[str] | None = None, backend: Arr
 
         terms = half_space_terms(problem.grid, BulkElasticMaterial(problem.material, problem.bulk_modulus), comps)
     return term_substrate(problem.grid, terms, problem.time.scheme, problem.time.dt,
-                          workers=problem.solver.workers, direct=problem.solver.history == "direct")
-
-
-def _require_cpu(backend: ArrayBackend, what: str) -> None:
-    """Refuse a device ``backend`` for a body that runs on the CPU only so far."""
-    if not backend.is_cpu:
-        raise ParameterError("solver.device", f"{what} runs on the CPU only so far, not on {backend.name!r}")
+                          workers=problem.solver.workers, direct=problem.solver.history == "direct", backend=backend)
 
 
 def _shift_node_body(problem) -> bool:
