@@ -23,8 +23,10 @@ On the CPU backend every one of these is free: ``to_device`` and ``to_host`` ret
 and the arithmetic is the same. The test suite runs the transient on an emulated device (numpy
 behind CuPy's rules, ``tests/emulated_device.py``) and checks that it equals the numpy run bit for
 bit. ``solver.device = "gpu"`` (CuPy, :func:`cupy_backend`) is refused until that suite has run on a
-GPU. CPU-only so far: the steady solver, checkpoints, the literal hereditary sum (refused in one
-line), and the direct solve of a gross-sliding step whose coupling is too strong for the fixed point (:meth:`~viscontact.transient.NormalContact.solve_direct`:
+GPU. Checkpoints save a device state through ``to_host`` and restore it to the device
+(:mod:`viscontact.checkpoint`). CPU-only so far: the steady solver (it runs on the CPU whatever the
+device), the literal hereditary sum (refused in one line), and the direct solve of a gross-sliding
+step whose coupling is too strong for the fixed point (:meth:`~viscontact.transient.NormalContact.solve_direct`:
 its GMRES keeps its Krylov basis on the host).
 """
 from __future__ import annotations
@@ -36,7 +38,7 @@ from typing import Any, Callable
 import numpy as np
 import scipy.fft
 
-__all__ = ["ArrayBackend", "CPU", "cupy_backend"]
+__all__ = ["ArrayBackend", "CPU", "array_backend", "cupy_backend"]
 
 
 @dataclass(frozen=True)
@@ -73,6 +75,27 @@ class ArrayBackend:
 
 #: numpy and scipy.fft (pocketfft)
 CPU = ArrayBackend("cpu", np, scipy.fft, np.asarray)
+
+
+def array_backend(device: str) -> ArrayBackend:
+    """The backend of ``solver.device``: :data:`CPU` for ``"cpu"``, :func:`cupy_backend` for ``"gpu"``
+    (which :class:`~viscontact.problem.SolverSettings` refuses for now).
+
+    Raises
+    ------
+    ParameterError
+        ``"gpu"`` without CuPy or a CUDA device, or an unknown device.
+    """
+    from .errors import ParameterError
+
+    if device == "cpu":
+        return CPU
+    if device == "gpu":
+        try:
+            return cupy_backend()
+        except ImportError as exc:
+            raise ParameterError("solver.device", f"'gpu' needs CuPy and a CUDA device ({exc})") from None
+    raise ParameterError("solver.device", f"must be 'cpu' or 'gpu', got {device!r}")
 
 
 def cupy_backend() -> ArrayBackend:

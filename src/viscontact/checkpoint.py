@@ -9,6 +9,10 @@ the resumed result equals the uninterrupted one. A checkpoint of ``viscontact ru
 solver state only (a few n x n arrays per retardation mode, whatever the number of steps) and how
 many records the result file streamed as the run goes holds (:mod:`viscontact.streaming`); one of
 the in-memory :func:`viscontact.api.run` also holds the records so far.
+
+A state on a device array backend (:mod:`viscontact.arrays`) is saved through the backend's
+``to_host``, each such array marked, and restored to the device with its ``to_device``; the arrays
+the state keeps on the host (the wake's columns) stay there.
 """
 from __future__ import annotations
 
@@ -17,10 +21,11 @@ import hashlib
 import importlib
 import zipfile
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Callable, Mapping
 
 import numpy as np
 
+from .arrays import CPU, ArrayBackend, array_backend
 from .errors import ParameterError
 from .output_files import write_atomically
 from .problem import Problem
@@ -43,30 +48,39 @@ def problem_fingerprint(problem: Problem) -> str:
     return h.hexdigest()
 
 
-def _flatten(key: str, value: Any, out: dict[str, np.ndarray]) -> None:
+#: what a state holds on the host: numpy arrays and scalars, Python scalars and strings
+_HOST_TYPES = (np.ndarray, np.generic, bool, int, float, complex, str, bytes)
+
+
+def _flatten(key: str, value: Any, out: dict[str, np.ndarray], to_host: Callable[[Any], np.ndarray]) -> None:
     """Store ``value`` under ``key`` as named arrays: dataclasses field by field (with their class),
-    dicts (string keys) and lists/tuples item by item, arrays as they are, scalars as 0-d arrays."""
+    dicts (string keys) and lists/tuples item by item, arrays as they are, scalars as 0-d arrays;
+    an array of a device backend through ``to_host``, marked ``__device__``."""
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         cls = type(value)
         out[f"{key}.__class__"] = np.array(f"{cls.__module__}:{cls.__qualname__}")
         for f in dataclasses.fields(value):
-            _flatten(f"{key}.{f.name}", getattr(value, f.name), out)
+            _flatten(f"{key}.{f.name}", getattr(value, f.name), out, to_host)
     elif isinstance(value, Mapping):
         out[f"{key}.__dict__"] = np.array(list(value), dtype=str)
         for k, v in value.items():
-            _flatten(f"{key}.{k}", v, out)
+            _flatten(f"{key}.{k}", v, out, to_host)
     elif isinstance(value, (list, tuple)):
         out[f"{key}.__{type(value).__name__}__"] = np.array(len(value))
         for i, v in enumerate(value):
-            _flatten(f"{key}.{i}", v, out)
+            _flatten(f"{key}.{i}", v, out, to_host)
     elif value is None:
         out[f"{key}.__none__"] = np.array(True)
-    else:
+    elif isinstance(value, _HOST_TYPES):
         out[key] = np.asarray(value)
+    else:  # a device array
+        out[key] = to_host(value)
+        out[f"{key}.__device__"] = np.array(True)
 
 
-def _unflatten(key: str, data) -> Any:
-    """Inverse of :func:`_flatten` (classes only from this package)."""
+def _unflatten(key: str, data, to_device: Callable[[np.ndarray], Any]) -> Any:
+    """Inverse of :func:`_flatten` (classes only from this package; the arrays marked ``__device__``
+    through ``to_device``)."""
     if f"{key}.__class__" in data:
         module, name = str(data[f"{key}.__class__"]).split(":")
         if module.split(".")[0] != __name__.split(".")[0]:
@@ -74,16 +88,19 @@ def _unflatten(key: str, data) -> Any:
         cls = getattr(importlib.import_module(module), name)
         # a field added since the checkpoint was written takes its default (e.g. the carried products
         # of the transient state: recomputed where missing)
-        return cls(**{f.name: _unflatten(f"{key}.{f.name}", data) for f in dataclasses.fields(cls)
+        return cls(**{f.name: _unflatten(f"{key}.{f.name}", data, to_device) for f in dataclasses.fields(cls)
                       if _stored(f"{key}.{f.name}", data) or not _has_default(f)})
     if f"{key}.__dict__" in data:
-        return {str(k): _unflatten(f"{key}.{k}", data) for k in data[f"{key}.__dict__"]}
+        return {str(k): _unflatten(f"{key}.{k}", data, to_device) for k in data[f"{key}.__dict__"]}
     for kind in (list, tuple):
         if f"{key}.__{kind.__name__}__" in data:
-            return kind(_unflatten(f"{key}.{i}", data) for i in range(int(data[f"{key}.__{kind.__name__}__"])))
+            return kind(_unflatten(f"{key}.{i}", data, to_device)
+                        for i in range(int(data[f"{key}.__{kind.__name__}__"])))
     if f"{key}.__none__" in data:
         return None
     value = data[key]
+    if f"{key}.__device__" in data:
+        return to_device(value.copy())
     return value.item() if value.ndim == 0 else value.copy()
 
 
@@ -97,16 +114,18 @@ def _has_default(field_: dataclasses.Field) -> bool:
     return field_.default is not dataclasses.MISSING or field_.default_factory is not dataclasses.MISSING
 
 
-def state_arrays(state: State) -> dict[str, np.ndarray]:
-    """Every field of ``state`` (recursively) as named numpy arrays."""
+def state_arrays(state: State, backend: ArrayBackend = CPU) -> dict[str, np.ndarray]:
+    """Every field of ``state`` (recursively) as named numpy arrays, those on ``backend``'s device
+    copied to the host (module docstring)."""
     out: dict[str, np.ndarray] = {}
-    _flatten(_ROOT, state, out)
+    _flatten(_ROOT, state, out, backend.to_host)
     return out
 
 
-def state_from_arrays(data) -> State:
-    """Inverse of :func:`state_arrays` (bit-exact)."""
-    return _unflatten(_ROOT, _Keys(data))
+def state_from_arrays(data, backend: ArrayBackend = CPU) -> State:
+    """Inverse of :func:`state_arrays` (bit-exact), the arrays that were on the device moved to
+    ``backend``'s."""
+    return _unflatten(_ROOT, _Keys(data), backend.to_device)
 
 
 class _Keys:
@@ -123,11 +142,12 @@ class _Keys:
 
 
 def save_checkpoint(path: str | Path, problem: Problem, state: State,
-                    extra: dict[str, np.ndarray] | None = None) -> None:
+                    extra: dict[str, np.ndarray] | None = None, backend: ArrayBackend | None = None) -> None:
     """Write ``state`` (and ``extra`` arrays: how many records the streamed result holds, or the
-    records so far) atomically to ``path``."""
+    records so far) atomically to ``path``; ``backend``: the array backend of the state's fields
+    (None: that of ``solver.device``)."""
     path = Path(path)
-    arrays = state_arrays(state)
+    arrays = state_arrays(state, backend or array_backend(problem.solver.device))
     arrays["format_version"] = np.array(FORMAT_VERSION)
     arrays["fingerprint"] = np.array(problem_fingerprint(problem))
     for k, v in (extra or {}).items():
@@ -137,8 +157,10 @@ def save_checkpoint(path: str | Path, problem: Problem, state: State,
                      hint="free some space, checkpoint less often (--checkpoint-every) or write elsewhere (--out)")
 
 
-def load_checkpoint(path: str | Path, problem: Problem) -> tuple[State, dict[str, np.ndarray]]:
-    """Read a checkpoint; refuses one written for a different problem. Returns (state, extra arrays)."""
+def load_checkpoint(path: str | Path, problem: Problem,
+                    backend: ArrayBackend | None = None) -> tuple[State, dict[str, np.ndarray]]:
+    """Read a checkpoint; refuses one written for a different problem. Returns (state, extra arrays),
+    the state's device fields on ``backend`` (None: that of ``solver.device``)."""
     path = Path(path)
     if not path.exists():
         raise ParameterError("--resume", f"no checkpoint at {path}")
@@ -151,7 +173,7 @@ def load_checkpoint(path: str | Path, problem: Problem) -> tuple[State, dict[str
             if str(data["fingerprint"]) != problem_fingerprint(problem):
                 raise ParameterError("--resume", f"checkpoint {path} was written for a different case or output "
                                      "settings; run without --resume (or with the original case file and --set)")
-            state = state_from_arrays(data)
+            state = state_from_arrays(data, backend or array_backend(problem.solver.device))
             extra = {k[len("extra__"):]: data[k].copy() for k in data.files if k.startswith("extra__")}
     except ParameterError:
         raise

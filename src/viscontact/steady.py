@@ -34,6 +34,8 @@ What makes it fast:
   a speed sweep starts each speed from the previous one instead (:func:`speed_sweep`).
 
 For gross sliding (q_x = mu_f p) the operator is K_zz + mu_f K_zx.
+
+The steady solver runs on the CPU whatever ``solver.device`` (:mod:`viscontact.arrays`).
 """
 from __future__ import annotations
 
@@ -52,6 +54,7 @@ from .problem import PHASE_GROSS_SLIDING, Problem
 from .records import StepRecord
 from .roughness import roughness_metrics
 from .sliding import hysteresis_force, pressure_centroid
+from .arrays import CPU
 from .substrate import HalfSpace, TermSubstrate, substrate_for
 
 
@@ -60,7 +63,7 @@ def steady_convolver(problem: Problem, speed: float, substrate: TermSubstrate | 
     """The substrate's effective steady kernels at ``speed`` [m/s] (``zz``, and ``zx`` when sliding with
     friction and coupling): ``apply("zz", p)`` is u_z [m] of the pressure p [Pa]."""
     components = steady_components(problem)
-    substrate = substrate or substrate_for(problem, components)
+    substrate = substrate or substrate_for(problem, components, CPU)
     return substrate.steady_convolver(speed, components)
 
 
@@ -302,7 +305,7 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
     if grid.periodic:
         from .steady_periodic import solve_periodic_steady
 
-        body = substrate_for(problem, steady_components(problem))
+        body = substrate_for(problem, steady_components(problem), CPU)
         state = solve_periodic_steady(body.convolver, problem.material, grid, problem.gap,
                                       speed=v, control=problem.normal.control, value=value, friction=mu,
                                       initial=initial, tolerance=tolerance,
@@ -310,7 +313,7 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
                                       spectrum=body.steady_spectrum(v, mu))
         p, delta, krylov, u_z = state.pressure, state.delta_z, state.iterations, state.displacement_z
     else:
-        substrate = substrate or substrate_for(problem, steady_components(problem))
+        substrate = substrate or substrate_for(problem, steady_components(problem), CPU)
         conv, kernels = steady_convolver(problem, v, substrate)
         coupled = "zx" in conv.spectra
         precondition = steady_preconditioner(substrate, kernels, v, problem.solver.workers)
@@ -347,7 +350,7 @@ def speed_sweep(problem: Problem, speeds: Sequence[float]) -> list[StepRecord]:
     one substrate serves them all (its kernel builder keeps what does not depend on the speed)."""
     out: list[StepRecord] = []
     previous = None
-    substrate = substrate_for(problem, steady_components(problem))
+    substrate = substrate_for(problem, steady_components(problem), CPU)
     for v in speeds:
         rec = solve_steady(problem, v, initial=previous, substrate=substrate)
         previous = rec.pressure

@@ -46,7 +46,7 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
-from .arrays import CPU, ArrayBackend
+from .arrays import CPU, ArrayBackend, array_backend
 from .convolution import Convolver, FourierPreconditioner
 from .errors import ParameterError
 from .fftbackends import ZeroBlockTransforms, dcfft_transforms
@@ -499,7 +499,8 @@ class HalfSpace(TermSubstrate):
                                       transforms=self.convolver.transforms), kernels
 
 
-def substrate_for(problem, components: Sequence[str] | None = None, backend: ArrayBackend = CPU) -> TermSubstrate:
+def substrate_for(problem, components: Sequence[str] | None = None,
+                  backend: ArrayBackend | None = None) -> TermSubstrate:
     """The substrate of a :class:`~viscontact.problem.Problem` (the one place that chooses it).
 
     ``components``: the kernels to build; by default what the transient needs: ``zz``, ``xx`` for
@@ -510,8 +511,9 @@ def substrate_for(problem, components: Sequence[str] | None = None, backend: Arr
     half-space with nu(t) (:func:`viscontact.poisson.half_space_terms`, two histories per traction
     component); else the :class:`HalfSpace` with constant nu.
 
-    ``backend``: where the fields live (:mod:`viscontact.arrays`).
+    ``backend``: where the fields live (:mod:`viscontact.arrays`); None: that of ``solver.device``.
     """
+    backend = backend or array_backend(problem.solver.device)
     if components is None:
         nu = problem.material.poisson_ratio
         mode = problem.tangential.mode

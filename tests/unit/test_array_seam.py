@@ -23,6 +23,7 @@ from viscontact.errors import ParameterError
 from viscontact.grid import Grid
 from viscontact.kernels import influence_coefficients
 from viscontact.case import load_case
+from viscontact.checkpoint import load_checkpoint, save_checkpoint
 from viscontact.problem import LayerSettings, SolverSettings
 from viscontact.shipped import shipped_case
 from viscontact.substrate import substrate_for
@@ -178,3 +179,20 @@ def test_the_reference_hereditary_sum_refuses_a_device_in_one_line(backend):
     problem = _transient("creep")
     with pytest.raises(ParameterError, match="solver.history: 'direct' .* CPU only"):
         substrate_for(dataclasses.replace(problem, solver=SolverSettings(history="direct")), backend=backend)
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_checkpoint_of_a_device_state_resumes_bit_exact(backend, tmp_path):
+    """Sliding (histories shifted, a wake on the host): saved after step 5, resumed on the device."""
+    problem = _transient("frictionless_sliding")
+    substrate = substrate_for(problem, backend=backend)
+    run = list(steps(problem, substrate=substrate))
+    save_checkpoint(tmp_path / "c.npz", problem, run[5][0], backend=backend)
+    state, _ = load_checkpoint(tmp_path / "c.npz", problem, backend=backend)
+    assert not isinstance(state.pressure, np.ndarray) and state.wake.strips
+    assert all(isinstance(strip, np.ndarray) for strip in state.wake.strips)  # the wake stays on the host
+    resumed = list(steps(problem, state=state, substrate=substrate))
+    assert len(resumed) == len(run) - 6
+    for (_, ours), (_, want) in zip(resumed, run[6:]):
+        np.testing.assert_array_equal(ours.pressure, want.pressure)
+        assert ours.mu_app == want.mu_app and ours.wake_loss == want.wake_loss
