@@ -57,6 +57,10 @@ class DeviceArray(NDArrayOperatorsMixin):
         return _wrap(result)
 
     def __array_function__(self, func: Any, types_: Any, args: tuple, kwargs: dict) -> Any:
+        if func.__name__ in ("asarray", "array", "ascontiguousarray"):
+            # reached only through NEP 35's ``like=`` (np.asarray(host, like=field)), which numpy strips:
+            # the explicit copy to the device, as CuPy's asarray
+            return _to_device(*args, **kwargs)
         if "where" in kwargs and func.__name__ not in _WHERE_ALLOWED:
             raise TypeError(f"{func.__name__}() takes no 'where' on the device")
         out = kwargs.get("out")

@@ -24,10 +24,10 @@ and the arithmetic is the same. The test suite runs the transient on an emulated
 behind CuPy's rules, ``tests/emulated_device.py``) and checks that it equals the numpy run bit for
 bit. ``solver.device = "gpu"`` (CuPy, :func:`cupy_backend`) is refused until that suite has run on a
 GPU. Checkpoints save a device state through ``to_host`` and restore it to the device
-(:mod:`viscontact.checkpoint`). CPU-only so far: the steady solver (it runs on the CPU whatever the
-device), the literal hereditary sum (refused in one line), and the direct solve of a gross-sliding
-step whose coupling is too strong for the fixed point (:meth:`~viscontact.transient.NormalContact.solve_direct`:
-its GMRES keeps its Krylov basis on the host).
+(:mod:`viscontact.checkpoint`); the GMRES of the direct solve of strongly coupled gross sliding
+(:meth:`~viscontact.transient.NormalContact.solve_direct`) keeps its Krylov vectors on the device
+and its small Hessenberg system on the host. CPU-only so far: the steady solver (it runs on the CPU
+whatever the device) and the literal hereditary sum (refused in one line).
 """
 from __future__ import annotations
 

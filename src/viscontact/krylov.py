@@ -63,11 +63,13 @@ def gmres(apply_a: Operator, b: np.ndarray, x0: np.ndarray, *, rtol: float, max_
     if b_norm == 0.0:
         return KrylovSolution(np.zeros_like(b), 0, 0.0, True)
     target = rtol * b_norm
-    x = np.array(x0, dtype=float)
+    x = x0.astype(float)  # a copy
     iterations = 0
     cycle = max(1, min(restart, size))
-    basis = np.empty((cycle + 1, size))
-    directions = np.empty((cycle, size))
+    # the Krylov vectors are fields of b's library; the small Hessenberg system is on the host
+    # (:mod:`viscontact.arrays`)
+    basis = np.empty_like(b, shape=(cycle + 1, size), dtype=float)
+    directions = np.empty_like(b, shape=(cycle, size), dtype=float)
     while True:
         r = b - apply_a(x)
         beta = _norm(r)
@@ -86,7 +88,7 @@ def gmres(apply_a: Operator, b: np.ndarray, x0: np.ndarray, *, rtol: float, max_
             for _ in range(2):  # CGS2
                 h = np.einsum("ij,j->i", basis[: j + 1], w)
                 w -= np.einsum("ij,i->j", basis[: j + 1], h)
-                hess[: j + 1, j] += h
+                hess[: j + 1, j] += h if isinstance(h, np.ndarray) else h.tolist()
             hess[j + 1, j] = _norm(w)
             if hess[j + 1, j] > 0.0:
                 basis[j + 1] = w / hess[j + 1, j]
@@ -106,4 +108,4 @@ def gmres(apply_a: Operator, b: np.ndarray, x0: np.ndarray, *, rtol: float, max_
         for i in range(used - 1, -1, -1):  # back substitution in the rotated Hessenberg matrix
             if hess[i, i] != 0.0:
                 y[i] = (g[i] - np.einsum("i,i->", hess[i, i + 1: used], y[i + 1:])) / hess[i, i]
-        x = x + np.einsum("ij,i->j", directions[:used], y)
+        x = x + np.einsum("ij,i->j", directions[:used], np.asarray(y, like=directions))

@@ -78,7 +78,7 @@ def steady_components(problem: Problem) -> list[str]:
 def _restricted(fun, idx: np.ndarray, shape: tuple[int, int]):
     """The map v -> fun(v on the grid)[idx] acting on the values at the flat indices idx."""
     def restricted(v: np.ndarray) -> np.ndarray:
-        full = np.zeros(shape)
+        full = np.zeros_like(v, shape=shape)
         full.ravel()[idx] = v
         return fun(full).ravel()[idx]
 
@@ -96,9 +96,14 @@ def _solve_on_set(apply_k, rhs: np.ndarray, active: np.ndarray, x0: np.ndarray, 
     sol = gmres(op, rhs.ravel()[idx], x0.ravel()[idx], rtol=tol, max_iterations=maxiter, preconditioner=m)
     if not sol.converged:
         raise ConvergenceError(f"{what} GMRES", maxiter, sol.residual, tol)
-    out = np.zeros(shape)
+    out = np.zeros_like(rhs, shape=shape)
     out.ravel()[idx] = sol.x
     return out, sol.iterations
+
+
+def _entry(like: np.ndarray, value) -> np.ndarray:
+    """The one-element array [value] of ``like``'s library (the border of a bordered vector)."""
+    return np.full_like(like, value, shape=1)
 
 
 def _solve_bordered(apply_k, gap: np.ndarray, active: np.ndarray, p0: np.ndarray, delta0: float,
@@ -123,23 +128,23 @@ def _solve_bordered(apply_k, gap: np.ndarray, active: np.ndarray, p0: np.ndarray
     else:  # the scalar compliance: keeps pressures and displacements in their units
         def inv(r: np.ndarray) -> np.ndarray:
             return r / row_scale
-    inv_e = inv(np.ones(m))
+    inv_e = inv(np.ones_like(gap, shape=m))
     inv_e_mean = float(inv_e.mean())
 
     def bordered(z: np.ndarray) -> np.ndarray:
-        return np.concatenate([op(z[:m]) - z[m], [row_scale * z[:m].mean()]])
+        return np.concatenate([op(z[:m]) - z[m], _entry(z, row_scale * z[:m].mean())])
 
     def precondition(z: np.ndarray) -> np.ndarray:
         x = inv(z[:m])
         delta = (z[m] / row_scale - x.mean()) / inv_e_mean
-        return np.concatenate([x + delta * inv_e, [delta]])
+        return np.concatenate([x + delta * inv_e, _entry(z, delta)])
 
-    rhs = np.concatenate([-gap.ravel()[idx], [row_scale * mean_pressure]])
-    sol = gmres(bordered, rhs, np.concatenate([p0.ravel()[idx], [delta0]]), rtol=tol, max_iterations=maxiter,
-                preconditioner=precondition)
+    rhs = np.concatenate([-gap.ravel()[idx], _entry(gap, row_scale * mean_pressure)])
+    sol = gmres(bordered, rhs, np.concatenate([p0.ravel()[idx], _entry(gap, delta0)]), rtol=tol,
+                max_iterations=maxiter, preconditioner=precondition)
     if not sol.converged:
         raise ConvergenceError(f"{what} GMRES", maxiter, sol.residual, tol)
-    out = np.zeros(shape)
+    out = np.zeros_like(gap)
     out.ravel()[idx] = sol.x[:m]
     return out, float(sol.x[m]), sol.iterations
 

@@ -27,6 +27,7 @@ from viscontact.checkpoint import load_checkpoint, save_checkpoint
 from viscontact.problem import LayerSettings, SolverSettings
 from viscontact.shipped import shipped_case
 from viscontact.substrate import substrate_for
+from viscontact import transient
 from viscontact.transient import steps
 from vc_testing import SEED_A0, SEED_TAU, seed_material, sphere_problem
 
@@ -130,6 +131,9 @@ def _transient(mode: str):
     if mode == "gross_sliding":  # with the normal-tangential coupling
         return sphere_problem(material, 32, 2.5 * SEED_A0, mode="gross_sliding", friction=0.5, speed=0.05,
                               t_end=6 * 2.5 * SEED_A0 / 16 / 0.05)
+    if mode == "strong_coupling":  # mu_f (1 - 2 nu) too large for the fixed point: the direct solve (GMRES)
+        return sphere_problem(seed_material(poisson_ratio=0.0), 32, 6 * SEED_A0, mode="gross_sliding", friction=2.5,
+                              speed=0.1, t_end=4 * 6 * SEED_A0 / 16 / 0.1)
     if mode == "partial_slip":  # 6 steps, then gross sliding (5)
         return sphere_problem(material, 32, 2.5 * SEED_A0, mode="partial_slip", friction=0.5, rate=0.003,
                               speed=0.02, t_end=10 * 2.5 * SEED_A0 / 16 / 0.02, scheme="linear")
@@ -147,12 +151,16 @@ def _transient(mode: str):
     return dataclasses.replace(sliding, material=seed_material(poisson_ratio=0.25), bulk_modulus=5e6)
 
 
-@pytest.mark.parametrize("mode", ["creep", "displacement", "frictionless_sliding", "gross_sliding", "partial_slip",
-                                  "rough_periodic", "layer", "layer_on_elastic", "bulk_modulus"])
+@pytest.mark.parametrize("mode", ["creep", "displacement", "frictionless_sliding", "gross_sliding", "strong_coupling",
+                                  "partial_slip", "rough_periodic", "layer", "layer_on_elastic", "bulk_modulus"])
 @pytest.mark.parametrize("backend", BACKENDS)
-def test_the_transient_on_the_device_equals_numpy(backend, mode):
+def test_the_transient_on_the_device_equals_numpy(backend, mode, monkeypatch):
     problem = _transient(mode)
     reference = list(steps(problem))
+    direct_solves = []
+    solve_direct = transient.NormalContact.solve_direct
+    monkeypatch.setattr(transient.NormalContact, "solve_direct",
+                        lambda self, ctx, p: direct_solves.append(ctx.k) or solve_direct(self, ctx, p))
     ours = list(steps(problem, substrate=substrate_for(problem, backend=backend)))
     assert len(ours) == len(reference) == problem.time.n_steps
     for (state, record), (_, expected) in zip(ours, reference):
@@ -170,6 +178,7 @@ def test_the_transient_on_the_device_equals_numpy(backend, mode):
     assert all(not isinstance(h.internal, np.ndarray) for h in final.histories.values())
     if problem.tangential.slides and not problem.grid.periodic:
         assert final.wake.strips  # the frame moved and history left it (on the host)
+    assert bool(direct_solves) == (mode == "strong_coupling")  # its steps ran the direct solve
     if mode in ("partial_slip", "rough_periodic"):
         assert {r.phase for _, r in ours} == {1, 2} and max(r.stick_ratio for _, r in ours) > 0.5
 
