@@ -205,3 +205,32 @@ def test_a_checkpoint_of_a_device_state_resumes_bit_exact(backend, tmp_path):
     for (_, ours), (_, want) in zip(resumed, run[6:]):
         np.testing.assert_array_equal(ours.pressure, want.pressure)
         assert ours.mu_app == want.mu_app and ours.wake_loss == want.wake_loss
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_streamed_run_stopped_and_resumed_on_the_device_equals_the_cpu_run(backend, tmp_path, monkeypatch):
+    """The command's path (run_to_file: streamed records, checkpoints, a stop, --resume) with the
+    device as the backend of ``solver.device``."""
+    import xarray as xr
+
+    from viscontact import api, checkpoint, substrate
+    from viscontact.errors import RunInterrupted
+
+    problem = dataclasses.replace(_transient("frictionless_sliding"),  # a dt the command's guards accept
+                                  time=dataclasses.replace(_transient("frictionless_sliding").time, scheme="linear"))
+    api.run_to_file(problem, tmp_path / "cpu.nc")
+    monkeypatch.setattr(substrate, "array_backend", lambda device: backend)
+    monkeypatch.setattr(checkpoint, "array_backend", lambda device: backend)
+    done = []
+    with pytest.raises(RunInterrupted):
+        api.run_to_file(problem, tmp_path / "dev.nc", checkpoint_every=2,
+                        progress=lambda k, total: done.append(k),
+                        should_stop=lambda: "test stop" if len(done) >= 7 else None)
+    with np.load(api.checkpoint_path(tmp_path / "dev.nc")) as saved:  # the state was on the device
+        assert saved["state.pressure.__device__"] and saved["state.histories.z.internal.__device__"]
+    api.run_to_file(problem, tmp_path / "dev.nc", resume=True)
+    with xr.open_dataset(tmp_path / "cpu.nc") as cpu, xr.open_dataset(tmp_path / "dev.nc") as dev:
+        assert dev.attrs["complete"] == 1 and dev.sizes == cpu.sizes and "resumed" in dev.attrs["history"]
+        assert set(dev.data_vars) == set(cpu.data_vars)
+        for name in cpu.data_vars:
+            _assert_same(dev[name].values.astype(float), cpu[name].values.astype(float), backend, name)
