@@ -1,0 +1,111 @@
+"""The array backends side by side: the transient on the CPU (numpy, pocketfft) and on a GPU (CuPy,
+cuFFT) at large grids, alternated in one process.
+
+    .venv/bin/python benchmarks/bench_device.py                       # 1024^2 and 2048^2, 8 steps
+    .venv/bin/python benchmarks/bench_device.py --n 512 --steps 6 --cases creep
+
+Cases (the seed material: Zener, G(0) = 1.93 MPa, G(0)/G(inf) = 10, 10 ms, nu = 0.3; sphere
+R = 10 mm; through :func:`viscontact.transient.steps`, each step's record brought to the host):
+
+``creep``   W = 0.15 N held on +-1.5 mm (``compare_tamaas.py``'s case), 0.2 ms steps;
+``table1``  seed Table 1: frictionless sliding at v = 0.8 a0/tau on +-2.56 a0, W = 0.148 N, one cell
+            per step (the support window and frame shifts).
+
+Prints, per case, grid and backend: the first step (kernels, spectra, plans), the median of the
+later steps, their speed-up over the CPU, the CG iterations, the largest pressure difference
+against the CPU run (relative to the peak) and the memory: the process's peak resident set (CPU)
+or CuPy's memory pool (GPU). Without CuPy or a CUDA device the GPU rows say so and the CPU rows are
+printed alone.
+"""
+from __future__ import annotations
+
+import argparse
+import platform
+import resource
+import time
+import warnings
+
+import numpy as np
+
+from viscontact.arrays import CPU, ArrayBackend, cupy_backend
+from viscontact.grid import Grid
+from viscontact.materials import Material
+from viscontact.problem import NormalLoading, PiecewiseLinear, Problem, TangentialLoading, TimeStepping
+from viscontact.substrate import substrate_for
+from viscontact.transient import steps
+
+A0, TAU, RADIUS = 588.7e-6, 0.01, 0.01
+MATERIAL = Material.zener(1.93e6, 0.193e6, TAU, 0.3)
+
+
+def problem(case: str, n: int, n_steps: int) -> Problem:
+    if case == "creep":
+        grid, load, tangential, dt = Grid(n, 1.5e-3), 0.15, TangentialLoading(), 2e-4
+    else:
+        speed = 0.8 * A0 / TAU
+        grid, load = Grid(n, 2.56 * A0), 0.148
+        tangential, dt = TangentialLoading("frictionless_sliding", 0.0, 0.0, speed), grid.spacing / speed
+    x, y = grid.mesh()
+    return Problem(material=MATERIAL, grid=grid, gap=(x**2 + y**2) / (2 * RADIUS),
+                   normal=NormalLoading("load", PiecewiseLinear.constant(load)), tangential=tangential,
+                   time=TimeStepping((n_steps - 1) * dt, dt, "linear"), radius=RADIUS)
+
+
+def run(pb: Problem, backend: ArrayBackend, synchronize) -> dict:
+    """Times of every step (the record of each on the host), iterations, final pressure."""
+    start = time.perf_counter()
+    substrate = substrate_for(pb, backend=backend)
+    stamps, iterations, record = [], [], None
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the wake warning of a run stopped after a few steps
+        for _, record in steps(pb, substrate=substrate):
+            synchronize()
+            stamps.append(time.perf_counter())
+            iterations.append(record.iterations)
+    per_step = np.diff([start] + stamps)
+    return {"first": per_step[0], "step": float(np.median(per_step[1:])), "iterations": float(np.mean(iterations)),
+            "pressure": record.pressure}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--n", type=int, nargs="+", default=[1024, 2048])
+    parser.add_argument("--steps", type=int, default=8)
+    parser.add_argument("--cases", default="creep,table1")
+    args = parser.parse_args()
+
+    try:
+        gpu = cupy_backend()
+        import cupy
+
+        pool = cupy.get_default_memory_pool()
+        device = cupy.cuda.runtime.getDeviceProperties(cupy.cuda.Device().id)["name"].decode()
+
+        def sync() -> None:
+            cupy.cuda.Device().synchronize()
+    except ImportError as exc:
+        gpu, device = None, f"none ({exc})"
+    print(f"# {platform.machine()} {platform.processor() or ''}, GPU: {device}, {time.strftime('%Y-%m-%d %H:%M')}")
+    print("| case | grid x steps | backend | first step [s] | later step [ms] | speed-up | CG it/step | max dp / peak | memory [MiB] |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for case in args.cases.split(","):
+        for n in args.n:
+            pb = problem(case, n, args.steps)
+            cpu = run(pb, CPU, lambda: None)
+            rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+            peak = float(np.max(cpu["pressure"]))
+            print(f"| {case} | {n}² × {args.steps} | cpu | {cpu['first']:.2f} | {1e3 * cpu['step']:.1f} | 1 | "
+                  f"{cpu['iterations']:.1f} | 0 | {rss:.0f} (process peak) |")
+            if gpu is None:
+                print(f"| {case} | {n}² × {args.steps} | gpu | no CUDA device | | | | | |")
+                continue
+            pool.free_all_blocks()
+            ours = run(pb, gpu, sync)
+            diff = float(np.max(np.abs(ours["pressure"] - cpu["pressure"]))) / peak
+            print(f"| {case} | {n}² × {args.steps} | gpu | {ours['first']:.2f} | {1e3 * ours['step']:.1f} | "
+                  f"{cpu['step'] / ours['step']:.1f} | {ours['iterations']:.1f} | {diff:.1e} | "
+                  f"{pool.total_bytes() / 2**20:.0f} (CuPy pool) |")
+
+
+if __name__ == "__main__":
+    main()
