@@ -151,6 +151,11 @@ def _solve_bordered(apply_k, gap: np.ndarray, active: np.ndarray, p0: np.ndarray
 
 #: relative GMRES tolerance of the active-set rounds before the set first settles (then ``tolerance``)
 SETTLING_TOLERANCE = 1e-6
+#: a cycle of the active set that the union of its sets cannot break (points with p ~ 0 and h ~ 0 at the
+#: contact's edge, in tension by round-off with them in the set, penetrating by round-off without) ends
+#: with the larger set's solution, its tension clipped, when that tension sums to at most this fraction
+#: of the total pressure
+CYCLE_TENSION = 1e-6
 
 
 def solve_contact_active_set(apply_k, gap: np.ndarray, *, control: str, value: float, cell_area: float,
@@ -170,8 +175,11 @@ def solve_contact_active_set(apply_k, gap: np.ndarray, *, control: str, value: f
     again to ``tolerance`` and checked once more, and from there on every solve is to ``tolerance``
     (so the answer is that of exact rounds: a set that is stable under solves to ``tolerance``).
     A set that comes back, or a round that changes no fewer points than the one before, also ends
-    the inexact rounds (points at p ~ 0 entering and leaving on the solves' error). ``what`` names the
-    problem in a :class:`~viscontact.errors.ConvergenceError`.
+    the inexact rounds (points at p ~ 0 entering and leaving on the solves' error). In exact rounds a
+    set that comes back is replaced by its union with the current one; when that union is the
+    current set itself, the cycle is round-off at the contact's edge and the current solution is
+    returned with its tension clipped, if that tension is at most :data:`CYCLE_TENSION` of the total
+    pressure. ``what`` names the problem in a :class:`~viscontact.errors.ConvergenceError`.
     """
     active = initial > 0 if initial is not None and np.any(initial > 0) else gap <= np.quantile(gap, 0.05)
     p = initial.copy() if initial is not None else np.zeros_like(gap)
@@ -207,7 +215,12 @@ def solve_contact_active_set(apply_k, gap: np.ndarray, *, control: str, value: f
             tol = tolerance  # no longer settling under inexact solves (points at p ~ 0): exact from here
             seen.clear()
         elif any(np.array_equal(new_active, s) for s in seen):  # cycling: keep the union, then stop on repeat
-            new_active = new_active | active
+            union = new_active | active
+            if np.array_equal(union, active):  # the union cannot break it: round-off at the edge (docstring)
+                tension = float(np.sum(np.minimum(p, 0.0)))
+                if -tension <= CYCLE_TENSION * float(np.sum(np.maximum(p, 0.0))):
+                    return np.maximum(p, 0.0), float(delta), krylov, it
+            new_active = union
         seen.append(active)
         active = new_active
     raise ConvergenceError(f"{what} active set", max_sets, float(changed), 0.0,
