@@ -1,7 +1,8 @@
 """Array backends: where the solver's fields live and which library transforms them.
 
-The transient's numerics (:mod:`viscontact.constrained`, :mod:`viscontact.convolution`,
-:mod:`viscontact.history`, :mod:`viscontact.support_window`, :mod:`viscontact.transient`) are
+The solvers' numerics (:mod:`viscontact.constrained`, :mod:`viscontact.convolution`,
+:mod:`viscontact.history`, :mod:`viscontact.support_window`, :mod:`viscontact.transient`,
+:mod:`viscontact.krylov`, :mod:`viscontact.steady`, :mod:`viscontact.steady_periodic`) are
 written against a numpy-compatible array namespace ``xp`` and a ``scipy.fft``-compatible FFT module,
 which an :class:`ArrayBackend` names. The CPU backend :data:`CPU` is numpy and ``scipy.fft``; a
 device library such as CuPy (with ``cupyx.scipy.fft``) follows numpy's API, and numpy's functions
@@ -20,14 +21,14 @@ fields if it keeps to these rules (the array seam):
   no ``where`` in reductions.
 
 On the CPU backend every one of these is free: ``to_device`` and ``to_host`` return their argument,
-and the arithmetic is the same. The test suite runs the transient on an emulated device (numpy
-behind CuPy's rules, ``tests/emulated_device.py``) and checks that it equals the numpy run bit for
-bit. ``solver.device = "gpu"`` (CuPy, :func:`cupy_backend`) is refused until that suite has run on a
+and the arithmetic is the same. The test suite runs the transient and the steady solver on an
+emulated device (numpy behind CuPy's rules, ``tests/emulated_device.py``) and checks that they equal
+the numpy runs bit for bit. ``solver.device = "gpu"`` (CuPy, :func:`cupy_backend`) is refused until that suite has run on a
 GPU. Checkpoints save a device state through ``to_host`` and restore it to the device
 (:mod:`viscontact.checkpoint`); the GMRES of the direct solve of strongly coupled gross sliding
 (:meth:`~viscontact.transient.NormalContact.solve_direct`) keeps its Krylov vectors on the device
-and its small Hessenberg system on the host. CPU-only so far: the steady solver (it runs on the CPU
-whatever the device) and the literal hereditary sum (refused in one line).
+and its small Hessenberg system on the host. CPU-only: the literal hereditary sum (the reference,
+refused in one line on a device).
 """
 from __future__ import annotations
 

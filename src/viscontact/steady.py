@@ -35,7 +35,8 @@ What makes it fast:
 
 For gross sliding (q_x = mu_f p) the operator is K_zz + mu_f K_zx.
 
-The steady solver runs on the CPU whatever ``solver.device`` (:mod:`viscontact.arrays`).
+The fields are those of the substrate's array backend (:mod:`viscontact.arrays`); the record comes
+back to the host.
 """
 from __future__ import annotations
 
@@ -54,7 +55,6 @@ from .problem import PHASE_GROSS_SLIDING, Problem
 from .records import StepRecord
 from .roughness import roughness_metrics
 from .sliding import hysteresis_force, pressure_centroid
-from .arrays import CPU
 from .substrate import HalfSpace, TermSubstrate, substrate_for
 
 
@@ -63,7 +63,7 @@ def steady_convolver(problem: Problem, speed: float, substrate: TermSubstrate | 
     """The substrate's effective steady kernels at ``speed`` [m/s] (``zz``, and ``zx`` when sliding with
     friction and coupling): ``apply("zz", p)`` is u_z [m] of the pressure p [Pa]."""
     components = steady_components(problem)
-    substrate = substrate or substrate_for(problem, components, CPU)
+    substrate = substrate or substrate_for(problem, components)
     return substrate.steady_convolver(speed, components)
 
 
@@ -248,8 +248,9 @@ def steady_preconditioner(substrate: TermSubstrate, kernels: dict[str, np.ndarra
         k_x = 2.0 * np.pi * np.fft.rfftfreq(grid.n, grid.spacing)
         j_star = complex_compliance(substrate.material.creep, -k_x * speed)
         symbol = j_star.real if symmetric else j_star  # Re K^ = IC^ Re J*: the symmetric part
-        return FourierPreconditioner(elastic.inverse_symbol / symbol[None, :], workers, elastic.fft)
-    return FourierPreconditioner.for_kernel(kernels["zz"], 1.0, workers)
+        return FourierPreconditioner(elastic.inverse_symbol / substrate.backend.to_device(symbol[None, :]), workers,
+                                     elastic.fft)
+    return FourierPreconditioner.for_kernel(substrate.backend.to_device(kernels["zz"]), 1.0, workers, fft=substrate.fft)
 
 
 def _symmetric_guess(conv: Convolver, problem: Problem, value: float, coupled: bool, mu: float,
@@ -261,9 +262,10 @@ def _symmetric_guess(conv: Convolver, problem: Problem, value: float, coupled: b
     spec = conv.spectra["zz"].real.astype(complex)
     if coupled:
         spec = spec + mu * conv.spectra["zx"].real
-    sym = Convolver(conv.n, {"s": spec}, conv.workers)
+    sym = Convolver(conv.n, {"s": spec}, conv.workers, xp=conv.xp, fft=conv.fft)
     grid = problem.grid
-    b = -problem.gap if problem.normal.control == "load" else value - problem.gap
+    gap = conv.xp.asarray(problem.gap)
+    b = -gap if problem.normal.control == "load" else value - gap
     sol = constrained_cg(lambda x: sym.apply("s", x), b, np.zeros_like(b), 0.0, np.inf,
                          total=value if problem.normal.control == "load" else None,
                          cell_area=grid.cell_area, tolerance=1e-6, max_iterations=problem.solver.max_iterations,
@@ -320,18 +322,20 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
     mu = problem.tangential.effective_friction if problem.tangential.mode != "none" else 0.0
     value = problem.normal.history(problem.time.t_end)
     tolerance = min(problem.solver.tolerance, 1e-10)
+    substrate = substrate or substrate_for(problem, steady_components(problem))
+    backend = substrate.backend
+    if initial is not None:
+        initial = backend.to_device(initial)
     if grid.periodic:
         from .steady_periodic import solve_periodic_steady
 
-        body = substrate_for(problem, steady_components(problem), CPU)
-        state = solve_periodic_steady(body.convolver, problem.material, grid, problem.gap,
+        state = solve_periodic_steady(substrate.convolver, problem.material, grid, problem.gap,
                                       speed=v, control=problem.normal.control, value=value, friction=mu,
                                       initial=initial, tolerance=tolerance,
                                       max_iterations=problem.solver.max_iterations,
-                                      spectrum=body.steady_spectrum(v, mu))
+                                      spectrum=substrate.steady_spectrum(v, mu), to_host=backend.to_host)
         p, delta, krylov, u_z = state.pressure, state.delta_z, state.iterations, state.displacement_z
     else:
-        substrate = substrate or substrate_for(problem, steady_components(problem), CPU)
         conv, kernels = steady_convolver(problem, v, substrate)
         coupled = "zx" in conv.spectra
         precondition = steady_preconditioner(substrate, kernels, v, problem.solver.workers)
@@ -340,16 +344,16 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
             return conv.combine([("zz", 1.0, p)] + ([("zx", mu, p)] if coupled else []))
 
         if initial is None and grid.n >= 2 * COARSEST and grid.n % 2 == 0:
-            initial = coarse_start(problem, v)
+            initial = backend.to_device(coarse_start(problem, v))
         elif initial is None:
             initial = _symmetric_guess(conv, problem, value, coupled, mu,
                                        steady_preconditioner(substrate, kernels, v, problem.solver.workers, True))
-        p, delta, krylov, _ = solve_contact_active_set(apply_k, problem.gap, control=problem.normal.control,
-                                                       value=value, cell_area=grid.cell_area, initial=initial,
-                                                       tolerance=tolerance,
+        p, delta, krylov, _ = solve_contact_active_set(apply_k, backend.to_device(problem.gap),
+                                                       control=problem.normal.control, value=value,
+                                                       cell_area=grid.cell_area, initial=initial, tolerance=tolerance,
                                                        max_iterations=problem.solver.max_iterations,
                                                        preconditioner=precondition)
-        u_z = apply_k(p)
+        p, u_z = backend.to_host(p), backend.to_host(apply_k(p))
     load = float(p.sum() * grid.cell_area)
     check_solution(problem, p, load, value, where=f" at v = {v:.4g} m/s")
     f_t = hysteresis_force(p, u_z, grid, grid.periodic)
@@ -368,7 +372,7 @@ def speed_sweep(problem: Problem, speeds: Sequence[float]) -> list[StepRecord]:
     one substrate serves them all (its kernel builder keeps what does not depend on the speed)."""
     out: list[StepRecord] = []
     previous = None
-    substrate = substrate_for(problem, steady_components(problem), CPU)
+    substrate = substrate_for(problem, steady_components(problem))
     for v in speeds:
         rec = solve_steady(problem, v, initial=previous, substrate=substrate)
         previous = rec.pressure

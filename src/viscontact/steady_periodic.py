@@ -30,7 +30,7 @@ its own q = 0 mode, and its approach is the plain one, as in its transient.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Iterable
+from typing import Callable, Iterable
 
 import numpy as np
 
@@ -64,8 +64,8 @@ def steady_operator_spectrum(grid: Grid, speed: float, parts: Iterable[tuple[np.
     is seen at the angular frequency -k_x v."""
     omega = -2 * np.pi * np.fft.rfftfreq(grid.n, grid.spacing)[None, :] * speed
     out = None
-    for spectrum, compliance in parts:
-        part = spectrum * complex_compliance(compliance, omega)
+    for spectrum, compliance in parts:  # the compliance (host) moved to the spectrum's library
+        part = spectrum * np.asarray(complex_compliance(compliance, omega), like=spectrum)
         out = part if out is None else out + part
     return out
 
@@ -108,7 +108,8 @@ class PeriodicSteadyState:
 def solve_periodic_steady(conv: PeriodicConvolver, material: Material, grid: Grid, gap: np.ndarray, *,
                           speed: float, control: str, value: float, friction: float = 0.0,
                           initial: np.ndarray | None = None, tolerance: float = 1e-10,
-                          max_iterations: int = 2000, spectrum: np.ndarray | None = None) -> PeriodicSteadyState:
+                          max_iterations: int = 2000, spectrum: np.ndarray | None = None,
+                          to_host: Callable[[np.ndarray], np.ndarray] = np.asarray) -> PeriodicSteadyState:
     """Steady state of sliding at ``speed`` [m/s] on a periodic domain.
 
     Parameters
@@ -128,6 +129,9 @@ def solve_periodic_steady(conv: PeriodicConvolver, material: Material, grid: Gri
     spectrum
         The steady operator's spectrum when the body is not the half-space of ``material``
         (:meth:`viscontact.substrate.TermSubstrate.steady_spectrum`; ``material`` is then not used).
+    to_host
+        The array backend's copy to the host (:mod:`viscontact.arrays`) for the fields returned, when
+        ``conv`` holds device fields.
     """
     if not speed > 0:
         raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s for a steady state, got {speed}")
@@ -147,7 +151,8 @@ def solve_periodic_steady(conv: PeriodicConvolver, material: Material, grid: Gri
 
     symmetric = np.abs(spec_solve.real)
     symmetric[0, 0] = symmetric[0, 1]
-    precondition = FourierPreconditioner(1.0 / symmetric, conv.workers)
+    precondition = FourierPreconditioner(1.0 / symmetric, conv.workers, conv.fft)
+    gap = conv.xp.asarray(gap)
     if initial is None:  # Polonsky-Keer with the symmetric part: the right contact size to start from
         b = -gap if load_control else value - gap
         initial = constrained_cg(apply(spec_solve.real.astype(complex)), b, np.zeros_like(gap), 0.0, np.inf,
@@ -156,7 +161,7 @@ def solve_periodic_steady(conv: PeriodicConvolver, material: Material, grid: Gri
     p, delta, krylov, sets = solve_contact_active_set(apply(spec_solve), gap, control=control, value=value,
                                                       cell_area=grid.cell_area, initial=initial, tolerance=tolerance,
                                                       max_iterations=max_iterations, preconditioner=precondition)
-    u_z = apply(spec)(p)
+    p, u_z = to_host(p), to_host(apply(spec)(p))
     delta = delta - (0.0 if bounded else offset) * float(p.mean())
     load = float(p.sum() * grid.cell_area)
     f_t = hysteresis_force(p, u_z, grid, periodic=True)

@@ -379,7 +379,8 @@ class TermSubstrate:
                 if shape is None:
                     raise ParameterError("steady", f"no steady kernel for the compliance term {term.kernel!r}; "
                                          "use `viscontact run` (transient)")
-                kernel = kernel + shape.history(spectrum.amplitudes, speed * spectrum.retardation_times)
+                kernel = kernel + self.backend.to_device(
+                    shape.history(spectrum.amplitudes, speed * spectrum.retardation_times))
             kernels[name] = kernel if name not in kernels else kernels[name] + kernel
         return Convolver.from_kernels(n, kernels, self.convolver.workers, xp=self.xp, fft=self.fft,
                                       transforms=self.convolver.transforms), kernels

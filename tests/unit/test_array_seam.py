@@ -234,3 +234,48 @@ def test_a_streamed_run_stopped_and_resumed_on_the_device_equals_the_cpu_run(bac
         assert set(dev.data_vars) == set(cpu.data_vars)
         for name in cpu.data_vars:
             _assert_same(dev[name].values.astype(float), cpu[name].values.astype(float), backend, name)
+
+
+def _steady(body: str):
+    """A steady sliding problem of each body (n = 32; 128 for the coarse-grid start)."""
+    sliding = dict(mode="frictionless_sliding", speed=0.8 * SEED_A0 / SEED_TAU, t_end=SEED_TAU)
+    if body == "rough_periodic":
+        return load_case(shipped_case("rough_periodic_sliding")).with_overrides({"grid.n": 32}).to_problem()
+    if body == "coarse_start":
+        return sphere_problem(seed_material(), 128, 2.5 * SEED_A0, **sliding)
+    if body == "gross_sliding":
+        return sphere_problem(seed_material(), 32, 2.5 * SEED_A0, **{**sliding, "mode": "gross_sliding"}, friction=0.5)
+    problem = sphere_problem(seed_material(), 32, 2.5 * SEED_A0, **sliding)
+    if body == "layer":
+        return dataclasses.replace(problem, layer=LayerSettings(0.3e-3))
+    if body == "bulk_modulus":
+        return dataclasses.replace(problem, material=seed_material(poisson_ratio=0.25), bulk_modulus=5e6)
+    return problem
+
+
+@pytest.mark.parametrize("body", ["half_space", "coarse_start", "gross_sliding", "rough_periodic", "layer",
+                                  "bulk_modulus"])
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_the_steady_state_on_the_device_equals_numpy(backend, body, monkeypatch):
+    from viscontact import steady, steady_periodic, substrate
+    from viscontact.steady import solve_steady
+
+    problem = _steady(body)
+    reference = solve_steady(problem)
+    monkeypatch.setattr(substrate, "array_backend", lambda device: backend)  # solver.device -> the device
+    gaps = []
+    for module in (steady, steady_periodic):
+        solve = module.solve_contact_active_set
+        monkeypatch.setattr(module, "solve_contact_active_set",
+                            lambda apply_k, gap, _solve=solve, **kw: gaps.append(gap) or _solve(apply_k, gap, **kw))
+    ours = solve_steady(problem)
+    assert gaps and not any(isinstance(g, np.ndarray) for g in gaps)  # the active set ran on the device
+    for f in dataclasses.fields(ours):
+        value, want = getattr(ours, f.name), getattr(reference, f.name)
+        if isinstance(want, np.ndarray):
+            assert isinstance(value, np.ndarray), f.name
+            _assert_same(value, want, backend, f.name)
+        elif isinstance(want, float) and not _exact(backend):
+            assert value == pytest.approx(want, rel=1e-8, abs=1e-12), f.name
+        elif f.name != "iterations" or _exact(backend):
+            assert value == want, f.name
