@@ -261,6 +261,10 @@ class _SelfAffineKeys(_Section):
         if (self.rms_height is None) == (self.rms_slope is None):
             raise ParameterError(f"{table}.rms_height", "give exactly one of rms_height (m) or rms_slope (-)")
 
+    def amplitude_key(self, table: str) -> str:
+        """The key that sets the surface's amplitude (``rms_height`` or ``rms_slope``) in ``table``."""
+        return f"{table}.rms_height" if self.rms_height is not None else f"{table}.rms_slope"
+
     def self_affine_heights(self, grid: Grid, table: str) -> np.ndarray:
         """Heights [m] of the self-affine surface these keys describe, on ``grid``."""
         from .topography import self_affine_heights
@@ -283,7 +287,8 @@ class IndenterSection(_SelfAffineKeys):
     """The rigid surface:
 
     * ``shape = "sphere"`` with ``radius`` [m] (and optionally ``[indenter.roughness]``);
-    * ``shape = "surface"`` with ``file``: a .npy of heights h0 [m] on the grid (n x n, indexed [y, x]);
+    * ``shape = "surface"`` with ``file``: a .npy of the undeformed gap h0 [m] on the grid (n x n, indexed
+      [y, x]; its lowest point touches first: not heights z up, which ``topography`` takes);
     * ``shape = "self_affine"`` with ``hurst``, ``rms_height`` or ``rms_slope``, ``long_cutoff``,
       ``short_cutoff`` [m] and ``seed``: a periodic surface by Fourier synthesis;
     * ``shape = "topography"`` with ``file``: anything SurfaceTopography reads (x3p, opd, sur, di,
@@ -297,9 +302,10 @@ class IndenterSection(_SelfAffineKeys):
         "sphere", description="a sphere (paraboloid gap (x^2 + y^2)/(2 radius)), a gap read from a .npy file, "
         "a generated self-affine surface, or a measured topography file")
     radius: float | None = _num(None, unit="m", gt=0, description="sphere radius R; required with shape = 'sphere'")
-    file: str | None = Field(None, description="with shape = 'surface': .npy of heights h0 [m], (grid.n, grid.n), "
-                             "indexed [y, x]; with shape = 'topography': any file SurfaceTopography reads; "
-                             "relative to the case file's folder")
+    file: str | None = Field(None, description="with shape = 'surface': .npy of the undeformed gap h0 [m], "
+                             "(grid.n, grid.n), indexed [y, x], its lowest point touching first; with shape = "
+                             "'topography': any file SurfaceTopography reads that carries its physical size and "
+                             "unit, heights z up (highest point touching first); relative to the case file's folder")
     resample: bool | None = Field(None, description="with shape = 'topography': interpolate the file onto the grid")
     roughness: RoughnessSection | None = Field(None, description="with shape = 'sphere': self-affine roughness "
                                                "([indenter.roughness], the self-affine keys)")
@@ -621,7 +627,7 @@ class Case(_Section):
         """Undeformed gap h0(x, y) [m] on ``grid``: (x^2 + y^2)/(2R) for a smooth sphere, else the
         heights (z up) shifted so that the highest point touches first at delta_z = 0; a .npy
         ``surface`` file holds the gap itself, shifted so that its lowest point is 0."""
-        from .topography import gap_from_heights, read_heights, sphere_heights
+        from .topography import check_surface, gap_from_heights, read_heights, sphere_heights
 
         ind = self.indenter
         if ind.shape == "sphere":
@@ -629,14 +635,18 @@ class Case(_Section):
                 x, y = grid.mesh()
                 return (x**2 + y**2) / (2.0 * ind.radius)
             rough = ind.roughness.self_affine_heights(grid, "indenter.roughness")
+            check_surface(rough, grid, ind.roughness.amplitude_key("indenter.roughness"))
             return gap_from_heights(sphere_heights(grid, ind.radius) + rough)
         if ind.shape == "self_affine":
-            return gap_from_heights(ind.self_affine_heights(grid, "indenter"))
-        path = self._base_dir / ind.file
-        if ind.shape == "topography":
-            return gap_from_heights(read_heights(path, grid, resample=bool(ind.resample)))
-        h0 = read_height_file(path, (grid.n, grid.n))
-        return h0 - h0.min()
+            gap, key = gap_from_heights(ind.self_affine_heights(grid, "indenter")), ind.amplitude_key("indenter")
+        elif ind.shape == "topography":
+            gap, key = gap_from_heights(read_heights(self._base_dir / ind.file, grid, resample=bool(ind.resample))), \
+                "indenter.file"
+        else:
+            h0 = read_height_file(self._base_dir / ind.file, (grid.n, grid.n))
+            gap, key = h0 - h0.min(), "indenter.file"
+        check_surface(gap, grid, key)
+        return gap
 
     def to_problem(self) -> Problem:
         """The :class:`~viscontact.problem.Problem` the solvers consume."""

@@ -416,9 +416,12 @@ def check_solution(problem: Problem, pressure: np.ndarray, load: float, value: f
     if peak > 0 and edge.max() > LOADED_FRACTION * peak and not grid.periodic:
         x, y = grid.mesh()
         reach = float(np.sqrt(x**2 + y**2)[pressure > LOADED_FRACTION * peak].max())
+        advice = (f"enlarge grid.half_width to more than {1.5 * reach:.4g} m (now {grid.half_width:.4g} m; the edge "
+                  "cuts the contact off, so it may need more)" if problem.radius is not None else
+                  "a rough or measured surface touches all over, at any width: make the domain one period of it "
+                  "(grid.periodic = true), or enlarge grid.half_width if its contact is compact")
         raise NumericalGuardError(
             f"the contact reaches the edge of the domain{where} (pressure {edge.max() / peak:.1e} of its peak there); "
-            f"enlarge grid.half_width to more than {1.5 * reach:.4g} m (now {grid.half_width:.4g} m; the edge cuts "
-            "the contact off, so it may need more)")
+            + advice)
     if problem.normal.control == "load" and value > 0 and abs(load - value) > LOAD_BALANCE_TOLERANCE * value:
         raise NumericalGuardError(f"load balance violated{where}: sum p dA = {load:.6g} N for W = {value:.6g} N")

@@ -65,7 +65,8 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "phase": ("1", "phase: 0 indentation, 1 partial slip, 2 gross sliding"),
     "friction_force": ("N", "dry friction force sum q_x dA (positive when resisting the motion)"),
     "hysteresis_force": ("N", "hysteresis force F_T = -sum p du_z/dx dA (seed Eq. 15)"),
-    "mu_app": ("1", "apparent (hysteresis) friction coefficient F_T / W"),
+    "mu_app": ("1", "apparent friction coefficient F_T / W (seed Eq. 15): the hysteresis friction; with "
+               "friction and nu < 0.5 it also holds the non-dissipative normal-tangential coupling term"),
     "contact_shift": ("m", "x-centroid of the pressure"),
     "frame_offset": ("m", "indenter centre on the grid (x - frame_offset is the indenter-frame coordinate)"),
     "wake_loss": ("1", "fraction of the history displacement load dropped at the trailing edge"),

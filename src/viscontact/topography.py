@@ -12,18 +12,67 @@ heights [x, y]; viscontact's fields are [y, x] (the transposes are taken here, o
   NetCDF, plain text with a header, ...), in its own physical size and units, converted to m; on the
   grid as it is, or resampled (cubic B-spline, periodic for a periodic topography) when asked.
 * :func:`sphere_heights`: the parabolic sphere, to which roughness is added.
+* :func:`check_surface`: what a surface on the grid must look like: slopes a half-space theory
+  takes (an rms slope above :data:`MAX_RMS_SLOPE` is a unit slip and refused; above
+  :data:`WARN_RMS_SLOPE` warned) and, on a periodic grid, edges that meet (a map that is not periodic
+  over the grid's period has a cliff along the seams, warned).
 
 SurfaceTopography is imported when needed (it takes seconds to import).
 """
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import numpy as np
 from scipy import ndimage
 
-from .errors import ParameterError
+from .errors import ParameterError, ViscontactWarning
 from .grid import Grid
+
+#: an rms slope above this is refused: heights in the wrong unit (a half-space model of a surface
+#: whose slopes average 84 degrees means nothing)
+MAX_RMS_SLOPE = 10.0
+#: an rms slope above this is warned: beyond the small-slope theory of the half-space
+WARN_RMS_SLOPE = 1.0
+#: on a periodic grid, steps across the period's edges whose rms exceeds this times that of the steps
+#: between neighbouring points are warned: the map is not periodic over the grid's period (a cropped
+#: measurement: about 17; a periodic map: about 1)
+SEAM_RATIO = 3.0
+#: resampling that changes the point spacing by more than this factor either way is warned
+RESAMPLE_RATIO = 4.0
+
+
+def rms_slopes(gap: np.ndarray, spacing: float, periodic: bool) -> tuple[float, float]:
+    """(rms |grad h| by forward differences over the interior, rms of the steps across the period's
+    edges over rms of the interior steps) of a field [m] on a grid of ``spacing`` [m]; the second is 1
+    when not ``periodic``."""
+    dx, dy = np.diff(gap, axis=1), np.diff(gap, axis=0)
+    interior = float(np.sqrt(np.mean(dx**2) + np.mean(dy**2))) / spacing
+    if not periodic or interior == 0:
+        return interior, 1.0
+    seams = np.concatenate([gap[:, 0] - gap[:, -1], gap[0] - gap[-1]])
+    step = float(np.sqrt((np.mean(dx**2) + np.mean(dy**2)) / 2))
+    return interior, float(np.sqrt(np.mean(seams**2))) / step
+
+
+def check_surface(gap: np.ndarray, grid: Grid, key: str) -> None:
+    """Refuse a surface whose rms slope exceeds :data:`MAX_RMS_SLOPE` (heights in the wrong unit),
+    warn above :data:`WARN_RMS_SLOPE`, and on a periodic grid warn when the steps across the period's
+    edges exceed :data:`SEAM_RATIO` times the steps between neighbours (the map is not periodic over the
+    grid's period: the contact piles up on the seams). ``gap`` [m] on ``grid``; ``key`` names the input."""
+    slope, seam = rms_slopes(gap, grid.spacing, grid.periodic)
+    if slope > MAX_RMS_SLOPE:
+        raise ParameterError(key, f"the surface's rms slope is {slope:.3g} on this grid: heights in the wrong unit "
+                             "(m expected), or a physical size that is too small?")
+    if slope > WARN_RMS_SLOPE:
+        warnings.warn(f"{key}: the surface's rms slope is {slope:.3g}, beyond the small-slope theory of the "
+                      "half-space (check the height unit)", ViscontactWarning, stacklevel=2)
+    if seam > SEAM_RATIO:
+        warnings.warn(f"{key}: the surface is not periodic over the grid's period: its steps across the period's "
+                      f"edges are {seam:.3g} x those between neighbouring points (rms), a cliff on which the contact "
+                      "piles up; use a periodic map whose period the grid's is a multiple of, or grid.periodic = false",
+                      ViscontactWarning, stacklevel=2)
 
 
 def gap_from_heights(heights: np.ndarray) -> np.ndarray:
@@ -114,10 +163,15 @@ def read_heights(path: str | Path, grid: Grid, *, resample: bool = False, physic
     try:
         topography = SurfaceTopography.read_topography(str(path), **extra)
     except Exception as exc:  # readers raise anything from ValueError to struct.error
-        message = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise ParameterError(key, f"cannot read {path} as a topography: {message}") from None
-    if topography.dim != 2:
-        raise ParameterError(key, f"{path} holds a line scan; a 2-D topography map is needed")
+        message = " ".join(str(exc).split()) or type(exc).__name__
+        if "physical_sizes" in message:
+            message = ("its physical size is not in the file: use a format that carries it (a text map with "
+                       "'# Width: 1 mm', '# Height: 1 mm' and '# Value units: um' header lines, NetCDF, x3p, ...)")
+        raise ParameterError(key, f"cannot read {path} as a topography: {message[:300]}") from None
+    if topography.dim != 2 or len(topography.nb_grid_pts) != 2 or len(topography.physical_sizes) != 2:
+        raise ParameterError(key, f"{path} holds a line scan or gives one physical size "
+                             f"({topography.physical_sizes}); a 2-D map with its width and height is needed "
+                             "(a text map: '# Width:' and '# Height:' header lines)")
     if topography.unit is None:
         raise ParameterError(key, f"{path} does not give its length unit")
     if topography.has_undefined_data:
@@ -150,6 +204,16 @@ def _resample(heights: np.ndarray, sizes: tuple[float, float], periodic: bool, g
     x = grid.x + (lx - sx) / 2
     y = grid.y + (ly - sy) / 2
     if not periodic and (x.min() < 0 or x.max() > lx - sx or y.min() < 0 or y.max() > ly - sy):
-        raise ParameterError(key, f"{described}: the surface is not periodic and does not cover the grid")
+        # the grid's outermost cell centres, grid.half_width (1 - 1/n) from its centre, must lie within
+        # the file's outermost samples, (l - s) / 2 from its centre
+        widest = min(lx - sx, ly - sy) / (2 * (1 - 1 / grid.n))
+        raise ParameterError(key, f"{described}: the surface is not periodic and its outermost samples do not reach "
+                             f"the grid's outermost cell centres; grid.half_width <= {widest:.6g} m keeps them inside")
+    ratio = max(sx, sy) / grid.spacing
+    if not 1 / RESAMPLE_RATIO <= ratio <= RESAMPLE_RATIO:
+        warnings.warn(f"{key}: resampling changes the point spacing {ratio:.3g}-fold ({max(sx, sy):.3g} m in the file, "
+                      f"{grid.spacing:.3g} m on the grid): check the file's physical size"
+                      + ("" if ratio > 1 else "; finer detail than the grid's is dropped, not averaged"),
+                      ViscontactWarning, stacklevel=3)
     yy, xx = np.meshgrid(y / sy, x / sx, indexing="ij")
     return ndimage.map_coordinates(heights, [yy, xx], order=3, mode="grid-wrap" if periodic else "mirror")

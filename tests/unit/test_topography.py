@@ -8,12 +8,16 @@ the amplitude).
 """
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 
 from viscontact.errors import ParameterError
 from viscontact.grid import Grid
-from viscontact.topography import (gap_from_heights, read_heights, self_affine_heights, sphere_heights)
+from viscontact.errors import ViscontactWarning
+from viscontact.topography import (check_surface, gap_from_heights, read_heights, self_affine_heights,
+                                   sphere_heights)
 
 ST = pytest.importorskip("SurfaceTopography")
 
@@ -89,7 +93,9 @@ def test_resample_needs_coverage_when_not_periodic(tmp_path):
     topo, _ = _ridge_topography(40, 40, (0.8e-3, 0.8e-3), unit="m", periodic=False)
     path = tmp_path / "small.nc"
     topo.to_netcdf(str(path))
-    with pytest.raises(ParameterError, match="does not cover the grid"):
+    # samples at 0 .. 0.78 mm around the grid's centre: cell centres up to 0.36 mm from it fit in
+    with pytest.raises(ParameterError, match=r"do not reach the grid's outermost cell centres; "
+                                             r"grid.half_width <= 0.000416 m keeps them inside"):
         read_heights(path, GRID, resample=True)
     big, _ = _ridge_topography(80, 80, (2e-3, 2e-3), unit="m", periodic=False)
     big.to_netcdf(str(path))
@@ -141,3 +147,47 @@ def test_rough_sphere_gap():
     smooth = gap_from_heights(sphere)
     x, y = grid.mesh()
     np.testing.assert_allclose(smooth, (x**2 + y**2) / 0.02 - ((x**2 + y**2) / 0.02).min(), atol=1e-20)
+
+
+def _waves(grid: Grid, periods_across: float, amplitude: float) -> np.ndarray:
+    """A gap [m] of waves along x and y with ``periods_across`` wavelengths over the grid's width."""
+    x, y = grid.mesh()
+    k = 2 * np.pi * periods_across / (2 * grid.half_width)
+    return amplitude * (2 + np.sin(k * x) + np.cos(k * y))
+
+
+def test_a_map_that_is_not_periodic_over_a_periodic_grid_is_warned():
+    periodic = Grid(64, 0.5e-3, periodic=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        check_surface(_waves(periodic, 3, 1e-6), periodic, "indenter.file")  # whole periods: edges meet
+        check_surface(_waves(Grid(64, 0.5e-3), 3.5, 1e-6), Grid(64, 0.5e-3), "indenter.file")  # not periodic: no seam
+    with pytest.warns(ViscontactWarning, match=r"not periodic over the grid's period: its steps across the period's "
+                                               r"edges are \d+(\.\d+)? x"):
+        check_surface(_waves(periodic, 3.5, 1e-6), periodic, "indenter.file")  # half a wave short: a cliff
+
+
+def test_slopes_of_a_unit_slip_are_refused_and_steep_ones_warned():
+    grid = Grid(32, 0.5e-3, periodic=True)
+    gap = _waves(grid, 3, 1e-6)  # rms slope about 0.02
+    with pytest.raises(ParameterError, match=r"indenter.file: the surface's rms slope is \d+(\.\d+)? on this grid: "
+                                             "heights in the wrong unit"):
+        check_surface(gap * 1e3, grid, "indenter.file")  # um read as mm
+    with pytest.warns(ViscontactWarning, match="beyond the small-slope theory"):
+        check_surface(gap * 1e2, grid, "indenter.file")
+
+
+def test_a_map_without_its_height_is_one_line(tmp_path):
+    path = tmp_path / "width_only.txt"
+    rows = "\n".join(" ".join(f"{2 + np.sin(i + j):.6f}" for j in range(16)) for i in range(16))
+    path.write_text("# Width: 1 mm\n# Value units: um\n" + rows + "\n")
+    with pytest.raises(ParameterError, match="gives one physical size .* '# Height:'"):
+        read_heights(path, GRID)
+
+
+def test_resampling_far_from_the_grids_spacing_is_warned(tmp_path):
+    topo, _ = _ridge_topography(16, 16, (1.0, 1.0), unit="m", periodic=True)  # 1 m where 1 mm was meant
+    path = tmp_path / "wide.nc"
+    topo.to_netcdf(str(path))
+    with pytest.warns(ViscontactWarning, match="resampling changes the point spacing 1e\\+03-fold"):
+        read_heights(path, GRID, resample=True)
