@@ -54,9 +54,42 @@ def _check_quietly(problem) -> list[str]:
 
 
 # --- the shipped cases pass ----------------------------------------------------------------------
+#: the seed's cases under a held approach with the seed's first-order scheme at the seed's dt: the
+#: relaxation is missed by 10-13 % over the first relaxation times (measured against the exact
+#: held-approach load in test_held_approach_estimate_is_the_measured_local_error), which is warned
+SEED_SCHEME_RELAXATION = {"seed_table2_ratio10_displacement", "seed_table3_case1", "seed_table3_case2",
+                          "seed_table3_case3", "seed_table3_case4"}
+
+
 @pytest.mark.parametrize("path", sorted(glob.glob(str(ROOT / "cases" / "*.toml"))), ids=lambda p: Path(p).stem)
 def test_shipped_cases_pass_every_guard_without_a_warning(path):
-    assert _check_quietly(load_case(path).to_problem()) == []
+    found = _check_quietly(load_case(path).to_problem())
+    if Path(path).stem in SEED_SCHEME_RELAXATION:
+        assert len(found) == 1 and "the constant scheme misses the relaxation by about 1" in found[0], found
+        assert 'time.scheme = "linear"' in found[0]
+    else:
+        assert found == []
+
+
+@pytest.mark.parametrize("name, over", [("seed_table3_case1", {"time.t_end": 0.004, "time.dt": 0.0001999}),
+                                        ("pmma_master_curve", {"time.t_end": 60.0, "time.dt": 4.8828125,
+                                                               "normal.history": None, "normal.value": 1e-6})])
+def test_held_approach_estimate_is_the_measured_local_error(name, over):
+    """Under a held approach delta on a sphere the contact radius stays sqrt(R delta), so the exact load
+    is W(t) = (4/3) sqrt(R) delta^1.5 2 G(t) / (1 - nu). The estimate is the largest error of a step
+    relative to that step's exact value: seed Table 3's first-order scheme misses it by 10.2 % at
+    t = 2 ms (the estimate relative to the first, largest load said 4 %, no warning), PMMA held at once
+    by 10 % at the first step. Estimate and measured error agree to a fifth (n = 32)."""
+    problem = _problem(ROOT / "cases" / f"{name}.toml", **{"grid.n": 32, "tangential.mode": "none", **over})
+    mat, radius, delta = problem.material, problem.radius, problem.normal.history.reference
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ViscontactWarning)
+        records = list(simulate(problem))
+    times = np.array([r.t for r in records])
+    relaxation = mat.g_inf + sum(g * np.exp(-times / tau) for g, tau in zip(mat.g, mat.tau))
+    exact = 4 / 3 * math.sqrt(radius) * delta**1.5 * 2 * relaxation / (1 - mat.poisson_ratio)
+    measured = float(np.max(np.abs(np.array([r.load for r in records]) / exact - 1)))
+    assert measured > 0.09 and guards.time_step_error(problem) == pytest.approx(measured, rel=0.2)
 
 
 # --- resolution and domain -----------------------------------------------------------------------
@@ -148,21 +181,24 @@ def test_hereditary_integral_against_quadrature():
 
 def test_time_step_estimate_matches_the_solver_on_the_relaxation_case():
     """The seed scheme at dt = 1 ms on the relaxation case: W/W0 = 0.14 against G(t)/G(0) = 0.43 at
-    t = dt. The one-point estimate predicts the solver's error (held approach: exact correspondence)."""
+    t = dt, 67 % low. The one-point estimate predicts the solver's error, each step's against its own
+    exact value (held approach: exact correspondence)."""
     pb = _problem(RELAXATION, **{"grid.n": 32, "time.dt": 1e-3, "time.t_end": 3e-3, "time.scheme": "constant"})
     loads = np.array([r.load for r in simulate(replace(pb, output=replace(pb.output, fields=("pressure",))))])
     exact = pb.material.relaxation_modulus(np.arange(4) * 1e-3) / pb.material.shear_modulus_instantaneous
-    error = np.max(np.abs(loads / loads[0] - exact))
+    error = np.max(np.abs(loads / loads[0] / exact - 1))
     assert loads[1] / loads[0] == pytest.approx(0.1435, abs=0.01) and exact[1] == pytest.approx(0.431, abs=1e-3)
     assert guards.time_step_error(pb) == pytest.approx(error, rel=0.05)
 
 
 def test_time_step_refused_and_warned(capsys):
     code, err = _dry_run(capsys, RELAXATION, "time.dt=1e-3", "time.scheme=\"constant\"")
-    assert code == 2 and len(err) == 1 and err[0].startswith("viscontact: error: time.dt:") and "29 %" in err[0]
-    code, err = _dry_run(capsys, RELAXATION, "time.dt=5e-4", "time.scheme=\"constant\"")
+    assert code == 2 and len(err) == 1 and err[0].startswith("viscontact: error: time.dt:") and "67 %" in err[0]
+    code, err = _dry_run(capsys, RELAXATION, "time.dt=2.5e-4", "time.scheme=\"constant\"")
     assert code == 0 and len(err) == 1 and err[0].startswith("viscontact: warning: time.dt") and "%" in err[0]
-    code, err = _dry_run(capsys, RELAXATION, "time.dt=1e-3", "time.scheme=\"linear\"")
+    code, err = _dry_run(capsys, RELAXATION, "time.dt=1e-3", "time.scheme=\"linear\"")  # dt = the relaxation time
+    assert code == 0 and len(err) == 1 and "the linear scheme misses the relaxation by about 8.8 %" in err[0]
+    code, err = _dry_run(capsys, RELAXATION, "time.dt=5e-4", "time.scheme=\"linear\"")
     assert code == 0 and err == []
 
 
