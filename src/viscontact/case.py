@@ -716,12 +716,24 @@ def read_height_file(path: Path, shape: tuple[int, int]) -> np.ndarray:
     return np.asarray(h0, dtype=float)
 
 
+#: largest text input file read [bytes]: a case, sweep or Prony table is a few kB; a name that points
+#: at a result file or a device must not be read into memory whole
+MAX_INPUT_BYTES = 16 << 20
+
+
 def read_input_file(path: str | Path, what: str) -> str:
     """The UTF-8 text of an input file (a byte-order mark is skipped); :class:`ParameterError` (key
-    ``what``, e.g. ``"case file"``) when it is missing or unreadable."""
+    ``what``, e.g. ``"case file"``) when it is missing or unreadable, or holds more than
+    :data:`MAX_INPUT_BYTES` (read no further: ``/dev/zero`` or a result file named by mistake would
+    otherwise fill the memory; a pipe, e.g. ``<(...)``, is read as a file)."""
     path = Path(path)
     try:
-        return path.read_text(encoding="utf-8-sig")
+        with open(path, "rb") as fh:
+            data = fh.read(MAX_INPUT_BYTES + 1)
+        if len(data) > MAX_INPUT_BYTES:
+            raise ParameterError(what, f"{path} holds more than {MAX_INPUT_BYTES >> 20} MiB: a text input is a few "
+                                 "kB (is it the right file?)")
+        return data.decode("utf-8-sig")
     except FileNotFoundError:
         raise ParameterError(what, f"no such file: {path}") from None
     except (OSError, UnicodeDecodeError) as exc:

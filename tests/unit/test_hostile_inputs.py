@@ -180,3 +180,23 @@ def test_a_set_value_that_is_not_utf8_is_one_line(tmp_path, capsys, command):
     code, err = _main(capsys, command, case, "--out", out, "--set", "title=caf\udce9", "--quiet")
     assert code == 2 and len(err) == 1 and err[0].startswith("viscontact: error: --set: ") and "UTF-8" in err[0]
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.skipif(not Path("/dev/zero").exists(), reason="needs /dev/zero")
+def test_an_endless_input_file_is_refused_before_it_fills_the_memory(capsys, tmp_path):
+    """/dev/zero as the case file or the Prony table was read until the process was killed for
+    memory; a large file named by mistake is refused too."""
+    code, err = _main(capsys, "run", "/dev/zero", "--out", str(tmp_path / "r.nc"), "--dry-run")
+    _one_line(code, err, "case file")
+    assert "holds more than 16 MiB" in err[0]
+    prony = CREEP_TEXT.replace('type = "zener"', 'type = "prony"\nfile = "/dev/zero"\nmodulus = "shear"')
+    for key in ("shear_modulus_instantaneous", "shear_modulus_long_term", "retardation_time"):
+        prony = "\n".join(line for line in prony.splitlines() if not line.startswith(key))
+    (tmp_path / "c.toml").write_text(prony)
+    code, err = _main(capsys, "run", str(tmp_path / "c.toml"), "--out", str(tmp_path / "r.nc"), "--dry-run")
+    _one_line(code, err, "material.file")
+    big = tmp_path / "big.toml"
+    with open(big, "wb") as fh:
+        fh.truncate(17 << 20)  # sparse: 17 MiB of zeros
+    code, err = _main(capsys, "run", str(big), "--out", str(tmp_path / "r.nc"), "--dry-run")
+    _one_line(code, err, "case file")

@@ -265,3 +265,45 @@ def test_plot_of_a_periodic_result_draws_the_rough_history_not_a_contact_radius(
                      "rough_contact.svg", "stick_map.svg", "tangential_loop.svg"]
     problem = make_problem()                  # a smooth sphere, one patch: no rough-contact figure
     assert not is_rough(to_dataset(fake_records(problem), problem))
+
+
+def _creep_result(overrides: dict, material: str | None = None):
+    """A 3-step creep run of the shipped case at 16^2 with ``overrides`` and, when given, its
+    ``[material]`` table replaced by ``material`` in the case text (which the result keeps)."""
+    import viscontact as vc
+    from viscontact.case import Case
+
+    text = (ROOT / "cases" / "creep_indentation.toml").read_text()
+    if material is not None:
+        start, end = text.index("[material]"), text.index("[indenter]")
+        text = text[:start] + material + "\n" + text[end:]
+    case = Case.from_toml_text(text, ROOT / "cases").with_overrides({"grid.n": 16, "time.t_end": 5e-4, **overrides})
+    return vc.run(case), case
+
+
+PRONY_WLF = """[material]
+type = "prony"
+g_inf = 0.193e6
+g = [1.737e6]
+tau = [0.05]
+poisson_ratio = 0.3
+temperature = 40.0
+reference_temperature = 20.0
+wlf_c1 = 17.44
+wlf_c2 = 51.6
+"""
+
+
+def test_the_reference_material_of_a_result_has_the_runs_relaxation_times():
+    """A typed Prony material with a WLF shift: the Lee & Radok reference needs the shifted times (it
+    drew the unshifted ones, a creep about 3 times too slow); a nu(t) or layered body has no such
+    reference."""
+    from viscontact.plotting.result import material_of
+
+    ds, case = _creep_result({}, PRONY_WLF)
+    rebuilt, run = material_of(ds), case.to_problem().material
+    assert rebuilt is not None and ds.attrs["a_T"] < 1e-4
+    t = np.array([0.0, 1e-7, 1e-6, 1e-5])
+    np.testing.assert_allclose(rebuilt.relaxation_modulus(t), run.relaxation_modulus(t), rtol=1e-12)
+    assert material_of(_creep_result({"material.bulk_modulus": 5e6, "material.poisson_ratio": None})[0]) is None
+    assert material_of(_creep_result({"layer.thickness": 1e-3})[0]) is None

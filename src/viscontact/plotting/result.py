@@ -56,13 +56,17 @@ def _steady_label(ds: xr.Dataset) -> str:
 
 
 def material_of(ds: xr.Dataset) -> Material | None:
-    """The material of a result, rebuilt from its case text and checked against its attributes
-    (G(0), G(inf), the retardation time); None when they disagree (e.g. a material overridden on
-    the command line in a way the text does not show)."""
+    """The half-space material of a result, rebuilt from its case text and checked against its
+    attributes (G(0), G(inf); the retardation time of a Zener material and the WLF factor ``a_T`` of a
+    Prony one applied); None when they disagree (e.g. a material overridden on the command line in a
+    way the text does not show) or when the body is no half-space of constant nu (``bulk_modulus``:
+    nu(t); a ``[layer]``), whose contact the Lee & Radok reference does not describe."""
     from ..errors import ParameterError
     from ..materials import Material
 
     try:
+        if "bulk_modulus" in ds.attrs or "layer_thickness" in ds.attrs:
+            return None
         table = tomllib.loads(str(ds.attrs.get("case", "")))["material"]
         nu = float(ds.attrs["poisson_ratio"])
         g0, ginf = float(ds.attrs["shear_modulus_instantaneous"]), float(ds.attrs["shear_modulus_long_term"])
@@ -70,8 +74,9 @@ def material_of(ds: xr.Dataset) -> Material | None:
             material = Material.zener(g0, ginf, float(ds.attrs["retardation_time"]), nu)
         elif table["type"] == "elastic":
             material = Material.elastic(g0, nu)
-        else:
-            material = Material.prony(table["g_inf"], table["g"], table["tau"], nu)
+        else:  # the times as the run shifted them (WLF)
+            shift = float(ds.attrs.get("a_T", 1.0))
+            material = Material.prony(table["g_inf"], table["g"], [shift * t for t in table["tau"]], nu)
     except (KeyError, TypeError, ValueError, ParameterError, tomllib.TOMLDecodeError):
         return None
     same = np.isclose(material.shear_modulus_instantaneous, g0, rtol=1e-9) and \
