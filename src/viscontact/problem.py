@@ -259,18 +259,30 @@ class Problem:
         """Undeformed gap [m] on the grid with the indenter centre at x = ``offset`` [m], 0 <= offset < dx.
 
         The one place that moves the indenter within a cell (``tangential.steps_per_cell`` > 1):
-        a sphere's paraboloid ((x - offset)^2 + y^2) / 2R is rebuilt exactly; any other gap is
-        interpolated linearly along x between neighbouring cells (error f (1 - f) dx^2 max|h''| / 2 at
-        offset f dx), its first column extrapolated linearly (error f (1 + f) dx^2 max|h''| / 2), or
-        on a periodic grid interpolated from the last column (the period wraps around).
+        a sphere's paraboloid ((x - offset)^2 + y^2) / 2R is rebuilt exactly; on a periodic grid any
+        other gap is translated exactly as its Fourier series along x (the phase exp(-i k_x offset);
+        exact for a surface whose spectrum the grid holds, such as a generated self-affine one: a
+        linear interpolation smoothed a rough surface, its approach 3-4 % high and its peak pressure
+        10-14 % low at half a cell); on a DC-FFT grid it is interpolated linearly along x between
+        neighbouring cells (error f (1 - f) dx^2 max|h''| / 2 at offset f dx), its first column
+        extrapolated linearly (error f (1 + f) dx^2 max|h''| / 2).
         """
         if offset == 0.0:
             return self.gap
         if self._gap_is_sphere:
             x, y = self.grid.mesh()
             return ((x - offset) ** 2 + y**2) / (2.0 * self.radius)
+        if self.grid.periodic:
+            n, dx = self.grid.n, self.grid.spacing
+            k_x = 2.0 * np.pi * np.fft.rfftfreq(n, dx)
+            return np.fft.irfft(self._gap_rows_spectrum * np.exp(-1j * k_x * offset), n, axis=1)
         frac = offset / self.grid.spacing
         behind = np.empty_like(self.gap)  # the gap one cell towards -x, h(x - dx)
         behind[:, 1:] = self.gap[:, :-1]
-        behind[:, 0] = self.gap[:, -1] if self.grid.periodic else 2.0 * self.gap[:, 0] - self.gap[:, 1]
+        behind[:, 0] = 2.0 * self.gap[:, 0] - self.gap[:, 1]
         return (1.0 - frac) * self.gap + frac * behind
+
+    @cached_property
+    def _gap_rows_spectrum(self) -> np.ndarray:
+        """The real FFT of the gap along x (periodic grids: :meth:`frame_gap`)."""
+        return np.fft.rfft(self.gap, axis=1)
