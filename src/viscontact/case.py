@@ -253,7 +253,8 @@ class _SelfAffineKeys(_Section):
     rms_slope: float | None = _num(None, unit="", gt=0, description="rms gradient (give rms_height or rms_slope)")
     long_cutoff: float | None = _num(None, unit="m", gt=0, description="roll-off wavelength (default: the period)")
     short_cutoff: float | None = _num(None, unit="m", gt=0, description="shortest wavelength (default: two cells)")
-    seed: int | None = _int(None, ge=0, description="seed of the random phases and amplitudes (default 0)")
+    seed: int | None = _int(None, ge=0, description="seed of the random phases and amplitudes (default 0); with "
+                            "short_cutoff, the same surface at every grid.n")
 
     def _check_self_affine(self, table: str) -> None:
         if self.hurst is None:
