@@ -67,14 +67,16 @@ for name, (label, speeds) in CURVES.items():
 fig, axes = plt.subplots(1, 2, figsize=(10, 3.5))
 for ax, (name, (label, speeds)) in zip(axes, CURVES.items()):
     case, material, ds = cases[name], materials[name], results[name]
-    limits = [hertz_from_approach(case.normal.value, case.indenter.radius, g, material.poisson_ratio).load
+    problem = case.to_problem()
+    approach = problem.normal.history(problem.time.t_end)  # what the steady states hold
+    limits = [hertz_from_approach(approach, case.indenter.radius, g, material.poisson_ratio).load
               for g in (material.shear_modulus_long_term, material.shear_modulus_instantaneous)]
     ax.loglog(speeds, ds["load"], "o-", ms=4, label=f"viscontact, steady, {case.grid.n}²")
     for load, limit in zip(limits, ("Hertz, G(∞)", "Hertz, G(0)")):
         ax.axhline(load, color="k", ls="--", lw=0.8)
         ax.annotate(limit, (speeds[0], load), textcoords="offset points", xytext=(2, 4), fontsize=8)
     ax.set(xlabel="sliding speed v [m/s]", ylabel="load W [N]",
-           title=f"{label}, held approach δ = {case.normal.value * 1e6:g} µm")
+           title=f"{label}, held approach δ = {approach * 1e6:g} µm")
     ax.legend(loc="center right", fontsize=8)
     print(f"{label}: slow limit W / W_Hertz(G(inf)) = {float(ds['load'][0]) / limits[0]:.4f}; "
           f"fast limit W / W_Hertz(G(0)) = {float(ds['load'][-1]) / limits[1]:.4f}")
