@@ -94,26 +94,29 @@ def _retardation_spectrum(g_inf: float, g: np.ndarray, tau: np.ndarray) -> tuple
     lows = np.concatenate([[0.0], rates[:-1]])
     amplitudes = np.empty(rates.size)
     retardation_rates = np.empty(rates.size)
-    for m, (lo, hi) in enumerate(zip(lows, rates)):
-        mid = lo + 0.5 * (hi - lo)
-        below = 1.0 - np.sum(weights / (rates - mid)) > 0  # f decreasing: root above mid
-        origin = hi if below else lo
-        diff = rates - origin
+    # the secular function is infinite at its poles: an end of a bracket within round-off of one (times
+    # 1 ulp apart, times of 1e-300 s) overflows to inf, of the right sign (numpy's warning is noise)
+    with np.errstate(over="ignore", divide="ignore"):
+        for m, (lo, hi) in enumerate(zip(lows, rates)):
+            mid = lo + 0.5 * (hi - lo)
+            below = 1.0 - np.sum(weights / (rates - mid)) > 0  # f decreasing: root above mid
+            origin = hi if below else lo
+            diff = rates - origin
 
-        def secular(delta: float) -> float:
-            return 1.0 - float(np.sum(weights / (diff - delta)))
+            def secular(delta: float) -> float:
+                return 1.0 - float(np.sum(weights / (diff - delta)))
 
-        span = mid - origin
-        tiny = abs(span) * 1e-300 if (origin > 0) else 0.0
-        a, b = (span, -tiny) if below else (tiny, span)
-        if secular(a) * secular(b) > 0:  # the root sits within round-off of mid
-            delta = span
-        else:
-            delta = brentq(secular, a, b, xtol=abs(span) * 1e-300 + 1e-320, rtol=4 * np.finfo(float).eps,
-                           maxiter=400)
-        gaps = diff - delta
-        retardation_rates[m] = origin + delta
-        amplitudes[m] = 1.0 / (retardation_rates[m] * g0 * np.sum(weights / gaps**2))
+            span = mid - origin
+            tiny = abs(span) * 1e-300 if (origin > 0) else 0.0
+            a, b = (span, -tiny) if below else (tiny, span)
+            if secular(a) * secular(b) > 0:  # the root sits within round-off of mid
+                delta = span
+            else:
+                delta = brentq(secular, a, b, xtol=abs(span) * 1e-300 + 1e-320, rtol=4 * np.finfo(float).eps,
+                               maxiter=400)
+            gaps = diff - delta
+            retardation_rates[m] = origin + delta
+            amplitudes[m] = 1.0 / (retardation_rates[m] * g0 * np.sum(weights / gaps**2))
     lam = 1.0 / retardation_rates
     order = np.argsort(lam)
     return amplitudes[order], lam[order]

@@ -115,6 +115,10 @@ def parse_prony_table(text: str, source: str = "Prony table") -> PronyTable:
     raise AssertionError  # unreachable
 
 
+#: a pyvisco table's two long-term moduli, E_0 (1 - sum alpha_i) and E_0 - sum E_i, must agree to this
+LONG_TERM_AGREEMENT = 1e-3
+
+
 def _parse_pyvisco(table: _Table, header: list[str]) -> PronyTable:
     c_tau = table.column(header, ("tau_i",), "tau_i")
     c_alpha = table.column(header, ("alpha_i",), "alpha_i")
@@ -164,7 +168,15 @@ def _parse_pyvisco(table: _Table, header: list[str]) -> PronyTable:
     if not alpha_sum < 1.0:
         table.fail(f"column alpha_i, lines 3-{table.rows[-1][0]}: sum of alpha_i = {alpha_sum:.12g} must be < 1 "
                    f"(long-term modulus {quantity}_0 (1 - sum alpha_i) > 0)")
-    return PronyTable(m0 * (1.0 - alpha_sum), tuple(moduli), tuple(times), quantity)
+    long_term = m0 * (1.0 - alpha_sum)
+    # the terms' own long-term modulus: alpha_i rounded in the file shift E_0 (1 - sum alpha_i) by the
+    # rounding times E_0 / E(inf) (0.5 % at a ratio of 1e5 with 7 digits)
+    from_terms = m0 - math.fsum(moduli)
+    if not abs(long_term - from_terms) <= LONG_TERM_AGREEMENT * abs(long_term):
+        table.fail(f"column alpha_i, lines 3-{table.rows[-1][0]}: the long-term modulus {quantity}_0 (1 - sum alpha_i) "
+                   f"= {long_term:.6g} Pa and {quantity}_0 - sum {quantity}_i = {from_terms:.6g} Pa differ by more than "
+                   f"{LONG_TERM_AGREEMENT:g} of it: alpha_i rounded? write them at full precision")
+    return PronyTable(long_term, tuple(moduli), tuple(times), quantity)
 
 
 def _parse_plain(table: _Table, header: list[str]) -> PronyTable:

@@ -9,9 +9,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from viscontact import cli
 from viscontact.materials import Material, wlf_shift_factor
 from viscontact.results import material_dataset
 
+ROOT = Path(__file__).resolve().parents[2]
 SCRIPT = Path(sys.executable).with_name("viscontact")
 COMMAND = [str(SCRIPT)] if SCRIPT.exists() else [sys.executable, "-m", "viscontact.cli"]
 
@@ -73,3 +75,15 @@ def test_material_dataset_against_closed_forms() -> None:
     np.testing.assert_allclose(ds["tan_delta"], (g0 - ginf) * wt / (ginf + g0 * wt**2), rtol=1e-12)
     assert t[0] == pytest.approx(1e-6) and t[-1] == pytest.approx(10.0)
     assert ds.attrs["kind"] == "material" and ds.attrs["a_T"] == 1.0
+
+
+def test_a_bulk_modulus_material_shows_its_poisson_ratio_in_time(capsys):
+    """With bulk_modulus the command printed nu(0) as a constant poisson_ratio; it names K and nu(t)'s
+    two ends (nu = (3K - 2G) / (2 (3K + G)) with G(0) and G(inf))."""
+    g0, ginf, k = 1.93e6, 0.193e6, 5e6
+    code = cli.main(["material", str(ROOT / "cases" / "creep_indentation.toml"), "--set", "material.bulk_modulus=5e6",
+                     "--set", "material.poisson_ratio="])
+    line = capsys.readouterr().out.splitlines()[0]
+    nu = [(3 * k - 2 * g) / (2 * (3 * k + g)) for g in (g0, ginf)]
+    assert code == 0 and "bulk_modulus K = 5e+06 Pa" in line
+    assert f"from {nu[0]:.6g} (t = 0) to {nu[1]:.6g} (t = inf)" in line

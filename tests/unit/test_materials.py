@@ -14,6 +14,8 @@ the storage and loss moduli against the creep spectrum.
 """
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -213,3 +215,14 @@ def test_invalid_parameters_name_their_key(build, key):
 @pytest.mark.parametrize("nu", [0.0, 0.5])
 def test_poisson_ratio_bounds_are_allowed(nu):
     assert Material.zener(1e6, 1e5, 0.01, nu).poisson_ratio == nu
+
+
+def test_relaxation_times_one_ulp_apart_convert_without_numpy_warnings():
+    """The secular equation's bracket ends within round-off of its poles overflow to inf of the right
+    sign: numpy's RuntimeWarning leaked to `viscontact material`. J(0) = 1/G(0), J(inf) = 1/G(inf)."""
+    tau = 1e-3
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        creep = Material.prony(0.193e6, [1.0e6, 0.737e6], [tau, np.nextafter(tau, 1.0)], 0.3).creep
+    assert creep.instantaneous == pytest.approx(1 / 1.93e6, rel=1e-12)
+    assert creep.long_term == pytest.approx(1 / 0.193e6, rel=1e-12)

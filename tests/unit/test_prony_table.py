@@ -192,3 +192,24 @@ def test_steady_state_shift_identity(tmp_path: Path) -> None:
     np.testing.assert_allclose(at_t.pressure, at_ref.pressure, rtol=1e-9, atol=1e-9 * at_ref.pressure.max())
     assert at_t.mu_app == pytest.approx(at_ref.mu_app, rel=1e-9)
     assert abs(at_ref_unshifted.mu_app - at_ref.mu_app) > 0.1 * at_ref.mu_app  # the shift matters
+
+
+def test_rounded_alpha_that_shift_the_long_term_modulus_are_refused(tmp_path: Path) -> None:
+    """E(0)/E(inf) = 1e5 with alpha_i written to 7 digits and E_i exact: E_0 (1 - sum alpha_i) was
+    taken as E(inf), 0.5 % below E_0 - sum E_i (5 % at 1e6). The two must agree to 1e-3; the same
+    table with alpha_i at full precision reads, E(inf) = 20000 Pa."""
+    taus = [float(t) for t in np.logspace(-3, 6, 10)]
+    e0, e_inf = 2000.0, 2000.0e-5  # MPa
+    weights = np.random.default_rng(1).random(10) + 0.5  # their 7-digit roundings add up to 1e-7 of E_0
+    moduli = [float(m) for m in (e0 - e_inf) * weights / weights.sum()]
+    material_keys = 'type = "prony"\nfile = "terms.csv"\nmodulus = "tensile"\npoisson_ratio = 0.3\n'
+
+    def table(alpha) -> str:
+        rows = [f"{i + 1},{t!r},{alpha(m / e0)},{e0!r},{m!r}" for i, (t, m) in enumerate(zip(taus, moduli))]
+        return "i,tau_i,alpha_i,E_0,E_i\n-,s,-,MPa,MPa\n" + "\n".join(rows) + "\n"
+
+    with pytest.raises(ParameterError, match=r"E_0 \(1 - sum alpha_i\) = 19800 Pa and E_0 - sum E_i "
+                                             r"= 20000 Pa differ by more than 0.001"):
+        case_with(material_keys, tmp_path, {"terms.csv": table(lambda a: f"{a:.7f}")})
+    material = case_with(material_keys, tmp_path, {"terms.csv": table(repr)}).to_problem().material
+    assert material.shear_modulus_long_term == pytest.approx(e_inf * 1e6 / 2.6, rel=1e-9)  # G = E / (2 (1 + nu))
