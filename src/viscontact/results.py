@@ -232,6 +232,7 @@ def global_attrs(problem: Problem, case_text: str = "") -> dict[str, Any]:
         "shear_modulus_long_term": mat.shear_modulus_long_term,
         "poisson_ratio": mat.poisson_ratio,
         "a_T": mat.shift_factor,
+        **_prony_attrs(mat),
         "radius": float("nan") if problem.radius is None else float(problem.radius),
         **_substrate_attrs(problem),
         "dt": problem.time.dt,
@@ -253,6 +254,16 @@ def history_stamp(action: str) -> str:
     from . import __version__
 
     return f"{datetime.now(timezone.utc).strftime('%Y-%m-%dT%H:%M:%SZ')} {action} by viscontact {__version__}"
+
+
+def _prony_attrs(material) -> dict[str, Any]:
+    """The terms of G(t) = G(inf) + sum_i g_i exp(-t / tau_i) as the run used them (WLF shift
+    applied): ``relaxation_moduli`` g_i [Pa] and ``relaxation_times`` tau_i [s], so that a result
+    holds its material whatever file or override it came from (none for an elastic material)."""
+    if not material.g:
+        return {}
+    return {"relaxation_moduli": np.asarray(material.g, dtype=float),
+            "relaxation_times": np.asarray(material.tau, dtype=float)}
 
 
 def _substrate_attrs(problem: Problem) -> dict[str, Any]:

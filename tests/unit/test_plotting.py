@@ -301,9 +301,33 @@ def test_the_reference_material_of_a_result_has_the_runs_relaxation_times():
     from viscontact.plotting.result import material_of
 
     ds, case = _creep_result({}, PRONY_WLF)
-    rebuilt, run = material_of(ds), case.to_problem().material
-    assert rebuilt is not None and ds.attrs["a_T"] < 1e-4
+    run = case.to_problem().material
+    assert ds.attrs["a_T"] < 1e-4
     t = np.array([0.0, 1e-7, 1e-6, 1e-5])
-    np.testing.assert_allclose(rebuilt.relaxation_modulus(t), run.relaxation_modulus(t), rtol=1e-12)
+    older = ds.copy()
+    for key in ("relaxation_moduli", "relaxation_times"):  # a result written before they were kept
+        del older.attrs[key]
+    for result in (ds, older):
+        rebuilt = material_of(result)
+        assert rebuilt is not None
+        np.testing.assert_allclose(rebuilt.relaxation_modulus(t), run.relaxation_modulus(t), rtol=1e-12)
     assert material_of(_creep_result({"material.bulk_modulus": 5e6, "material.poisson_ratio": None})[0]) is None
     assert material_of(_creep_result({"layer.thickness": 1e-3})[0]) is None
+
+
+def test_a_result_keeps_the_prony_terms_of_a_material_file(tmp_path):
+    """A material read from a Prony table (here PMMA's, tensile, 11 terms) is kept in the result's
+    attributes, so the result holds its material when the table is edited or lost."""
+    import shutil
+
+    import viscontact as vc
+    from viscontact.plotting.result import material_of
+
+    shutil.copytree(ROOT / "cases" / "materials", tmp_path / "materials")
+    shutil.copy(ROOT / "cases" / "pmma_master_curve.toml", tmp_path)
+    case = vc.load_case(tmp_path / "pmma_master_curve.toml").with_overrides({"grid.n": 16, "time.t_end": 9.765625})
+    ds, run = vc.run(case), case.to_problem().material
+    (tmp_path / "materials" / "pmma_schapery1962.csv").unlink()
+    assert len(ds.attrs["relaxation_times"]) == 11
+    t = np.logspace(-3, 9, 13)
+    np.testing.assert_allclose(material_of(ds).relaxation_modulus(t), run.relaxation_modulus(t), rtol=1e-12)

@@ -56,20 +56,24 @@ def _steady_label(ds: xr.Dataset) -> str:
 
 
 def material_of(ds: xr.Dataset) -> Material | None:
-    """The half-space material of a result, rebuilt from its case text and checked against its
-    attributes (G(0), G(inf); the retardation time of a Zener material and the WLF factor ``a_T`` of a
-    Prony one applied); None when they disagree (e.g. a material overridden on the command line in a
-    way the text does not show) or when the body is no half-space of constant nu (``bulk_modulus``:
-    nu(t); a ``[layer]``), whose contact the Lee & Radok reference does not describe."""
+    """The half-space material of a result: from its ``relaxation_moduli`` and ``relaxation_times``
+    attributes (the terms the run used), or in older results rebuilt from its case text and checked
+    against its attributes (G(0), G(inf); the retardation time of a Zener material and the WLF factor
+    ``a_T`` of a Prony one applied; None when they disagree, e.g. a material overridden on the command
+    line in a way the text does not show). None when the body is no half-space of constant nu
+    (``bulk_modulus``: nu(t); a ``[layer]``), whose contact the Lee & Radok reference does not describe."""
     from ..errors import ParameterError
     from ..materials import Material
 
     try:
         if "bulk_modulus" in ds.attrs or "layer_thickness" in ds.attrs:
             return None
-        table = tomllib.loads(str(ds.attrs.get("case", "")))["material"]
         nu = float(ds.attrs["poisson_ratio"])
         g0, ginf = float(ds.attrs["shear_modulus_instantaneous"]), float(ds.attrs["shear_modulus_long_term"])
+        if "relaxation_times" in ds.attrs:  # the terms the run used (results written since they are kept)
+            moduli, times = (np.atleast_1d(ds.attrs[k]).astype(float) for k in ("relaxation_moduli", "relaxation_times"))
+            return Material.prony(ginf, moduli, times, nu)
+        table = tomllib.loads(str(ds.attrs.get("case", "")))["material"]
         if table["type"] == "zener":
             material = Material.zener(g0, ginf, float(ds.attrs["retardation_time"]), nu)
         elif table["type"] == "elastic":
