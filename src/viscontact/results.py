@@ -262,8 +262,10 @@ def _prony_attrs(material) -> dict[str, Any]:
     holds its material whatever file or override it came from (none for an elastic material)."""
     if not material.g:
         return {}
-    return {"relaxation_moduli": np.asarray(material.g, dtype=float),
-            "relaxation_times": np.asarray(material.tau, dtype=float)}
+
+    def attribute(values) -> np.ndarray | float:  # as netCDF reads it back: one value is a scalar
+        return float(values[0]) if len(values) == 1 else np.asarray(values, dtype=float)
+    return {"relaxation_moduli": attribute(material.g), "relaxation_times": attribute(material.tau)}
 
 
 def _substrate_attrs(problem: Problem) -> dict[str, Any]:
