@@ -64,6 +64,8 @@ class _Table:
 
     def column(self, header: list[str], names: tuple[str, ...], needed: str) -> int:
         for name in names:
+            if header.count(name) > 1:
+                self.fail(f"column {name} appears {header.count(name)} times in line 1 (one column each)")
             if name in header:
                 return header.index(name)
         self.fail(f"missing column {needed} (columns found: {', '.join(h for h in header if h) or 'none'})")
@@ -73,11 +75,15 @@ class _Table:
         if col >= len(row) or not row[col]:
             self.fail(f"column {name}, line {line}: missing value")
         try:
+            if "_" in row[col]:  # Python's float reads 1_000; a number in a table has no separators
+                raise ValueError(row[col])
             value = float(row[col])
         except ValueError:
             self.fail(f"column {name}, line {line}: {row[col]!r} is not a number")
-        if math.isnan(value) or (math.isinf(value) and not allow_inf):
-            self.fail(f"column {name}, line {line}: {row[col]!r} is not a finite number")
+        written_inf = row[col].strip().lower().lstrip("+") in ("inf", "infinity")
+        if math.isnan(value) or (math.isinf(value) and not (allow_inf and written_inf)):
+            what = "is out of range (above 1.8e308)" if math.isinf(value) and not written_inf else "is not a finite number"
+            self.fail(f"column {name}, line {line}: {row[col]!r} {what}")
         if value < 0:
             self.fail(f"column {name}, line {line}: must be >= 0, got {row[col]}")
         return value

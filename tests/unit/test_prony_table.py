@@ -213,3 +213,13 @@ def test_rounded_alpha_that_shift_the_long_term_modulus_are_refused(tmp_path: Pa
         case_with(material_keys, tmp_path, {"terms.csv": table(lambda a: f"{a:.7f}")})
     material = case_with(material_keys, tmp_path, {"terms.csv": table(repr)}).to_problem().material
     assert material.shear_modulus_long_term == pytest.approx(e_inf * 1e6 / 2.6, rel=1e-9)  # G = E / (2 (1 + nu))
+
+
+@pytest.mark.parametrize("text, words", [
+    ("tau,g\ninf,0.193e6\n0.001,1_000\n", "'1_000' is not a number"),  # Python's float reads it as 1000
+    ("tau,g\ninf,0.193e6\n1e400,1000\n", "'1e400' is out of range"),  # was a second long-term row (inf)
+    ("tau,g,tau\ninf,0.193e6,1\n0.01,1000,2\n", "column tau appears 2 times"),  # the first was used
+])
+def test_numbers_and_columns_python_would_read_otherwise(tmp_path: Path, text: str, words: str) -> None:
+    with pytest.raises(ParameterError, match=words):
+        case_with('type = "prony"\nfile = "terms.csv"\npoisson_ratio = 0.3\n', tmp_path, {"terms.csv": text})
