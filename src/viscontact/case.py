@@ -250,7 +250,8 @@ class _SelfAffineKeys(_Section):
 
     hurst: float | None = _num(None, unit="", gt=0, le=1, description="Hurst exponent H of a self-affine surface")
     rms_height: float | None = _num(None, unit="m", gt=0, description="rms height (give rms_height or rms_slope)")
-    rms_slope: float | None = _num(None, unit="", gt=0, description="rms gradient (give rms_height or rms_slope)")
+    rms_slope: float | None = _num(None, unit="", gt=0, description="rms gradient by forward differences on the grid "
+                                   "(give rms_height or rms_slope)")
     long_cutoff: float | None = _num(None, unit="m", gt=0, description="roll-off wavelength (default: the period)")
     short_cutoff: float | None = _num(None, unit="m", gt=0, description="shortest wavelength (default: two cells)")
     seed: int | None = _int(None, ge=0, description="seed of the random phases and amplitudes (default 0); with "
