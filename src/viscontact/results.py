@@ -568,7 +568,9 @@ def _local_scheduler() -> Iterator[None]:
 
 
 def open_result(path: str | Path) -> xr.Dataset:
-    """Load a result file fully into memory (the file is closed on return).
+    """Load a result file fully into memory (the file is closed on return). Of a streamed file left
+    incomplete by a kill, only the records whole at its last flush (attribute
+    :data:`viscontact.streaming.FLUSHED`): a kill inside HDF5's flush can tear the last one.
 
     Raises
     ------
@@ -591,4 +593,9 @@ def open_result(path: str | Path) -> xr.Dataset:
         raise not_a_result from None
     if not {"version", "case"} <= set(ds.attrs):
         raise not_a_result
+    from .streaming import FLUSHED
+
+    flushed = ds.attrs.get(FLUSHED)  # a streamed file left by a kill: its whole records
+    if flushed is not None and int(ds.attrs.get("complete", 1)) == 0 and ds.sizes.get("t", 0) > int(flushed):
+        ds = ds.isel(t=slice(0, int(flushed)))
     return ds

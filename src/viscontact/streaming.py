@@ -13,7 +13,9 @@ path), and the record is written whole, and the file flushed, when the next one 
 each checkpoint (:meth:`ResultStream.drain`) and at the end. Its attribute ``complete`` stays 0 until
 :meth:`ResultStream.finish`, so a run killed at any moment leaves a file that ``xarray.open_dataset``
 reads, holding every step flushed before the kill (all but the last step computed; a checkpoint
-never counts a step the file lacks). Memory does not grow with the number of steps: nothing of a
+never counts a step the file lacks). A kill inside a flush (HDF5's is not atomic) can leave the
+record being flushed torn; the attribute :data:`FLUSHED` counts the whole ones, and
+:func:`viscontact.results.open_result` reads only those. Memory does not grow with the number of steps: nothing of a
 record is kept once written.
 
 Safety (:mod:`viscontact.output_files`): the disk space the remaining records need (an upper
@@ -174,6 +176,12 @@ def layout_bytes(problem: Problem, *, case_text: str = "", history: str = "",
 #: the global attribute of a streamed file that is not complete: the fingerprint of its problem
 #: (:func:`viscontact.checkpoint.problem_fingerprint`), which a resume checks against its checkpoint's
 FINGERPRINT = "problem_fingerprint"
+#: the global attribute of a streamed file: how many of its records were whole on disk at the last
+#: flush. HDF5's flush is not atomic: a kill inside one can leave the record being flushed torn (its
+#: extent on disk, some of its values not); the attribute is set, and flushed again, only after the
+#: record's flush has returned, so the records up to it are whole (:func:`viscontact.results.open_result`
+#: drops the others)
+FLUSHED = "records_flushed"
 
 
 def check_resumable(path: str | Path, problem: Problem, records: int) -> None:
@@ -303,7 +311,8 @@ class ResultStream:
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
         write_atomically(path, layout_bytes(problem, case_text=case_text, history=history,
-                                            attrs={FINGERPRINT: problem_fingerprint(problem)}), hint=DISK_FULL_HINT)
+                                            attrs={FINGERPRINT: problem_fingerprint(problem), FLUSHED: 0}),
+                         hint=DISK_FULL_HINT)
         try:
             return cls(path, problem, require_space=require_space)
         except BaseException:
@@ -339,6 +348,7 @@ class ResultStream:
             stream._resize(records)
             attrs = stream.file.attrs
             attrs["complete"] = 0
+            attrs[FLUSHED] = records
             if "stopped_by" in attrs:
                 del attrs["stopped_by"]
             attrs["history"] = f"{_text(attrs.get('history', ''))}; {history_stamp('resumed')} {history}".strip()
@@ -416,6 +426,8 @@ class ResultStream:
                         self.along_t[name][k] = np.asarray(step, dtype=self.dtypes[name])
                 self.count = k + 1
                 self.flush()
+                self.file.attrs[FLUSHED] = self.count  # the record is whole on disk: say so (FLUSHED)
+                self.flush()
             except (OSError, RuntimeError) as exc:  # HDF5 reports a failed write as RuntimeError
                 self._rescue(exc)
         return self.count
@@ -484,8 +496,10 @@ class ResultStream:
                 f.attrs[key] = value
                 if key in SCALES and key in f:  # also a scalar variable (to_dataset's scales)
                     f[key][()] = float(value)
-            if final["complete"] == 1 and FINGERPRINT in f.attrs:  # nothing to resume: in-memory results have none
-                del f.attrs[FINGERPRINT]
+            if final["complete"] == 1:  # nothing to resume, nothing torn: in-memory results have neither
+                for key in (FINGERPRINT, FLUSHED):
+                    if key in f.attrs:
+                        del f.attrs[key]
             subsurface = _FileRecords(self.along_t, t) if self.problem.output.subsurface_depths and len(t) else None
             if subsurface is not None:
                 from .results import subsurface_variables

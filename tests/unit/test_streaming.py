@@ -385,3 +385,30 @@ def test_a_resumed_file_is_not_stopped_and_its_history_says_resumed(tmp_path):
         assert "problem_fingerprint" not in ds.attrs  # the complete file's attributes: the in-memory result's
         assert " created by viscontact " in ds.attrs["history"]
         assert ds.attrs["history"].endswith("resumed by viscontact " + vc.__version__ + " by a test resuming")
+
+
+def test_records_flushed_counts_the_whole_records_and_open_result_reads_only_those(tmp_path):
+    """HDF5's flush is not atomic: a kill inside one left the raw file with the last record's extent
+    but not all its values (its step read 0). records_flushed is set after each record's flush has
+    returned; open_result reads the records up to it."""
+    import h5py
+
+    from viscontact.streaming import FLUSHED
+
+    problem = _partial_slip()
+    records = [rec for _, rec in transient.steps(problem)][:4]
+    path = tmp_path / "s.nc"
+    stream = ResultStream.create(path, problem)
+    assert stream.file.attrs[FLUSHED] == 0
+    for k, rec in enumerate(records):
+        stream.append(rec)
+        assert stream.file.attrs[FLUSHED] == k  # the one before is whole on disk
+    stream.drain()
+    assert stream.file.attrs[FLUSHED] == 4
+    stream.close()
+    assert results.open_result(path).sizes["t"] == 4
+    with h5py.File(path, "r+") as f:  # as a kill inside the fourth record's flush leaves it
+        f.attrs[FLUSHED] = 3
+        f["step"][3] = 0
+    torn = results.open_result(path)
+    assert torn.sizes["t"] == 3 and list(torn["step"].values) == [0, 1, 2]
