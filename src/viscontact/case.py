@@ -295,7 +295,8 @@ class IndenterSection(_SelfAffineKeys):
       ``short_cutoff`` [m] and ``seed``: a periodic surface by Fourier synthesis;
     * ``shape = "topography"`` with ``file``: anything SurfaceTopography reads (x3p, opd, sur, di,
       NetCDF, plain text, ...), heights of the rigid surface z up, in the file's physical size and
-      units; ``resample = true`` interpolates it onto the grid.
+      units (``physical_size`` and ``unit`` for a file that gives none); ``resample = true``
+      interpolates it onto the grid.
 
     Files are relative to the case file's folder.
     """
@@ -309,6 +310,12 @@ class IndenterSection(_SelfAffineKeys):
                              "'topography': any file SurfaceTopography reads that carries its physical size and "
                              "unit, heights z up (highest point touching first); relative to the case file's folder")
     resample: bool | None = Field(None, description="with shape = 'topography': interpolate the file onto the grid")
+    physical_size: list[Annotated[float, Field(gt=0, allow_inf_nan=False)]] | None = Field(
+        None, min_length=2, max_length=2, description="with shape = 'topography': [width, height] of a file that "
+        "does not give its size (a .npy, a text matrix without header), in indenter.unit")
+    unit: Literal["m", "mm", "um", "nm"] | None = Field(
+        None, description="with shape = 'topography': the length unit of the heights (and of physical_size) of a "
+        "file that does not give it")
     roughness: RoughnessSection | None = Field(None, description="with shape = 'sphere': self-affine roughness "
                                                "([indenter.roughness], the self-affine keys)")
 
@@ -319,7 +326,7 @@ class IndenterSection(_SelfAffineKeys):
             if getattr(self, key) is None:
                 what = "> 0 m" if key == "radius" else "a file name"
                 raise ParameterError(f"indenter.{key}", f"required for shape = '{shape}' ({what})")
-        for key in ("radius", "file", "resample", "roughness", *_SELF_AFFINE_KEYS):
+        for key in ("radius", "file", "resample", "physical_size", "unit", "roughness", *_SELF_AFFINE_KEYS):
             if getattr(self, key) is not None and key not in _ALLOWED[shape]:
                 owners = " or ".join(repr(s) for s, keys in _ALLOWED.items() if key in keys)
                 raise ParameterError(f"indenter.{key}", f"only with shape = {owners}")
@@ -331,7 +338,7 @@ class IndenterSection(_SelfAffineKeys):
 #: keys each indenter shape requires, and all the keys it accepts
 _REQUIRED = {"sphere": ("radius",), "surface": ("file",), "self_affine": (), "topography": ("file",)}
 _ALLOWED = {"sphere": {"radius", "roughness"}, "surface": {"file"}, "self_affine": set(_SELF_AFFINE_KEYS),
-            "topography": {"file", "resample"}}
+            "topography": {"file", "resample", "physical_size", "unit"}}
 
 
 class GridSection(_Section):
@@ -642,8 +649,10 @@ class Case(_Section):
         if ind.shape == "self_affine":
             gap, key = gap_from_heights(ind.self_affine_heights(grid, "indenter")), ind.amplitude_key("indenter")
         elif ind.shape == "topography":
-            gap, key = gap_from_heights(read_heights(self._base_dir / ind.file, grid, resample=bool(ind.resample))), \
-                "indenter.file"
+            heights = read_heights(self._base_dir / ind.file, grid, resample=bool(ind.resample),
+                                   physical_sizes=None if ind.physical_size is None else tuple(ind.physical_size),
+                                   unit={"um": "µm"}.get(ind.unit, ind.unit))
+            gap, key = gap_from_heights(heights), "indenter.file"
         else:
             h0 = read_height_file(self._base_dir / ind.file, (grid.n, grid.n))
             gap, key = h0 - h0.min(), "indenter.file"

@@ -100,3 +100,19 @@ def test_topography_mismatch_on_the_command_line(tmp_path):
     lines = proc.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("viscontact: error: indenter.file: "), proc.stderr
     assert not (tmp_path / "out.nc").exists()
+
+
+def test_a_map_without_its_size_reads_with_physical_size_and_unit(tmp_path):
+    """A .npy of heights [x, y] in um carries no size or unit: physical_size and unit give them, and
+    the gap is the NetCDF file's (which carries them). Given for a file that has its own: one line."""
+    heights = self_affine_heights(Grid(64, 0.0005), hurst=0.8, rms_slope=0.1, seed=1)
+    np.save(tmp_path / "s.npy", heights.T * 1e6)  # SurfaceTopography's [x, y], in um
+    from_netcdf = _topography_case(tmp_path, 64, False).to_problem().gap
+    npy = {'file = "s.nc"': 'file = "s.npy"\nphysical_size = [1000.0, 1000.0]\nunit = "um"'}
+    from_npy = _case(_topography_case(tmp_path, 64, False).text, npy, tmp_path).to_problem().gap
+    np.testing.assert_allclose(from_npy, from_netcdf, rtol=0, atol=1e-12 * np.ptp(from_netcdf))
+    with pytest.raises(ParameterError, match="physical_size = \\[width, height\\] and indenter.unit"):
+        _case(_topography_case(tmp_path, 64, False).text, {'file = "s.nc"': 'file = "s.npy"'}, tmp_path).to_problem()
+    both = {'file = "s.nc"': 'file = "s.nc"\nphysical_size = [1000.0, 1000.0]\nunit = "um"'}
+    with pytest.raises(ParameterError, match="the file gives its own size and unit"):
+        _case(_topography_case(tmp_path, 64, False).text, both, tmp_path).to_problem()
