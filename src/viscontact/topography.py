@@ -107,9 +107,9 @@ def self_affine_heights(grid: Grid, *, hurst: float, rms_height: float | None = 
         Roll-off and cut-off wavelengths [m] (defaults: the period, and two cells).
     seed
         Seed of the random phases and amplitudes. With a ``short_cutoff`` one seed gives one surface at
-        every ``grid.n`` (its modes are drawn on the coarsest grid that holds them and carried to the
-        grid by their Fourier series: a grid refinement refines, it does not redraw); without one the
-        cut-off, two cells, follows the grid and so does the surface.
+        every ``grid.n`` that holds its modes below the Nyquist frequency (they are drawn on the coarsest
+        such grid and carried to the grid by their Fourier series: a grid refinement refines, it does
+        not redraw); without one the cut-off, two cells, follows the grid and so does the surface.
     key
         The case-file table these keys come from (in error messages).
     """
@@ -129,37 +129,21 @@ def self_affine_heights(grid: Grid, *, hurst: float, rms_height: float | None = 
     lower = short_cutoff if short_cutoff is not None else 2 * dx
     if long_cutoff is not None and not long_cutoff > lower:
         raise ParameterError(f"{key}.long_cutoff", f"must be > the short cut-off {lower:.6g} m, got {long_cutoff}")
-    # with a short cut-off the modes are drawn on the coarsest grid that holds them, whatever grid.n, and
-    # carried to the grid by their Fourier series: one seed, one surface at every resolution
+    # with a short cut-off the modes are drawn on the coarsest grid that holds them below its Nyquist
+    # frequency, whatever grid.n, and carried to the grid by their Fourier series (SurfaceTopography's
+    # interpolate_fourier): one seed, one surface at every resolution (on a grid too coarse for that
+    # draw, a cut-off within a mode of the grid's Nyquist wavelength, on the grid itself)
     points = grid.n if short_cutoff is None else 2 * math.ceil(period / short_cutoff) + 2
+    points = min(points, grid.n)
     topography = fourier_synthesis((points, points), (period, period), hurst=hurst, rms_height=rms_height,
                                    rms_slope=rms_slope, long_cutoff=long_cutoff, short_cutoff=short_cutoff,
                                    periodic=True, unit="m", rng=seed)
+    if points < grid.n:
+        topography = topography.interpolate_fourier((grid.n, grid.n))
     heights = topography.heights()
-    if points != grid.n:
-        heights = _fourier_resample(heights, grid.n)
     realised = np.sqrt(np.mean((heights - heights.mean()) ** 2)) if rms_height is not None \
-        else _rms_gradient(heights, dx)
+        else topography.rms_gradient()
     return np.ascontiguousarray(heights.T) * (amplitude / realised)
-
-
-def _fourier_resample(heights: np.ndarray, n: int) -> np.ndarray:
-    """A periodic field (m, m) on an (n, n) grid of the same period, by its Fourier series (the modes
-    below both grids' Nyquist frequencies; the generated surface has none at or above them)."""
-    m = heights.shape[0]
-    coefficients = np.fft.fft2(heights) / m**2
-    keep = min(m, n) // 2 - 1
-    modes = np.r_[0:keep + 1, -keep:0]
-    out = np.zeros((n, n), dtype=complex)
-    out[np.ix_(modes % n, modes % n)] = coefficients[np.ix_(modes % m, modes % m)]
-    return np.real(np.fft.ifft2(out)) * n**2
-
-
-def _rms_gradient(heights: np.ndarray, spacing: float) -> float:
-    """rms |grad h| [-] of a periodic field by forward differences (SurfaceTopography's ``rms_gradient``)."""
-    dx = np.roll(heights, -1, axis=0) - heights
-    dy = np.roll(heights, -1, axis=1) - heights
-    return float(np.sqrt(np.mean(dx**2 + dy**2))) / spacing
 
 
 def read_heights(path: str | Path, grid: Grid, *, resample: bool = False, physical_sizes: tuple | None = None,
