@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import glob
 import math
+import os
+import tempfile
 import warnings
 from dataclasses import replace
 from pathlib import Path
@@ -34,7 +36,10 @@ ELASTIC = {"material.type": "elastic", "material.shear_modulus": 1.93e6, "materi
 
 
 def _dry_run(capsys, case: Path, *sets: str) -> tuple[int, list[str]]:
-    args = ["run", str(case), "--out", "/nonexistent-dir-for-dry-run/r.nc", "--dry-run"]
+    # a folder that does not exist (a dry run writes nothing), in a writable place and one per process:
+    # the run's lock file goes there while the command runs, and pytest-xdist's workers run side by side
+    out = Path(tempfile.gettempdir()) / f"viscontact-dry-run-{os.getpid()}" / "r.nc"
+    args = ["run", str(case), "--out", str(out), "--dry-run"]
     for s in sets:
         args += ["--set", s]
     code = cli.main(args)
