@@ -37,12 +37,11 @@ import numpy as np
 from .compliance_terms import complex_compliance
 from .constrained import constrained_cg
 from .convolution import FourierPreconditioner
-from .errors import ParameterError
 from .grid import Grid
 from .materials import CreepSpectrum, Material
 from .periodic import PeriodicConvolver, check_approach
 from .sliding import hysteresis_force
-from .steady import solve_contact_active_set
+from .steady import check_speed, solve_contact_active_set
 
 
 def steady_spectrum(conv: PeriodicConvolver, material: Material, grid: Grid, speed: float,
@@ -133,8 +132,7 @@ def solve_periodic_steady(conv: PeriodicConvolver, material: Material, grid: Gri
         The array backend's copy to the host (:mod:`viscontact.arrays`) for the fields returned, when
         ``conv`` holds device fields.
     """
-    if not speed > 0:
-        raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s for a steady state, got {speed}")
+    check_speed(speed)
     if control == "displacement":
         check_approach(value, gap)
     spec = steady_spectrum(conv, material, grid, speed, friction) if spectrum is None else spectrum
