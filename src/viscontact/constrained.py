@@ -18,9 +18,12 @@ The iteration is Polonsky & Keer's: conjugate directions restricted to the free 
 the bounds, release of the bound points whose gradient points inwards, and a restart of conjugacy
 whenever the free set changes. Convergence is measured as the relative change of x between
 iterations, sum |x_new - x_old| / sum |x|, or reached when the gradient on the free set is at
-round-off (an exact preconditioner, e.g. that of a periodic operator, converges in one iteration);
-the solve raises :class:`~viscontact.errors.ConvergenceError` at the iteration cap. The change is
-taken from the move itself, |step| sum |d|, with no copy of the old x (to 1e-7: d is a float32 field);
+round-off (an exact preconditioner, e.g. that of a periodic operator, converges in one iteration)
+or a step breaks down (no curvature above round-off along the direction: a preconditioned step
+beyond :data:`BREAKDOWN_STEP`, the gradient then lying in the operator's null space); a move that
+clips every point under load control has not converged; the solve raises
+:class:`~viscontact.errors.ConvergenceError` at the iteration cap. The change is taken from the move
+itself, |step| sum |d|, with no copy of the old x (to 1e-7: d is a float32 field);
 an iteration that corrects points on the bounds adds the corrections' sum |x - x_linear| and the load
 rescaling's |factor - 1| sum x, an upper bound of the change (triangle inequality), so the test never
 stops earlier than the exact change would.
@@ -67,6 +70,12 @@ DRIFT_FRACTION = 0.1
 #: 1 +- 1e-11 and less), which a rescale of x and K x (four passes over the grid) would not improve;
 #: the solution returned is rescaled exactly
 LOAD_ROUNDOFF = 1e-12
+#: a preconditioned step longer than this is round-off: exact steps lie within the reciprocal spectrum
+#: of the preconditioned operator P K on the free set (at most 1/lambda_min(P K): P_FF >= lambda_min
+#: (K_FF)^-1 in the Loewner order), at most 1.6 over the test suite's 1.2e5 preconditioned steps; a
+#: direction in the null space of K (the constant mode of a periodic operator in full contact, which
+#: the load multiplier's round-off leaves in the gradient) gave steps of 1e13 to 1e25
+BREAKDOWN_STEP = 1e6
 
 
 @dataclass(frozen=True)
@@ -187,6 +196,8 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
     conjugate = False
     multiplier = 0.0
     residual = np.inf
+    # a step that broke down (round-off curvature): the next iteration releases or stops
+    broke_down = False
     if start_product is not None:
         kx = np.multiply(start_product, scale_start)  # own copy: updated in place below
     else:
@@ -216,17 +227,18 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             multiplier = _free_mean(g, free, n_free) if n_free else float(g.min())
             g -= multiplier
         np.multiply(g, free, out=free_gradient)  # the gradient on the free set
-        if not n_free or _at_roundoff(_max_abs(free_gradient), kx, b_scale):
+        restarted = not n_free or broke_down or _at_roundoff(_max_abs(free_gradient), kx, b_scale)
+        if restarted:
             # nothing free, or converged on the free set to round-off (an exact preconditioner does it
-            # in one iteration: another step would divide round-off by round-off): release the bound
-            # points whose gradient points inwards, or stop
+            # in one iteration: another step would divide round-off by round-off), or the last step
+            # broke down: release the bound points whose gradient points inwards, or stop
             inward = ((x <= lower) & (g < 0)) | ((x >= upper) & (g > 0))
             inward &= movable & ~free
             if not inward.any():
                 return solution(it, 0.0)
             free |= inward
             n_free = int(np.count_nonzero(free))
-            conjugate = False
+            conjugate = broke_down = False
             np.multiply(g, free, out=free_gradient)
         np.logical_not(free, out=bound)
         if preconditioner is not None:
@@ -248,9 +260,13 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         # under load control K d would be taken relative to its free mean: the direction sums to zero
         # on the free set, so the mean drops out of d.K d
         denom = _dot(k_direction, direction)
-        if denom <= 0 or g_norm <= 0:
-            return solution(it, 0.0)
-        step = _dot(free_gradient, direction) / denom
+        step = _dot(free_gradient, direction) / denom if denom > 0 and g_norm > 0 else np.inf
+        if not np.isfinite(step) or preconditioner is not None and step > BREAKDOWN_STEP:
+            # no curvature above round-off along d: the gradient on the free set is round-off
+            if restarted:
+                return solution(it, 0.0)
+            broke_down, conjugate = True, False
+            continue
         # the move's size, sum |x_new - x_old| before bound corrections and rescaling (the free gradient
         # is no longer needed: its array takes |direction|)
         change = abs(step) * float(np.abs(direction, out=free_gradient).sum())
@@ -308,7 +324,8 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             scale = s
         else:
             scale = float(x.sum()) if nonnegative else float(np.abs(x, out=work).sum())
-        residual = change / scale if scale > 0 else 0.0
+        # under load control x sums to the total: a move that clipped every point has not converged
+        residual = change / scale if scale > 0 else (np.inf if total is not None else 0.0)
         if residual < tolerance:
             return solution(it, residual)
     raise ConvergenceError(what, max_iterations, residual, tolerance,

@@ -190,6 +190,42 @@ def test_full_contact_by_constrained_cg_with_the_exact_preconditioner():
             assert sol.multiplier == pytest.approx(gap.mean(), rel=1e-9)
 
 
+def test_a_step_along_the_null_space_ends_the_full_contact_solve(monkeypatch):
+    """The periodic operator's constant mode is in its null space (its curvature is round-off, of
+    either sign). In full contact under load control the gradient left once its mean (the load
+    multiplier) is taken off is that mode times the mean's round-off, which depends on the CPU's
+    summation order: 2e-14 of the approach at 64^2 on an AVX-512 Xeon, above the round-off test,
+    and the transient of a full-contact sinusoid stepped 1e25 along the mode and lost every pressure.
+    Here the gradient is exactly constant (dyadic values), each mean 1e-13 off and the mode's
+    curvature 1e-12 of the compliance: the solve must stop at the solution (the old one ended 104 %
+    off after 17 iterations)."""
+    from viscontact import constrained
+
+    grid = Grid(32, 0.5e-3)
+    x, _ = grid.mesh()
+    k = 2 * np.pi / (2 * grid.half_width)
+    conv = PeriodicConvolver.for_grid(grid, NU, workers=1, components=("zz",))
+    compliance = 1.0 / 1e6
+
+    def apply_k(p):
+        mean = p.mean()
+        return compliance * conv.apply("zz", p - mean) + 1e-12 * compliance * mean
+
+    gap = 1e-6 * (1 - np.cos(k * x))
+    spec = compliance * conv.spectra["zz"].copy()
+    spec[0, 0] = 1.0
+    exact = 2e5 + conv.inverse(-conv.spectrum(gap - gap.mean()) / spec)
+    product = np.round(apply_k(exact) * 2.0**62) / 2.0**62  # K x0 to 1e-12, multiples of 2^-62
+    b = product - 2.0**-20
+    assert np.all(product - b == 2.0**-20)  # the gradient: the approach, exactly, everywhere
+    exact_mean = constrained._free_mean
+    monkeypatch.setattr(constrained, "_free_mean", lambda f, m, n: exact_mean(f, m, n) * (1 - 1e-13))
+    sol = constrained.constrained_cg(apply_k, b, exact, 0.0, np.inf, total=float(exact.sum()) * grid.cell_area,
+                                     cell_area=grid.cell_area, tolerance=1e-10, start_product=product,
+                                     preconditioner=conv.preconditioner("zz", compliance))
+    assert np.abs(sol.x - exact).max() <= 1e-12 * exact.max()
+
+
 def test_partial_contact_grows_from_a_warm_start_with_the_exact_preconditioner():
     """Warm-started from the contact of a smaller load, the free set converges at once (exact
     preconditioner) and the points outside it whose gap would be negative must still be released:
