@@ -156,20 +156,25 @@ CURVATURE_FIT_FRACTION = 0.5
 CURVATURE_FIT_CONTACTS = 2.0
 #: ... over at most this many rounds, and covers at least this many cells in radius
 CURVATURE_FIT_ROUNDS, CURVATURE_FIT_CELLS = 4, 3
+#: a fitted curvature whose rise over the disc, (c3 + c4) in the disc's scaled coordinates, is below
+#: this fraction of the largest gap there is the fit's round-off: a plane (a tilted plane gave 2e-16 of
+#: either sign, R = 9e14 m on one CPU); a sphere gives 2, and tilted by a slope s, reach / (R s)
+CURVATURE_ROUNDOFF = 1e-10
 
 
 def _fitted_radius(gap: np.ndarray, dx: np.ndarray, dy: np.ndarray, reach: float) -> float:
     """2 / laplacian [m] of the least-squares paraboloid h = c0 + c1 x + c2 y + c3 x^2 + c4 y^2 + c5 x y
     fitted to ``gap`` [m] over the cells within ``reach`` [m] of a point, (``dx``, ``dy``) [m] from it;
-    NaN when not convex."""
+    NaN when not convex (a curvature at round-off, :data:`CURVATURE_ROUNDOFF`, is a plane's)."""
     near = dx**2 + dy**2 <= reach**2
     u, v = dx[near] / reach, dy[near] / reach  # scaled: a well-conditioned fit
     basis = np.column_stack([np.ones_like(u), u, v, u * u, v * v, u * v])
     if np.linalg.matrix_rank(basis) < basis.shape[1]:
         return float("nan")
     coef = np.linalg.lstsq(basis, gap[near], rcond=None)[0]
-    lap = 2.0 * (coef[3] + coef[4]) / reach**2
-    return float(2.0 / lap) if lap > 0 else float("nan")
+    if not coef[3] + coef[4] > CURVATURE_ROUNDOFF * np.abs(gap[near]).max():
+        return float("nan")
+    return float(reach**2 / (coef[3] + coef[4]))  # 2 / laplacian, laplacian = 2 (c3 + c4) / reach^2
 
 
 def equivalent_radius(problem: Problem) -> float:
