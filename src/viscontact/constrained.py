@@ -182,6 +182,9 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
     direction = np.zeros_like(x, dtype=np.float32 if single else float)
     free_gradient = np.zeros_like(x, dtype=np.float32) if single and preconditioner is not None else work
     free, bound, mask, mask2 = (np.empty_like(x, dtype=bool) for _ in range(4))
+    # points released at the last iteration: free for the next direction, wherever they sit
+    released_points = np.zeros_like(x, dtype=bool)
+    released = False
     movable = np.logical_not(fixed)
     # the normal problem has no upper bound and no negative x: skip their element-wise passes
     bounded_above = not bool(np.isposinf(upper).all())
@@ -218,6 +221,8 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
         np.greater(x, lower, out=free)
         if bounded_above:
             free &= np.less(x, upper, out=mask)
+        if released:
+            free |= released_points
         if it % 25 == 0 or drift > drift_limit:  # refresh the incrementally updated K x against drift
             kx = apply_k(x).astype(float)
             drift = 0.0
@@ -275,13 +280,17 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             clipped = float(x.min()) < lower
         else:
             clipped = bool(np.less(x, lower, out=mask).any() or bounded_above and np.greater(x, upper, out=mask).any())
-        if clipped:  # x_linear: x before the bound corrections (the clip and the release below)
+        if clipped:  # x_linear: x before the bound corrections (the clip)
             np.copyto(x_linear, x)
             if bounded_above:
                 np.clip(x, lower, upper, out=x)
             else:
                 np.maximum(x, lower, out=x)
-        # release: bound points (not fixed) whose gradient points inwards
+        # release: bound points (not fixed) whose gradient points inwards join the free set of the next
+        # iteration where they are (Polonsky & Keer move them by -step g, which is in x's units only
+        # without a preconditioner: with one, the move fell below x's rounding at small lengths or
+        # large moduli, the point stayed on its bound, was released again every iteration and the
+        # solve converged off the optimum)
         if plain_bounds:  # every point not free sits at the lower bound (the direction left it there)
             release = np.logical_and(np.less(g, 0.0, out=mask2), bound, out=mask)
         else:
@@ -293,15 +302,12 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             release &= movable
         released = bool(release.any())
         if released:
-            if not clipped:
-                np.copyto(x_linear, x)
-            np.subtract(x, np.multiply(g, step, out=work), out=work)
-            np.copyto(x, np.clip(work, lower, upper, out=work), where=release)
+            np.copyto(released_points, release)
         conjugate = not (released or clipped)
         kx -= np.multiply(k_direction, step, out=work)  # exact for the move x -> x - step * direction
         if apply_k_increment is not None:
             drift += SINGLE_ERROR * abs(step) * _max_abs(k_direction)
-        if not conjugate:  # bound corrections: add their effect
+        if clipped:  # bound corrections: add their effect
             correction = np.subtract(x, x_linear, out=work)
             points = np.count_nonzero(correction)
             if apply_k_sparse is not None and points <= limit:

@@ -207,3 +207,39 @@ def test_gross_sliding_with_a_coupling_too_strong_for_the_fixed_point():
     steady_state = solve_steady(pb)
     np.testing.assert_allclose(last.pressure, steady_state.pressure, atol=1e-6 * steady_state.pressure.max())
     assert last.delta_z == pytest.approx(steady_state.delta_z, rel=1e-6)
+
+
+@pytest.mark.parametrize("scale", [1e-3, 1e-6, 1e-9])
+def test_bounded_cg_releases_points_at_any_length_scale(scale):
+    """The tangential problem of partial slip (bounds -/+ mu p under a Hertz pressure), warm-started
+    from a larger and then a smaller rigid shift (slip zones shrink: points leave their bounds), is
+    scale-invariant: lengths times s leave the shear unchanged. Polonsky & Keer's release moved a
+    point by -step g, metres added to pascals with a preconditioner: below x's rounding at small
+    lengths (an AFM tip, a stiff polymer) the point stayed on its bound and the solve converged off
+    the optimum (shear 5 % to 250 % off at s = 1e-6, gradients pointing inwards on the bounds).
+    Truth: the same solve at s = 1 (to 1e-12) and the optimality conditions."""
+    from viscontact.constrained import constrained_cg
+
+    def solves(s):
+        grid = Grid(32, 1e-3 * s)
+        x, y = grid.mesh()
+        p = 1e5 * np.sqrt(np.clip(1 - (x**2 + y**2) / (0.7e-3 * s) ** 2, 0, None))
+        kernel = influence_coefficients(grid, 0.3, ("xx",))["xx"]
+        conv = Convolver.from_kernels(grid.n, {"xx": kernel})
+        compliance = 1e-6  # 1/G [1/Pa]
+        out, shear = [], np.zeros_like(p)
+        for shift in (2e-6, 0.5e-6, 1e-6):  # m at s = 1; gross sliding at 1.4e-5
+            b = np.where(p > 0, shift * s, 0.0)
+            sol = constrained_cg(lambda q: compliance * conv.apply("xx", q), b, shear, -0.3 * p, 0.3 * p,
+                                 tolerance=1e-12,
+                                 preconditioner=FourierPreconditioner.for_kernel(kernel, compliance))
+            shear = sol.x
+            slip = compliance * conv.apply("xx", shear) - b
+            inwards = np.where(shear >= 0.3 * p, np.maximum(slip, 0), 0) + np.where(shear <= -0.3 * p,
+                                                                                     np.maximum(-slip, 0), 0)
+            out.append((shear, float(inwards[p > 0].max() / b.max())))
+        return out
+
+    for (reference, _), (shear, inwards) in zip(solves(1.0), solves(scale)):
+        assert inwards <= 1e-10
+        assert np.abs(shear - reference).max() <= 1e-12 * np.abs(reference).max()
