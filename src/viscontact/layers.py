@@ -55,12 +55,24 @@ tail (~ m1/r^3, m1 the |k| coefficient of the remainder at small k) has periodic
 near the origin, -m1 Z/(2 pi P^3) (Z = sum of 1/|m|^3 over the square lattice = 9.0336), is removed, and
 its q = 0 sample is extrapolated from the two smallest rings: measured against an independent
 Hankel-quadrature kernel the error is a near-constant offset of ~1e-4 of the self-coefficient
-(a rigid shift of the displacement under load control) falling as P^-3.6. Periodic
-(:func:`periodic_spectra`): the same split, the near part summed over periodic images in real
-space and the rest sampled on the refined periodic grid and folded (no aliasing); the mean (q = 0)
-is the uniform compliance (h/M on a rigid base, 0 where unbounded). Cost at 256^2 cells and
-h = 2 dx: ~15-25 s (non-periodic, the remainder on a 2048^2 refined box) and ~5 s (periodic) on
-this 2-core machine; the compliance is solved once per distinct i^2 + j^2 of the lattice.
+(a rigid shift of the displacement under load control) falling as P^-3.6.
+
+Periodic (:func:`periodic_spectra`): no smoothing. The half-space part c_high/k is the exact
+periodic half-space kernel of the layer material (:func:`viscontact.periodic.periodic_influence_coefficients`,
+Ewald, zero mean); the rest, M - c_high/k, decays as exp(-2kh) and is sampled on the periodic grid
+refined until its Nyquist wavenumber reaches 7/h, times the footprint, and folded (no aliasing);
+the mean (q = 0) is the uniform compliance (h/M on a rigid base, 0 where unbounded). Measured
+against the alias sum of the exact compliance times the footprint at the lowest wavevectors (n = 16):
+within 2e-8 (zz, xx) for h from 2 dx to a period, 6e-7 at h = 0.3 dx (the 7/h cut-off); a layer ten
+periods thick is the periodic half-space plus h/M to round-off. (A depth-smoothed split, its near
+part summed over a few periodic images in real space, is not exact for any h: the odd near part
+decays only as H/r^2 and leaves a sawtooth along x, and for H above a period the even near part has
+not decayed within the images. It was used before: 5e-4 to 2e-3 of the largest xz at n = 64 for
+h <= 2 dx; 6e-4 (zz) and 2.4e-2 (xz) at h = 10 periods.)
+
+Cost at 256^2 cells: ~15-25 s at h = 2 dx (non-periodic, the remainder on a 2048^2 refined box);
+periodic 0.1-0.4 s for h >= dx (refined at most 3-fold), 2.5 s at h = 0.3 dx (8-fold), on this
+2-core machine; the compliance is solved once per distinct i^2 + j^2 of the lattice.
 
 Time response. With a rigid substrate and constant nu every A is 1/G times a function of (k h, nu),
 so the kernels at unit modulus times the shear creep compliance J(t) are exact for a viscoelastic
@@ -93,6 +105,7 @@ from .errors import ParameterError
 from .grid import Grid
 from .kernels import rectangle_influence
 from .materials import CreepSpectrum, Material
+from .periodic import periodic_influence_coefficients
 from .poisson import prony_creep_spectra, prony_creep_spectrum
 from .steady_kernels import SteadyKernelBuilder, SteadyShape, lagrange_basis, lobatto_nodes
 
@@ -408,14 +421,14 @@ def _refinement(grid: Grid, layer: Layer, big_h: float) -> int:
 
 
 def _half_space_near(ox: np.ndarray, oy: np.ndarray, cell: float, layer: Layer, big_h: float,
-                     components: tuple[str, ...], coefficients: dict[str, dict[int, float]] | None = None,
-                     points: int = 6, spectral: _Spectral | None = None) -> dict[str, np.ndarray]:
-    """Cell-integrated real-space part [m/Pa] at offsets (ox, oy) [m]: the half-space kernels of the
-    layer material plus, for each angular order, (c_low - c_high) times the kernels smoothed to
-    depth H (module docstring). ``coefficients`` None: c_low = 0 (the periodic near part).
-    ``points``: Gauss-Legendre points per direction in each cell (6: the smoothed kernels vary on
-    the scale H >= 2 dx; 2 is plenty for far periodic images). ``spectral``: the compliance
-    (default the layer's; without a half-space part, c_high = 0 and only the smoothed kernels)."""
+                     components: tuple[str, ...], coefficients: dict[str, dict[int, float]],
+                     spectral: _Spectral | None = None) -> dict[str, np.ndarray]:
+    """Cell-integrated real-space part [m/Pa] at offsets (ox, oy) [m] of the non-periodic kernels:
+    the half-space kernels of the layer material plus, for each angular order, (c_low - c_high)
+    times the kernels smoothed to depth H (module docstring; c_low from ``coefficients``), the cell
+    integral by 6 x 6 Gauss-Legendre points (the smoothed kernels vary on the scale H >= 2 dx).
+    ``spectral``: the compliance (default the layer's; without a half-space part, c_high = 0 and
+    only the smoothed kernels)."""
     spectral = spectral or _layer_spectral(layer)
     high = spectral.high
     hs = rectangle_influence(ox, oy, cell / 2, cell / 2, layer.poisson_ratio, components) if spectral.half_space \
@@ -424,10 +437,9 @@ def _half_space_near(ox: np.ndarray, oy: np.ndarray, cell: float, layer: Layer, 
     for name in components:
         kern = hs[name] / layer.shear_modulus if hs is not None else np.zeros(np.broadcast(ox, oy).shape)
         for order, c_high in high[name].items():
-            delta = (coefficients[name][order] if coefficients is not None else 0.0) - c_high
+            delta = coefficients[name][order] - c_high
             if delta != 0.0:
-                kern = kern + delta * _cell_average(lambda x, y, o=order: _depth_smoothed(x, y, big_h, o), ox, oy, cell,
-                                                     points)
+                kern = kern + delta * _cell_average(lambda x, y, o=order: _depth_smoothed(x, y, big_h, o), ox, oy, cell)
         out[name] = kern
     return out
 
@@ -441,8 +453,9 @@ def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: 
     same at the offsets moved by each shift along x (phase exp(i q_x shift) on the refined grid,
     before folding), shape (shifts, cells, cells). ``spectral``: the compliance (default the layer's).
 
-    ``low`` None (periodic kernels): c_low = 0 and the q = 0 term makes the kernel's mean the
-    uniform compliance (0 where unbounded). Otherwise (non-periodic) the remainder is bounded at
+    ``low`` None (periodic kernels, H = inf: the exact periodic half-space kernels carry the whole
+    c_high/k, :func:`periodic_spectra`): the spectrum is M - c_high/k and its q = 0 term makes the
+    kernel's mean the uniform compliance (0 where unbounded). Otherwise (non-periodic) the remainder is bounded at
     q = 0: its q = 0 sample and the periodic images of its |k| tail are handled as in the module
     docstring."""
     dx = grid.spacing
@@ -474,9 +487,7 @@ def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: 
         spec = full * footprint
         tail = 0.0
         if low is None:
-            # mean of the periodic kernel: uniform compliance, less the near part's c_high H
-            spec[0, 0] = (uniform[name] - high[name].get(0, 0.0) * big_h) * dx**2 if uniform[name] else \
-                -high[name].get(0, 0.0) * big_h * dx**2
+            spec[0, 0] = uniform[name] * dx**2  # the periodic half-space kernels have zero mean
         else:
             # bounded at q = 0 with an angle-independent part M0 + m1 |k| (orders 1, 2 average out
             # over the four axis wavevectors): M0 extrapolated from the rings q1, 2 q1; the -m1/(2 pi r^3)
@@ -532,41 +543,29 @@ def influence_coefficients(grid: Grid, layer: Layer, components: tuple[str, ...]
     return out
 
 
-def periodic_spectra(grid: Grid, layer: Layer, components: tuple[str, ...] = COMPONENTS,
-                     depth: float | None = None, images: int = 3, max_fine: int = 8192,
+def periodic_spectra(grid: Grid, layer: Layer, components: tuple[str, ...] = COMPONENTS, max_fine: int = 8192,
                      spectral: _Spectral | None = None) -> dict[str, np.ndarray]:
     """Spectra (n, n//2 + 1) of the layer's kernels on the periodic n x n grid (rfft2 layout):
     u = irfft2(K^ rfft2(t)) [m] for cell tractions t [Pa].
 
-    Ewald-like split: the near part (half-space kernels of the layer material less their copies
-    smoothed to depth H, cell integrals in closed form / quadrature, decaying as H^2/r^3) is summed
-    over ``images`` periodic images per direction in real space (the farther ones, a nearly uniform
-    field, through the near part's known integral c_0 H); the rest, whose spectrum decays as
-    exp(-k min(H, 2h)), is sampled in Fourier space on a refined grid and folded (no aliasing).
-    The mean (q = 0) is the uniform compliance (:func:`uniform_compliance`), 0 where unbounded.
-    ``spectral``: another compliance than the layer's (the parts of :func:`elastic_substrate_terms`).
+    The half-space part of the compliance (c_high/k by angular order, that of the layer material)
+    is the exact periodic half-space kernel (:func:`viscontact.periodic.periodic_influence_coefficients`,
+    Ewald, zero mean) over G; the rest, M - c_high/k, decays as exp(-2kh) and is sampled in Fourier
+    space on a refined grid (Nyquist wavenumber >= 7/h, :func:`_refinement`) and folded (no
+    aliasing). The mean (q = 0) is the uniform compliance (:func:`uniform_compliance`), 0 where
+    unbounded. ``max_fine`` caps the refined transform (ParameterError beyond it). ``spectral``:
+    another compliance than the layer's (the parts of :func:`elastic_substrate_terms`, without a
+    half-space part: all of it in Fourier space).
     """
-    n, dx = grid.n, grid.spacing
+    n = grid.n
     spectral = spectral or _layer_spectral(layer)
-    big_h = _smoothing_depth(grid, layer, depth)
-    period = n * dx
-    off = np.where(np.arange(n) <= n // 2, np.arange(n), np.arange(n) - n) * dx
-    ox, oy = np.meshgrid(off, off, indexing="xy")
-    near = {name: np.zeros((n, n)) for name in components}
-    for mx in range(-images, images + 1):
-        for my in range(-images, images + 1):
-            part = _half_space_near(ox - mx * period, oy - my * period, dx, layer, big_h, components,
-                                    points=6 if mx == my == 0 else 2, spectral=spectral)
-            for name in components:
-                near[name] += part[name]
-    far = _fourier_part(grid, layer, components, big_h, n, None, max_fine, spectral=spectral)
-    high = spectral.high
+    kernels = _fourier_part(grid, layer, components, np.inf, n, None, max_fine, spectral=spectral)
+    if spectral.half_space:
+        hs = periodic_influence_coefficients(grid, layer.poisson_ratio, components)
+        kernels = {name: kernels[name] + hs[name] / layer.shear_modulus for name in components}
     out = {}
     for name in components:
-        # images beyond the summed ones: a nearly uniform field that completes the near part's
-        # integral c_0 H (orders 1, 2 sum to zero over the square lattice)
-        near[name] += (high[name].get(0, 0.0) * big_h - near[name].sum()) / n**2
-        spec = scipy.fft.rfft2(near[name] + far[name])
+        spec = scipy.fft.rfft2(kernels[name])
         if name in ("xz", "zx"):
             spec = 1j * spec.imag  # an odd real kernel has an imaginary spectrum
         out[name] = spec
