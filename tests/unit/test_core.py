@@ -68,6 +68,10 @@ def test_custom_gap_is_shifted_at_a_sub_cell_offset():
         assert np.max(error[:, 0]) <= frac * (1 + frac) * dx**2 / (4 * SEED_RADIUS) * 1.0001
         sphere = ((x - frac * dx) ** 2 + y**2) / (2 * SEED_RADIUS)
         np.testing.assert_array_equal(pb.frame_gap(frac * dx), sphere)  # the sphere's gap stays exact
+        # the same sphere built in another order (round-off apart) is recognised too
+        reordered = replace(pb, gap=x**2 / (2 * SEED_RADIUS) + y**2 / (2 * SEED_RADIUS))
+        assert not np.array_equal(reordered.gap, pb.gap)
+        np.testing.assert_array_equal(reordered.frame_gap(frac * dx), sphere)
 
 
 def test_a_periodic_gap_is_translated_exactly_at_a_sub_cell_offset():
