@@ -270,7 +270,7 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             # no curvature above round-off along d: the gradient on the free set is round-off
             if restarted:
                 return solution(it, 0.0)
-            broke_down, conjugate = True, False
+            broke_down, conjugate, released = True, False, False
             continue
         # the move's size, sum |x_new - x_old| before bound corrections and rescaling (the free gradient
         # is no longer needed: its array takes |direction|)
