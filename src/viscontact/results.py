@@ -91,8 +91,8 @@ SUBSURFACE_VARIABLES = ("stress_xx", "stress_yy", "stress_zz", "stress_xz", "von
 #: scales of a result: scalar variables with units (``a0`` and ``p0`` are also global attributes)
 SCALES: dict[str, tuple[str, str]] = {
     "a0": ("m", "Hertz contact radius with G(0) at the reference normal value (sqrt(R delta) under "
-                "displacement control)"),
-    "p0": ("Pa", "Hertz peak pressure with G(0) at the reference normal value"),
+                "displacement control); NaN without a curvature-defined lowest point (flat punch, cylinder)"),
+    "p0": ("Pa", "Hertz peak pressure with G(0) at the reference normal value (NaN with a0)"),
     "retardation_time": ("s", "shortest creep retardation time tau of the material"),
     "t_gross_sliding": ("s", "first recorded time in gross sliding (0 when sliding from t = 0, NaN when never)"),
     "poisson_ratio_instantaneous": ("1", "Poisson ratio nu(0) from G(0) and the elastic bulk modulus K "
