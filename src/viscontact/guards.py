@@ -9,7 +9,8 @@ closed-form contact mechanics and from the time scheme applied to one point:
   Radok 1960), for as long as the run lasts or, when sliding, a material point stays under the
   contact; under displacement control it is a = sqrt(R delta) whatever the modulus (a coarse grid
   there used to give zero load and zero contact). R is the sphere radius, or for a height file the
-  equivalent radius of the gap, fitted about its lowest point (no estimate when it is not convex there).
+  equivalent radius of the gap, fitted about its lowest point (no estimate where no curvature defines
+  that point: a plane, a cylinder's line, a flat punch's face; :func:`viscontact.results.equivalent_radius`).
 * **resolution** -- cells across the smallest contact radius: on the cell-centred grid the node
   nearest the centre of the contact may lie dx/sqrt(2) from it, where the Hertz pressure is
   sqrt(1 - dx^2/(2 a^2)) of its peak (:func:`peak_pressure_error`; measured peak errors of the
@@ -84,7 +85,8 @@ class ContactEstimate:
 
 def contact_estimate(problem: Problem, *, transient: bool = True) -> ContactEstimate | None:
     """Hertz estimate of the contact radius at the largest load (or approach) of the run; None when
-    the indenter has no curvature to estimate it from (e.g. a flat punch), and for a surface other
+    the indenter has no curvature to estimate it from (a flat punch, whose contact is its face at any
+    load; a cylinder; :func:`viscontact.results.equivalent_radius`), and for a surface other
     than a sphere on a periodic grid (a rough period): its load spreads over many asperities, so
     the one at the lowest point carrying it all is no estimate of the contact, and a period has no
     edge for a contact to reach.

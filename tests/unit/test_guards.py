@@ -280,3 +280,92 @@ def test_equivalent_radius_is_measured_on_the_scale_of_the_contact():
     near = ((x + 1.5e-3) ** 2 + y**2) / (2 * 2e-3)
     far = ((x - 1.5e-3) ** 2 + y**2) / (2 * 20e-3) + 10e-6
     assert equivalent_radius(replace(pb, gap=np.minimum(near, far), radius=None)) == pytest.approx(2e-3, rel=1e-6)
+
+
+def _punch(n: int, wall: float, control: str = "displacement", value: float = 3.5e-6, noise: float = 0.0):
+    """A flat punch of radius 0.5 mm (gap 0 on its face, ``wall`` [m] about it, plus white noise of rms
+    ``noise`` [m]) on an elastic body (G = 1 MPa), n x n cells on +-2 mm; 3.5 um of approach (W = 10 mN)."""
+    pb = sphere_problem(Material.elastic(1e6, 0.3), n, 2e-3, control=control, value=value, t_end=1e-3, dt=1e-3)
+    x, y = pb.grid.mesh()
+    gap = np.where(x**2 + y**2 <= 0.5e-3**2, 0.0, wall) + noise * np.random.default_rng(1).standard_normal(x.shape)
+    return replace(pb, gap=gap - gap.min(), radius=None)
+
+
+def test_a_flat_punch_has_no_equivalent_radius():
+    """A flat punch's contact is its face at any load: no sphere's Hertz scale describes it. Its
+    lowest point was the first of the tied cells, on the rim, and the fit there took in the walls:
+    R = 64 mm, 9.3 mm, 0.56 mm for walls of 20 um, 100 um, 1 mm at n = 64 under load (a0 = 0.55 to
+    0.11 mm), which the guards then took for the contact's scale. NaN now for every wall, grid and
+    control, and with noise of 10 nm or 0.1 um rms on it (walls of 100 um): no a0, p0, no estimate."""
+    from viscontact.results import equivalent_radius, hertz_scale
+
+    for n in (64, 128):
+        for control, value in (("load", 0.01), ("displacement", 3.5e-6)):
+            for wall in (2e-5, 1e-4, 3e-4, 1e-3):
+                pb = _punch(n, wall, control, value)
+                assert math.isnan(equivalent_radius(pb)), (n, control, wall)
+                assert all(math.isnan(v) for v in hertz_scale(pb)) and guards.contact_estimate(pb) is None
+    for noise in (1e-8, 1e-7):
+        assert math.isnan(equivalent_radius(_punch(128, 1e-4, noise=noise))), noise
+
+
+def test_equivalent_radius_of_lines_offset_spheres_flat_tips_and_quantised_heights():
+    """A cylinder's minima are a line (its contact a strip across the domain): the fit gave 2 R, its
+    laplacian's, now NaN, along x and at 0.3 rad. What keeps its radius: a sphere centred between
+    nodes, an ellipsoid of 1 : 10 (its laplacian's 2 R1 R2 / (R1 + R2)), and, within 3 %, a 10 mm
+    sphere whose tip is a flat of 0.1 mm radius (against a contact of 0.59 mm) or whose heights are
+    rounded to 0.1 um (a bottom level 63 um across)."""
+    from viscontact.results import equivalent_radius
+
+    pb = sphere_problem(Material.elastic(1.93e6, 0.3), 128, 1.2e-3, t_end=1e-3, dt=5e-4)
+    x, y = pb.grid.mesh()
+
+    def radius(gap):
+        return equivalent_radius(replace(pb, gap=gap - gap.min(), radius=None))
+
+    for angle in (0.0, 0.3):
+        assert math.isnan(radius((np.cos(angle) * x + np.sin(angle) * y) ** 2 / 0.02)), angle
+    half = pb.grid.spacing / 2
+    assert radius(((x - half) ** 2 + (y - half) ** 2) / 0.02) == pytest.approx(0.01, rel=1e-9)
+    assert radius(x**2 / 2e-3 + y**2 / 0.02) == pytest.approx(2 * 1e-3 * 0.01 / 0.011, rel=1e-9)
+    assert radius(np.maximum(x**2 + y**2 - 1e-4**2, 0.0) / 0.02) == pytest.approx(0.01, rel=0.03)
+    assert radius(np.round(pb.gap / 1e-7) * 1e-7) == pytest.approx(0.01, rel=0.03)
+
+
+@pytest.mark.parametrize("n", [64, 128])
+def test_a_flat_punch_under_displacement_control_passes_the_checks(tmp_path, n):
+    """The red team's punch (0.5 mm, 3.5 um of approach, a gap file): refused at every grid with
+    advice that could not work (n = 64: 0.71 cells across the contact, use n = 256; n = 128: use
+    n = 1024; n = 256, 512: a/R = 0.55, 0.74), all from the fit about its rim. It passes now, warned
+    of nothing with walls of 100 um; with walls of 1 mm only of their rms slope (2.0 at n = 64)."""
+    from viscontact.api import prepare
+    from viscontact.case import Case
+
+    x = -2e-3 + (np.arange(n) + 0.5) * 4e-3 / n
+    inside = np.add.outer(x**2, x**2) <= 0.5e-3**2
+    for wall in (1e-4, 1e-3):
+        np.save(tmp_path / "gap.npy", np.where(inside, 0.0, wall))
+        case = Case.from_toml_text(f"""
+[material]
+type = "elastic"
+shear_modulus = 1e6
+poisson_ratio = 0.3
+[indenter]
+shape = "surface"
+file = "gap.npy"
+[grid]
+n = {n}
+half_width = 2e-3
+[normal]
+control = "displacement"
+value = 3.5e-6
+[time]
+t_end = 1e-3
+dt = 1e-3
+""", tmp_path)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            problem, _ = prepare(case)
+        said = [str(w.message) for w in caught if issubclass(w.category, ViscontactWarning)]
+        assert said == [] if wall == 1e-4 else (len(said) == 1 and "rms slope is" in said[0]), said
+        assert guards.contact_estimate(problem) is None

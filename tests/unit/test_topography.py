@@ -177,6 +177,21 @@ def test_slopes_of_a_unit_slip_are_refused_and_steep_ones_warned():
         check_surface(gap * 1e2, grid, "indenter.file")
 
 
+def test_punch_walls_are_warned_with_their_remedy():
+    """The rms slope is the whole surface's (the unit-slip check): a 0.5 mm punch's walls of 1 mm read
+    2.0 at 64^2 (11.3 at 2048^2, refused). Walls out of contact do not enter the solution
+    (tests/validation/test_flat_punch.py): the messages say so."""
+    grid = Grid(64, 2e-3)
+    x, y = grid.mesh()
+    punch = np.where(x**2 + y**2 <= 0.5e-3**2, 0.0, 1e-3)
+    with pytest.warns(ViscontactWarning, match=r"rms slope is 2\.02, .* a flat punch's wall counts at its full "
+                                               "height: walls that stay out of contact can be lowered"):
+        check_surface(punch, grid, "indenter.file")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        check_surface(punch / 50, grid, "indenter.file")  # walls of 20 um: 0.04
+
+
 def test_a_map_without_its_height_is_one_line(tmp_path):
     path = tmp_path / "width_only.txt"
     rows = "\n".join(" ".join(f"{2 + np.sin(i + j):.6f}" for j in range(16)) for i in range(16))
