@@ -71,6 +71,12 @@ class State:
         Steps since the last frame shift (0 .. steps_per_cell - 1).
     t_gross_sliding
         When gross sliding began [s] (None before).
+    slip_origin
+        Partial slip: ``delta_x`` [m] at the first step of the current contact, from which the
+        displacement of the stuck points is measured; None after a step without contact (the
+        indenter moves at ``displacement_rate`` without touching, which loads nothing): the next
+        step that touches sets it. 0 before the first step (delta_x(0) = 0; also what a checkpoint
+        written without it resumes with).
     wake
         History that left the frame (:class:`~viscontact.sliding.Wake`).
     """
@@ -92,6 +98,7 @@ class State:
     pressure_product: np.ndarray | None = None
     pressure_product_previous: np.ndarray | None = None
     response: History | None = None
+    slip_origin: float | None = 0.0
 
 
 def init(problem: Problem, substrate: TermSubstrate | None = None) -> State:
@@ -148,7 +155,7 @@ class StepContext:
     known_uz: np.ndarray     # history displacement [m]
     known_ux: np.ndarray | None
     value: float             # normal condition: load [N] or approach [m]
-    delta_x: float           # tangential rigid-body displacement [m]
+    delta_x: float           # tangential displacement [m] the contact sees (partial slip: since it began)
 
 
 @dataclass(frozen=True)
@@ -256,7 +263,9 @@ class NormalContact:
 @dataclass(frozen=True)
 class PartialSlip:
     """Partial slip (seed Eqs. 9, 11): bounded CG for q_x in [-mu_f p, mu_f p] with slip
-    s = u_x - delta_x, alternated with the normal solve (semi-coupled: IC_zx, IC_xz ~ (1 - 2 nu))."""
+    s = u_x - delta_x, alternated with the normal solve (semi-coupled: IC_zx, IC_xz ~ (1 - 2 nu)).
+    delta_x is measured from the first step of the contact (:attr:`State.slip_origin`): the indenter
+    that moved before it touched has dragged nothing."""
 
     friction: float
     coupled: bool
@@ -437,8 +446,11 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
     else:
         known_uz, known_ux = substrate.known_displacement(state.histories, t, first, need_x=solver.solves_shear)
     gap = problem.frame_gap(offset)
+    # partial slip: the stuck points move with the indenter since the contact began (this step, when
+    # the last one had none)
+    origin = state.delta_x if state.slip_origin is None else state.slip_origin
     ctx = StepContext(problem, substrate, k, t, first, substrate.backend.to_device(gap), known_uz, known_ux,
-                      problem.normal.history(t), state.delta_x)
+                      problem.normal.history(t), state.delta_x - origin)
     p0, p0_product = _warm_start(substrate, state, k)
     q0 = 2.0 * state.shear_x - state.shear_previous if k > 1 else state.shear_x
     sol = solve_coupled(solver, ctx, p0, q0, p0_product)
@@ -451,13 +463,17 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
     n_contact = int(contact.sum())
     stick = (contact & (np.abs(q_host) < mu * p_host * (1 - STICK_MARGIN)) if solver.solves_shear
              else np.zeros_like(contact))
-    stick_ratio = float(stick.sum()) / n_contact if n_contact else 0.0
+    # no contact: nothing sticks or slips (undefined in partial slip; zero by definition in the other modes)
+    stick_ratio = (float(stick.sum()) / n_contact if n_contact else
+                   float("nan") if tan.mode == "partial_slip" else 0.0)
 
-    # -- commit
+    # -- commit: gross sliding begins when the stick zone of a contact vanishes (no contact: the phase
+    # stays; once sliding, it stays)
     phase, t_gross = state.phase, state.t_gross_sliding
-    if phase == PHASE_PARTIAL_SLIP and (stick_ratio == 0.0 or mu == 0):
+    if phase == PHASE_PARTIAL_SLIP and n_contact and (not stick.any() or mu == 0):
         phase, t_gross = PHASE_GROSS_SLIDING, t
     state = replace(state, step=k, t=t, phase=phase, t_gross_sliding=t_gross,
+                    slip_origin=origin if n_contact else None,
                     histories=substrate.advanced(state.histories, {"z": p, "x": q}, t, first),
                     pressure_previous=state.pressure, shear_previous=state.shear_x,
                     pressure=p, shear_x=q, delta_z=sol.delta_z,
