@@ -265,17 +265,22 @@ class PartialSlip:
     """Partial slip (seed Eqs. 9, 11): bounded CG for q_x in [-mu_f p, mu_f p] with slip
     s = u_x - delta_x, alternated with the normal solve (semi-coupled: IC_zx, IC_xz ~ (1 - 2 nu)).
     delta_x is measured from the first step of the contact (:attr:`State.slip_origin`): the indenter
-    that moved before it touched has dragged nothing."""
+    that moved before it touched has dragged nothing. ``free_mean``: a uniform shear is in the null
+    space of the tangential operator (:meth:`~viscontact.substrate.TermSubstrate.free_mean`), so a
+    contact over every cell is refused (:func:`check_not_full_contact`)."""
 
     friction: float
     coupled: bool
     name: str = "partial slip"
     solves_shear: bool = True
+    free_mean: bool = False
 
     def solve(self, ctx, pressure, shear, product):
         sub, s = ctx.substrate, ctx.problem.solver
         cross_z = sub.cross_displacement("z", "x", shear, ctx.first) if self.coupled else None
         p, delta_z, it_n, u_z, product = _solve_normal(ctx, _plus(ctx.known_uz, cross_z), pressure, product)
+        if self.free_mean:
+            check_not_full_contact(p, ctx.t)
         cross_x = sub.cross_displacement("x", "z", p, ctx.first) if self.coupled else None
         bound = self.friction * p
         op = sub.elastic_operator("x", ctx.first)
@@ -292,13 +297,30 @@ class PartialSlip:
         return replace(solution, displacement_z=u_z + ctx.known_uz)
 
 
+def check_not_full_contact(pressure: np.ndarray, t: float) -> None:
+    """Raise :class:`~viscontact.errors.ParameterError` when the contact covers every cell of a
+    periodic partial-slip problem whose tangential operator has a free mean: a uniform shear then
+    moves the surface by an undetermined mean displacement, q = 0 pins it nowhere, and delta_x
+    cannot fix the friction force (the solve returned any mean shear between 0 and mu_f min p:
+    Q = 0 at every delta_x, or, on an earlier solver, mu_f min p everywhere at 5e-14 m). Under a
+    prescribed delta_x nothing else determines it (a prescribed tangential force would); where part
+    of the period is out of contact, q = 0 there does. Under displacement control the contact never
+    covers the period (:func:`viscontact.periodic.check_approach`)."""
+    if bool((pressure > 0).all()):
+        raise ParameterError(
+            "tangential.mode", f"partial slip with the contact covering the whole period (t = {t:.6g} s): a uniform "
+            "shear moves the periodic surface by an undetermined mean displacement, so delta_x cannot fix the "
+            "friction force; use tangential.mode = 'gross_sliding', a normal load low enough to leave part of the "
+            "period out of contact, or grid.periodic = false")
+
+
 def phase_solver(phase: int, problem: Problem, substrate: TermSubstrate) -> PhaseSolver:
     """The solver of a phase: partial slip with friction, else the normal problem (q = mu_f p
     when gross sliding, 0 otherwise)."""
     mu = problem.tangential.effective_friction
     coupled = substrate.has_coupling() and mu > 0
     if phase == PHASE_PARTIAL_SLIP and mu > 0:
-        return PartialSlip(mu, coupled)
+        return PartialSlip(mu, coupled, free_mean=substrate.free_mean("x"))
     if phase == PHASE_GROSS_SLIDING:
         return NormalContact(mu, coupled)
     return NormalContact(0.0, False, name="indentation")
