@@ -106,7 +106,9 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
     Raises
     ------
     ParameterError
-        Invalid input (before any step is computed), or a checkpoint of another case.
+        Invalid input (before any step is computed), or a checkpoint of another case; or input found
+        unsolvable at a step (partial slip in full contact on a periodic domain:
+        :func:`viscontact.transient.check_not_full_contact`), with the steps done as below.
     ConvergenceError, NumericalGuardError, RunInterrupted, KeyboardInterrupt
         The run stopped. When steps were recorded before, the exception carries the Dataset of
         those steps (attribute ``complete = 0``) as ``exc.partial``.
@@ -194,7 +196,9 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
     ParameterError
         Invalid input (before any step is computed), a checkpoint of another case, or a streamed
         file to resume that is missing, unreadable or written for another case
-        (:func:`viscontact.streaming.check_resumable`; the file is left as it was).
+        (:func:`viscontact.streaming.check_resumable`; the file is left as it was); or input found
+        unsolvable at a step (partial slip in full contact on a periodic domain:
+        :func:`viscontact.transient.check_not_full_contact`), with the steps done kept as below.
     BlockingIOError
         Another process writes ``out`` (:func:`viscontact.output_files.output_lock`, held for the
         whole run).

@@ -1,8 +1,10 @@
 """``viscontact`` command line: a thin shell over :mod:`viscontact.api`.
 
 Bad input (case file, missing file, existing result) prints one line
-``viscontact: error: <key>: <message>`` and exits with status 2; a failed solve (no convergence,
-numerical guard) exits with status 1, keeping the steps done in the result file (``complete = 0``).
+``viscontact: error: <key>: <message>`` and exits with status 2 (input found unsolvable during a
+run, such as partial slip reaching full contact on a periodic domain, keeps the steps done and says
+where); a failed solve (no convergence, numerical guard) exits with status 1, keeping the steps done
+in the result file (``complete = 0``).
 SIGINT / SIGTERM stop a run after its current step, keep the steps done (``complete = 0``) and
 exit with 130 / 143. ``run`` streams its records to ``RESULT.nc.partial`` and renames it to
 ``RESULT.nc`` when it ends (:mod:`viscontact.streaming`); after a kill the steps done are in
@@ -617,8 +619,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             log.debug("%s %s: %s", PROG, _version(), _command_line(args.argv))
             with _warnings_as_lines(args.quiet):
                 return args.handler(args)
-    except ParameterError as exc:
-        return _error(f"{exc.key}: {exc.message}", EXIT_USAGE)
+    except ParameterError as exc:  # found during a run (partial slip in full periodic contact): the steps done kept
+        saved = _saved_note(exc) if getattr(exc, "saved", None) else ""
+        return _error(f"{exc.key}: {exc.message}{saved}", EXIT_USAGE)
     except OSError as exc:  # missing file, existing result, permissions
         where = exc.filename if exc.filename is not None else "file"
         saved = _saved_note(exc) if getattr(exc, "saved", None) else ""

@@ -43,7 +43,10 @@ the mean plane of the deformed surface: the gap is g = h0 + u - delta_z with mea
 mean(g) = mean(h0) - delta_z. Under load control the total force on one period fixes the pressure and
 delta_z is the multiplier of the force constraint (constrained_cg's). Under displacement control the
 approach must stay below mean(h0): at delta_z = mean(h0) the contact is complete and its load is
-undetermined (use load control for complete contact).
+undetermined (use load control for complete contact). Tangentially, a uniform shear is in the null
+space of the xx kernel: under a prescribed delta_x (partial slip) only q_x = 0 out of contact fixes
+the mean shear, and a contact covering the period is refused
+(:func:`viscontact.transient.check_not_full_contact`).
 """
 from __future__ import annotations
 

@@ -67,7 +67,8 @@ class TangentialLoading:
     mode
         ``none`` (pure indentation), ``frictionless_sliding`` (seed case 1),
         ``gross_sliding`` (q_x = mu_f p from t = 0, seed case 2) or ``partial_slip``
-        (delta_x ramped at ``displacement_rate`` until the stick zone vanishes, then sliding).
+        (delta_x ramped at ``displacement_rate`` until the stick zone of a contact vanishes, then
+        sliding; the stuck points move with delta_x since the contact began).
     friction_coefficient
         Coulomb coefficient mu_f [-].
     displacement_rate

@@ -17,7 +17,8 @@ class StepRecord:
     step, t
         Step index and time [s].
     phase
-        0 indentation, 1 partial slip, 2 gross sliding.
+        0 indentation, 1 partial slip, 2 gross sliding. A partial-slip run is in phase 1 until the
+        stick zone of a contact vanishes (also before its first contact), then in 2 for good.
     load
         Normal load W = sum p dA [N].
     delta_z, delta_x
@@ -25,7 +26,8 @@ class StepRecord:
     sliding_distance
         Distance slid since gross sliding started [m].
     contact_area
-        [m^2]; ``stick_ratio`` stick area / contact area [-].
+        [m^2]; ``stick_ratio`` stick area / contact area [-] (partial slip: NaN without contact;
+        0 in the other modes).
     friction_force
         Dry friction sum q_x dA [N], positive when it resists the motion.
     hysteresis_force

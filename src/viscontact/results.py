@@ -62,8 +62,9 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "delta_x": ("m", "tangential rigid-body displacement of the indenter"),
     "sliding_distance": ("m", "distance slid since gross sliding began"),
     "contact_area": ("m2", "contact area"),
-    "stick_ratio": ("1", "stick area / contact area"),
-    "phase": ("1", "phase: 0 indentation, 1 partial slip, 2 gross sliding"),
+    "stick_ratio": ("1", "stick area / contact area (NaN where a partial-slip run has no contact)"),
+    "phase": ("1", "phase: 0 indentation, 1 partial slip (until the stick zone of a contact vanishes), "
+              "2 gross sliding"),
     "friction_force": ("N", "dry friction force sum q_x dA (positive when resisting the motion)"),
     "hysteresis_force": ("N", "hysteresis force F_T = -sum p du_z/dx dA (seed Eq. 15)"),
     "mu_app": ("1", "apparent friction coefficient F_T / W (seed Eq. 15): the hysteresis friction; with "

@@ -21,6 +21,8 @@ solvers use, and is all a new substrate has to provide:
 * :meth:`~TermSubstrate.advanced`, :meth:`~TermSubstrate.shifted`: the history after a step / a
   frame shift (new objects; nothing is mutated);
 * :meth:`~TermSubstrate.steady_convolver`: the effective kernel of steady sliding at a speed;
+* :meth:`~TermSubstrate.free_mean`: whether a uniform traction leaves the mean displacement
+  undetermined (a periodic half-space);
 * ``backend`` (:class:`~viscontact.arrays.ArrayBackend`: the array namespace ``xp`` and the FFT
   module ``fft`` of the fields, ``to_host`` for what the results keep).
 
@@ -66,6 +68,9 @@ WINDOWS_KEPT = 3
 #: (:meth:`TermSubstrate.initial_response`): its 2 M field updates a step cost less than the transform
 #: pair they spare up to about this many modes
 RESPONSE_MODES = 8
+#: a periodic kernel whose mean (its q = 0 spectral value) is below this fraction of its largest
+#: spectral value has zero mean up to round-off (:meth:`TermSubstrate.free_mean`)
+FREE_MEAN_TOLERANCE = 1e-9
 
 
 @dataclass(frozen=True)
@@ -169,6 +174,7 @@ class TermSubstrate:
         self.normal_history = self._terms("z", "z")[0].history
         self._coefficients = {first: self._step_coefficients(first) for first in (True, False)}
         self._operators: dict[tuple[str, bool], ElasticOperator] = {}
+        self._free_mean: dict[str, bool] = {}
         #: window side -> (convolver, preconditioners, operators by (component, first)), least recent first
         self._windows: OrderedDict[int, tuple[Convolver, dict[str, FourierPreconditioner],
                                               dict[tuple[str, bool], ElasticOperator]]] = OrderedDict()
@@ -327,6 +333,20 @@ class TermSubstrate:
         if key not in operators:
             operators[key] = _operator(self._factors(component, first), conv, precond, None, single=True)
         return operators[key]
+
+    def free_mean(self, component: str) -> bool:
+        """Whether a uniform traction of ``component`` (``"z"`` or ``"x"``) leaves the mean displacement
+        undetermined: on a periodic grid whose (component, component) kernels have zero mean (the q = 0
+        compliance of a periodic half-space is infinite: :mod:`viscontact.periodic`), the uniform
+        traction is in the null space of :meth:`elastic_operator`. False on DC-FFT grids (a finite
+        domain) and where the mean is bounded (a layer bonded to a rigid base: h/M normally, h/G
+        tangentially). A kernel's mean counts as zero below :data:`FREE_MEAN_TOLERANCE` of its
+        largest spectral value."""
+        if component not in self._free_mean:
+            spectra = [self.convolver.spectra[t.kernel] for t in self._terms(component, component)]
+            self._free_mean[component] = self.periodic and all(
+                abs(float(s[0, 0].real)) <= FREE_MEAN_TOLERANCE * float(self.xp.abs(s).max()) for s in spectra)
+        return self._free_mean[component]
 
     def cross_displacement(self, displacement: str, traction: str, field: Array, first: bool,
                            factor: float = 1.0) -> Array | None:

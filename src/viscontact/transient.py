@@ -71,6 +71,12 @@ class State:
         Steps since the last frame shift (0 .. steps_per_cell - 1).
     t_gross_sliding
         When gross sliding began [s] (None before).
+    slip_origin
+        Partial slip: ``delta_x`` [m] at the first step of the current contact, from which the
+        displacement of the stuck points is measured; None after a step without contact (the
+        indenter moves at ``displacement_rate`` without touching, which loads nothing): the next
+        step that touches sets it. 0 before the first step (delta_x(0) = 0; also what a checkpoint
+        written without it resumes with).
     wake
         History that left the frame (:class:`~viscontact.sliding.Wake`).
     """
@@ -92,6 +98,7 @@ class State:
     pressure_product: np.ndarray | None = None
     pressure_product_previous: np.ndarray | None = None
     response: History | None = None
+    slip_origin: float | None = 0.0
 
 
 def init(problem: Problem, substrate: TermSubstrate | None = None) -> State:
@@ -148,7 +155,7 @@ class StepContext:
     known_uz: np.ndarray     # history displacement [m]
     known_ux: np.ndarray | None
     value: float             # normal condition: load [N] or approach [m]
-    delta_x: float           # tangential rigid-body displacement [m]
+    delta_x: float           # tangential displacement [m] the contact sees (partial slip: since it began)
 
 
 @dataclass(frozen=True)
@@ -256,17 +263,24 @@ class NormalContact:
 @dataclass(frozen=True)
 class PartialSlip:
     """Partial slip (seed Eqs. 9, 11): bounded CG for q_x in [-mu_f p, mu_f p] with slip
-    s = u_x - delta_x, alternated with the normal solve (semi-coupled: IC_zx, IC_xz ~ (1 - 2 nu))."""
+    s = u_x - delta_x, alternated with the normal solve (semi-coupled: IC_zx, IC_xz ~ (1 - 2 nu)).
+    delta_x is measured from the first step of the contact (:attr:`State.slip_origin`): the indenter
+    that moved before it touched has dragged nothing. ``free_mean``: a uniform shear is in the null
+    space of the tangential operator (:meth:`~viscontact.substrate.TermSubstrate.free_mean`), so a
+    contact over every cell is refused (:func:`check_not_full_contact`)."""
 
     friction: float
     coupled: bool
     name: str = "partial slip"
     solves_shear: bool = True
+    free_mean: bool = False
 
     def solve(self, ctx, pressure, shear, product):
         sub, s = ctx.substrate, ctx.problem.solver
         cross_z = sub.cross_displacement("z", "x", shear, ctx.first) if self.coupled else None
         p, delta_z, it_n, u_z, product = _solve_normal(ctx, _plus(ctx.known_uz, cross_z), pressure, product)
+        if self.free_mean:
+            check_not_full_contact(p, ctx.t)
         cross_x = sub.cross_displacement("x", "z", p, ctx.first) if self.coupled else None
         bound = self.friction * p
         op = sub.elastic_operator("x", ctx.first)
@@ -283,13 +297,30 @@ class PartialSlip:
         return replace(solution, displacement_z=u_z + ctx.known_uz)
 
 
+def check_not_full_contact(pressure: np.ndarray, t: float) -> None:
+    """Raise :class:`~viscontact.errors.ParameterError` when the contact covers every cell of a
+    periodic partial-slip problem whose tangential operator has a free mean: a uniform shear then
+    moves the surface by an undetermined mean displacement, q = 0 pins it nowhere, and delta_x
+    cannot fix the friction force (the solve returned any mean shear between 0 and mu_f min p:
+    Q = 0 at every delta_x, or, on an earlier solver, mu_f min p everywhere at 5e-14 m). Under a
+    prescribed delta_x nothing else determines it (a prescribed tangential force would); where part
+    of the period is out of contact, q = 0 there does. Under displacement control the contact never
+    covers the period (:func:`viscontact.periodic.check_approach`)."""
+    if bool((pressure > 0).all()):
+        raise ParameterError(
+            "tangential.mode", f"partial slip with the contact covering the whole period (t = {t:.6g} s): a uniform "
+            "shear moves the periodic surface by an undetermined mean displacement, so delta_x cannot fix the "
+            "friction force; use tangential.mode = 'gross_sliding', a normal load low enough to leave part of the "
+            "period out of contact, or grid.periodic = false")
+
+
 def phase_solver(phase: int, problem: Problem, substrate: TermSubstrate) -> PhaseSolver:
     """The solver of a phase: partial slip with friction, else the normal problem (q = mu_f p
     when gross sliding, 0 otherwise)."""
     mu = problem.tangential.effective_friction
     coupled = substrate.has_coupling() and mu > 0
     if phase == PHASE_PARTIAL_SLIP and mu > 0:
-        return PartialSlip(mu, coupled)
+        return PartialSlip(mu, coupled, free_mean=substrate.free_mean("x"))
     if phase == PHASE_GROSS_SLIDING:
         return NormalContact(mu, coupled)
     return NormalContact(0.0, False, name="indentation")
@@ -437,8 +468,11 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
     else:
         known_uz, known_ux = substrate.known_displacement(state.histories, t, first, need_x=solver.solves_shear)
     gap = problem.frame_gap(offset)
+    # partial slip: the stuck points move with the indenter since the contact began (this step, when
+    # the last one had none)
+    origin = state.delta_x if state.slip_origin is None else state.slip_origin
     ctx = StepContext(problem, substrate, k, t, first, substrate.backend.to_device(gap), known_uz, known_ux,
-                      problem.normal.history(t), state.delta_x)
+                      problem.normal.history(t), state.delta_x - origin)
     p0, p0_product = _warm_start(substrate, state, k)
     q0 = 2.0 * state.shear_x - state.shear_previous if k > 1 else state.shear_x
     sol = solve_coupled(solver, ctx, p0, q0, p0_product)
@@ -451,13 +485,17 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
     n_contact = int(contact.sum())
     stick = (contact & (np.abs(q_host) < mu * p_host * (1 - STICK_MARGIN)) if solver.solves_shear
              else np.zeros_like(contact))
-    stick_ratio = float(stick.sum()) / n_contact if n_contact else 0.0
+    # no contact: nothing sticks or slips (undefined in partial slip; zero by definition in the other modes)
+    stick_ratio = (float(stick.sum()) / n_contact if n_contact else
+                   float("nan") if tan.mode == "partial_slip" else 0.0)
 
-    # -- commit
+    # -- commit: gross sliding begins when the stick zone of a contact vanishes (no contact: the phase
+    # stays; once sliding, it stays)
     phase, t_gross = state.phase, state.t_gross_sliding
-    if phase == PHASE_PARTIAL_SLIP and (stick_ratio == 0.0 or mu == 0):
+    if phase == PHASE_PARTIAL_SLIP and n_contact and (not stick.any() or mu == 0):
         phase, t_gross = PHASE_GROSS_SLIDING, t
     state = replace(state, step=k, t=t, phase=phase, t_gross_sliding=t_gross,
+                    slip_origin=origin if n_contact else None,
                     histories=substrate.advanced(state.histories, {"z": p, "x": q}, t, first),
                     pressure_previous=state.pressure, shear_previous=state.shear_x,
                     pressure=p, shear_x=q, delta_z=sol.delta_z,

@@ -210,3 +210,52 @@ def test_history_names_the_command(tmp_path: Path, capsys) -> None:
         assert "created by viscontact" in ds.attrs["history"]
         assert ds.attrs["history"].endswith(f"by the command: viscontact run {tmp_path / 'case.toml'} --out "
                                             f"{tmp_path / 'out.nc'} --force --quiet")
+
+
+PERIODIC_SLIP = """
+[material]
+type = "elastic"
+shear_modulus = 1e6
+poisson_ratio = 0.5
+[indenter]
+shape = "surface"
+file = "gap.npy"
+[grid]
+n = 16
+half_width = 0.5e-3
+periodic = true
+[normal]
+control = "load"
+history = [[0.0, 0.005], [0.003125, 0.005], [0.0046875, 0.04]]  # N; full contact from about 0.0126 N
+[tangential]
+mode = "partial_slip"
+friction_coefficient = 0.3
+displacement_rate = 1e-6
+sliding_speed = 1e-2
+steps_per_cell = 4
+[time]
+t_end = 0.0125
+"""
+
+
+def test_partial_slip_reaching_full_periodic_contact_is_one_line(tmp_path: Path, capsys) -> None:
+    """A uniform shear is in the null space of the periodic tangential operator: refused at the step
+    whose contact covers the period, in one line naming the remedies, with the steps done kept."""
+    import numpy as np
+    import xarray as xr
+
+    from viscontact import cli
+
+    x = -0.5e-3 + (np.arange(16) + 0.5) * 1e-3 / 16
+    np.save(tmp_path / "gap.npy", np.tile(1e-6 * (1 - np.cos(2 * np.pi / 1e-3 * x)), (16, 1)))
+    (tmp_path / "case.toml").write_text(PERIODIC_SLIP)
+    out = tmp_path / "out.nc"
+    assert cli.main(["run", str(tmp_path / "case.toml"), "--out", str(out), "--quiet"]) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert len(lines) == 1, lines
+    assert lines[0].startswith("viscontact: error: tangential.mode: partial slip with the contact covering the "
+                               "whole period (t = 0.0046875 s)"), lines[0]
+    assert "gross_sliding" in lines[0] and "grid.periodic = false" in lines[0]
+    assert lines[0].endswith(f"(the 3 records done are in {out}, complete = 0)"), lines[0]
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        assert ds.attrs["complete"] == 0 and ds.sizes["t"] == 3 and float(ds["contact_fraction"][-1]) < 1

@@ -79,6 +79,20 @@ def test_every_result_figure_states_its_scales(result):
             and "τ = 10 ms" in title, title
 
 
+def test_the_tangential_loop_starts_at_the_first_contact(result):
+    """A normal history from zero touches after the indenter has moved (delta_x = rate t): Q is drawn
+    against delta_x since the first record in contact, the records before it left out."""
+    from viscontact.plotting.result import tangential_loop_figure
+
+    ds = result.copy(deep=True)
+    ds["contact_area"].values[:2] = 0.0
+    ds["friction_force"].values[:] = [0.0, 0.0, 0.002, 0.004, 0.006]
+    x, y = tangential_loop_figure(ds).axes[0].lines[0].get_data()
+    delta_x = ds["delta_x"].values
+    np.testing.assert_allclose(x, (delta_x[2:] - delta_x[2]) * 1e6)
+    np.testing.assert_allclose(y, ds["friction_force"].values[2:] / (0.3 * float(ds["load"].max())))
+
+
 def test_a_held_load_gets_no_panel_and_creep_is_drawn_with_lee_radok(tmp_path):
     """A creep run (held load, no sliding): panels for the contact radius and the approach only, each
     with Lee & Radok's curve for the result's own material and times."""

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from viscontact.materials import Material
-from viscontact.problem import PHASE_GROSS_SLIDING, PHASE_PARTIAL_SLIP, SolverSettings
+from viscontact.problem import PHASE_GROSS_SLIDING, PHASE_PARTIAL_SLIP, PiecewiseLinear, SolverSettings
 from viscontact.reference import cattaneo_mindlin, hertz_from_load
 from viscontact.transient import simulate
 
@@ -21,14 +21,17 @@ from vc_testing import SEED_G0, SEED_LOAD, SEED_RADIUS, sphere_problem
 G, W, MU = SEED_G0, SEED_LOAD, 0.3
 
 
-def _ramp(nu: float, n: int = 64, steps: int = 40, coupling: bool = True):
+def _ramp(nu: float, n: int = 64, steps: int = 40, coupling: bool = True, control: str = "load",
+          value=None, reach: float = 1.2):
     hz = hertz_from_load(W, SEED_RADIUS, G, nu)
     dstar = cattaneo_mindlin(W, SEED_RADIUS, MU, G, nu).sliding_displacement
     t_end, dt = 1.0, 1.0 / steps
     half_width = 1.5 * hz.radius
     speed = 2 * half_width / n / dt  # one cell per step once sliding
-    pb = sphere_problem(Material.elastic(G, nu), n, half_width, value=W, mode="partial_slip", friction=MU,
-                        rate=1.2 * dstar / t_end, speed=speed, t_end=t_end, dt=dt,
+    held = W if control == "load" else hz.approach
+    pb = sphere_problem(Material.elastic(G, nu), n, half_width, control=control,
+                        value=held if value is None else value(held, dt, t_end), mode="partial_slip", friction=MU,
+                        rate=reach * dstar / t_end, speed=speed, t_end=t_end, dt=dt,
                         solver=SolverSettings(coupling=coupling))
     return pb, hz, dstar, list(simulate(pb))
 
@@ -67,6 +70,35 @@ def test_cattaneo_mindlin_force_stick_radius_and_traction():
     onset = next(r for r in records if r.phase == PHASE_GROSS_SLIDING)
     step_dx = pb.tangential.displacement_rate * pb.time.dt
     assert abs(onset.delta_x - dstar) <= step_dx + 1e-15, (onset.delta_x, dstar)
+
+
+@pytest.mark.parametrize("control", ["load", "displacement"])
+def test_partial_slip_begins_at_first_contact(control):
+    """A normal history from zero ([[0, 0], [dt, W], ...]): no contact at t = 0, where nothing sticks
+    or slips (stick ratio NaN, phase still partial slip); from the first contact (t = dt) the run is
+    the held one a step later, delta_x measured from that contact (the indenter that moved before
+    touching dragged nothing), so gross sliding begins a step later too; unloaded to zero once
+    sliding, it stays sliding. (It slid from t = 0: the stick ratio 0 of no contact read as a
+    vanished stick zone, and Q = mu W from the first loaded step.)"""
+    def history(value, dt, t_end):
+        return PiecewiseLinear((0.0, dt, t_end - 3 * dt, t_end), (0.0, value, value, 0.0))
+
+    pb, hz, dstar, held = _ramp(0.5, n=32, steps=20, control=control, reach=2.0)
+    _, _, _, ramped = _ramp(0.5, n=32, steps=20, control=control, value=history, reach=2.0)
+    dt, rate = pb.time.dt, pb.tangential.displacement_rate
+    first = ramped[0]
+    assert first.contact_area == 0 and first.friction_force == 0 and np.isnan(first.stick_ratio)
+    assert first.phase == PHASE_PARTIAL_SLIP
+    assert [r.delta_x for r in ramped[:5]] == pytest.approx([rate * r.t for r in ramped[:5]], rel=1e-12)
+    onset = next(k for k, r in enumerate(held) if r.phase == PHASE_GROSS_SLIDING)
+    assert 5 < onset < len(held) - 8
+    for h, r in zip(held[:onset + 2], ramped[1:onset + 3]):
+        assert r.phase == h.phase and r.stick_ratio == pytest.approx(h.stick_ratio, abs=1e-12)
+        assert r.friction_force == pytest.approx(h.friction_force, abs=1e-6 * MU * W)
+    assert held[1].friction_force > 0.1 * MU * W  # the shifted comparison sees the force build up
+    unloaded = ramped[-1]
+    assert unloaded.contact_area == 0 and unloaded.phase == PHASE_GROSS_SLIDING and np.isnan(unloaded.stick_ratio)
+    assert all(r.phase == PHASE_GROSS_SLIDING for r in ramped[onset + 1:])
 
 
 def test_coulomb_bounds_and_load_balance_every_step():

@@ -8,6 +8,9 @@
   frame wrapping around the material (nothing dropped at the trailing edge) the sliding transient
   is the indentation transient, step by step (solver tolerance).
 * An elastic half-space: the first step is the elastic periodic contact.
+* Partial slip in full contact: a uniform shear is in the null space of the periodic half-space's
+  tangential operator, so delta_x cannot fix the friction force; refused in one line. A layer
+  bonded to a rigid base pins it (q = G delta_x / h) and runs.
 """
 from __future__ import annotations
 
@@ -20,8 +23,8 @@ from viscontact import transient
 from viscontact.errors import ParameterError
 from viscontact.grid import Grid
 from viscontact.materials import Material
-from viscontact.problem import (NormalLoading, OutputSettings, PiecewiseLinear, Problem, SolverSettings,
-                                TangentialLoading, TimeStepping)
+from viscontact.problem import (PHASE_PARTIAL_SLIP, LayerSettings, NormalLoading, OutputSettings, PiecewiseLinear,
+                                Problem, SolverSettings, TangentialLoading, TimeStepping)
 from viscontact.steady import solve_steady
 from vc_testing import observed_order, periodic_elastic_contact
 
@@ -106,3 +109,55 @@ def test_elastic_first_step_and_displacement_control_guard():
     with pytest.raises(ParameterError, match="mean gap"):
         transient.init(_problem(grid, gap, "none", 0.0, 1e-3, material=elastic, control="displacement",
                                 value=gap.mean()))
+
+
+def _slip(load: PiecewiseLinear, layer: LayerSettings | None = None, n: int = 16) -> Problem:
+    """Partial slip (mu_f = 0.3, delta_x = 1e-6 m/s t) of the sinusoid h0 (1 - cos kx) on an elastic
+    nu = 0.5 body (no normal/tangential coupling), G = 1 MPa; ``load`` in units of the full-contact
+    load p* L^2, p* = E* k h0 / 2."""
+    grid = Grid(n, WAVELENGTH / 2, periodic=True)
+    x, _ = grid.mesh()
+    g = 1e6
+    full = 2 * g / (1 - 0.5) * K * H0 / 2 * WAVELENGTH**2
+    speed = 1e-2
+    dt = grid.spacing / speed / 4
+    return Problem(material=Material.elastic(g, 0.5), grid=grid, gap=H0 * (1 - np.cos(K * x)),
+                   normal=NormalLoading("load", PiecewiseLinear(load.times, tuple(full * v for v in load.values))),
+                   tangential=TangentialLoading("partial_slip", 0.3, 1e-6, speed, 4),
+                   time=TimeStepping(8 * dt, dt, "linear"), solver=SolverSettings(tolerance=1e-10),
+                   output=OutputSettings(1, ("pressure", "shear_x")), layer=layer)
+
+
+def test_partial_slip_in_full_periodic_contact_is_refused():
+    """Three times the full-contact load: it returned Q = 0 at every delta_x (on an earlier solver
+    mu_f min p everywhere, Q/W = 0.2003 at delta_x = 5e-14 m): a uniform shear moves the periodic
+    half-space by an undetermined mean, so nothing fixes Q. Refused at the step whose contact
+    covers the period, the steps before done; at 0.95 of that load (87.5 % in contact) q = 0 out of
+    contact pins the mean and Q builds up with delta_x (Q / mu_f W = 0, 0.069, 0.099, ...)."""
+    problem = _slip(PiecewiseLinear.constant(3.0))
+    with pytest.raises(ParameterError, match="whole period") as refused:
+        _records(problem)
+    assert refused.value.key == "tangential.mode" and "gross_sliding" in refused.value.message
+    dt = problem.time.dt
+    ramp = _slip(PiecewiseLinear((0.0, 2 * dt, 3 * dt, 8 * dt), (0.5, 0.5, 3.0, 3.0)))
+    done = []
+    with pytest.raises(ParameterError, match="whole period"):
+        for _, record in transient.steps(ramp):
+            done.append(record)
+    assert len(done) == 3 and done[-1].contact_fraction < 1  # t = 3 dt is full
+    partial = _records(_slip(PiecewiseLinear.constant(0.95)))
+    ratios = [r.friction_force / (0.3 * r.load) for r in partial]
+    assert all(0.8 < r.contact_fraction < 1 and r.phase == PHASE_PARTIAL_SLIP for r in partial)
+    assert ratios[0] == 0 and np.all(np.diff(ratios) > 0) and ratios[-1] < 0.5
+
+
+def test_partial_slip_in_full_contact_on_a_layer_bonded_to_a_rigid_base():
+    """A bonded layer on a rigid base has a uniform shear compliance h/G: the full stick contact
+    carries q = G delta_x / h everywhere (not refused)."""
+    h = 2e-4
+    problem = _slip(PiecewiseLinear.constant(3.0), LayerSettings(h))
+    records = _records(problem)
+    for r in records:
+        assert r.contact_fraction == 1.0 and r.stick_ratio == 1.0
+        np.testing.assert_allclose(r.shear_x, 1e6 * r.delta_x / h, rtol=1e-6, atol=1e-9)
+    assert records[-1].friction_force > 0

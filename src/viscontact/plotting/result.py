@@ -247,14 +247,17 @@ def rough_contact_figure(ds: xr.Dataset) -> Any:
 
 
 def tangential_loop_figure(ds: xr.Dataset) -> Any:
-    """The tangential force Q = Σ q_x ΔA against the tangential displacement δ_x of partial slip,
-    with the elastic Cattaneo-Mindlin curves (:class:`~viscontact.reference.CattaneoMindlin`) for
-    G(0) and G(∞) under the same load; returns the Figure."""
+    """The tangential force Q = Σ q_x ΔA against the tangential displacement δ_x of partial slip
+    since the first contact (a normal history that starts at zero touches after the indenter has
+    moved), with the elastic Cattaneo-Mindlin curves (:class:`~viscontact.reference.CattaneoMindlin`)
+    for G(0) and G(∞) under the same load; returns the Figure."""
     from ..reference import cattaneo_mindlin
 
     mu = float(ds.attrs.get("friction_coefficient", 0.0) or 0.0)
     load = float(np.max(ds["load"].values))
     delta_x = ds["delta_x"].values
+    touched = np.flatnonzero(ds["contact_area"].values > 0)
+    delta_x = delta_x - (delta_x[touched[0]] if touched.size else 0.0)
     references = []
     sphere = positive_attr(ds, "radius")
     if sphere and ds.attrs.get("normal_control") == "load":
@@ -265,13 +268,13 @@ def tangential_loop_figure(ds: xr.Dataset) -> Any:
     sliding = np.flatnonzero(ds["phase"].values == PHASE_GROSS_SLIDING)
     onset = [float(delta_x[sliding[0]])] if sliding.size else [float(np.max(delta_x))]
     end = 1.5 * max(onset + [cm.sliding_displacement for cm, _, _ in references[1:]])
-    keep = delta_x <= end
+    keep = (delta_x >= 0) & (delta_x <= end)
     fig, ax = pyplot().subplots(figsize=(6.4, 4.6))
     ax.plot(delta_x[keep] * 1e6, ds["friction_force"].values[keep] / (mu * load), "o-", ms=2.5, label="viscontact")
     d = np.linspace(0.0, end, 300)
     for cm, name, style in references:
         ax.plot(d * 1e6, cm.force(d) / (mu * load), style, lw=1.0, label=f"Cattaneo-Mindlin, elastic {name}")
-    ax.set(xlabel="tangential displacement δ_x [µm]", ylabel="Q / (μ_f W)", ylim=(0, 1.1))
+    ax.set(xlabel="tangential displacement since first contact δ_x [µm]", ylabel="Q / (μ_f W)", ylim=(0, 1.1))
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     set_title(fig, ds, "tangential force against displacement")
