@@ -136,6 +136,7 @@ def _add_material(sub: Any) -> None:
     p = sub.add_parser("material", help="the case's material: moduli, retardation times, a_T (and figures)")
     p.add_argument("case", metavar="CASE.toml", help="case file")
     p.add_argument("--plots", metavar="DIR", help="also draw G(t), J(t), G'(omega), G''(omega), tan delta into DIR")
+    _figure_arguments(p)
     _set_argument(p)
     p.set_defaults(handler=_cmd_material)
 
@@ -533,8 +534,9 @@ def _cmd_material(args: argparse.Namespace) -> int:
 
     case = _load(args)
     if args.plots:
-        from .plotting import pyplot
+        from .plotting import check_format, pyplot
 
+        check_format(args.fmt, args.dpi)
         pyplot()
     section = case.material
     problem = case.to_problem()
@@ -561,7 +563,7 @@ def _cmd_material(args: argparse.Namespace) -> int:
     if args.plots:
         from .plotting import plot_material
 
-        for path in plot_material(material_dataset(material), args.plots):
+        for path in plot_material(material_dataset(material), args.plots, fmt=args.fmt, dpi=args.dpi):
             print(f"wrote {path}")
     return 0
 
