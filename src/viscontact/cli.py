@@ -178,7 +178,8 @@ def _add_reproduce(sub: Any) -> None:
     p.add_argument("--out", required=True, metavar="DIR", help="folder for the figures and the results (.nc)")
     p.add_argument("--n", type=int, default=None, metavar="N",
                    help="grid cells per side instead of the seed's 256 (quick preview; dt follows, and is cut "
-                        "where the seed's scheme would be near its stability limit: the cases are named)")
+                        "where the seed's scheme would be over half its stability limit or miss the material's "
+                        "response by more than 7 %%, the time-step guard's warning limit: the cases are named)")
     _set_argument(p, "a key of every case of the figure")
     _figure_arguments(p)
     p.add_argument("--cases", default=None, metavar="DIR", help="folder of the seed_*.toml cases")
