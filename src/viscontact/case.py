@@ -477,7 +477,8 @@ class SolverSection(_Section):
     product in double)."""
 
     tolerance: float = _num(SolverSettings.tolerance, unit="", gt=0, lt=1,
-                            description="relative residual of the constrained conjugate-gradient solves")
+                            description="the constrained conjugate-gradient solves stop when the relative "
+                            "change of their unknown in an iteration, sum|x - x_old| / sum|x|, falls below it")
     max_iterations: int = _int(SolverSettings.max_iterations, ge=1, description="iteration cap of one solve")
     coupling_tolerance: float = _num(SolverSettings.coupling_tolerance, unit="", gt=0, lt=1,
                                      description="relative change of the tractions that ends the normal/"
