@@ -1,8 +1,9 @@
 """``viscontact`` command line: a thin shell over :mod:`viscontact.api`.
 
-Bad input (case file, missing file, existing result) prints one line
-``viscontact: error: <key>: <message>`` and exits with status 2; a failed solve (no convergence,
-numerical guard) exits with status 1, keeping the steps done in the result file (``complete = 0``).
+Bad input (an option, case file, missing file, existing result) prints one line
+``viscontact: error: <key>: <message>`` and exits with status 2 (argparse's own errors too:
+:class:`_Parser`); a failed solve (no convergence, numerical guard) exits with status 1, keeping
+the steps done in the result file (``complete = 0``).
 SIGINT / SIGTERM stop a run after its current step, keep the steps done (``complete = 0``) and
 exit with 130 / 143. ``run`` streams its records to ``RESULT.nc.partial`` and renames it to
 ``RESULT.nc`` when it ends (:mod:`viscontact.streaming`); after a kill the steps done are in
