@@ -7,7 +7,7 @@
     field's ``description``; the section's docstring above each table).
 ``.. result-variables::``
     The variables of a result file, from :data:`viscontact.results.VARIABLES` and
-    :data:`viscontact.results.SCALES`.
+    :data:`viscontact.results.SCALES`, then its coordinates (:data:`viscontact.results.COORDINATES`).
 Docstrings
     Absolute values written as in the numerics, ``|q|``, ``|sigma_z - sigma_r|``, are kept as text
     (reST would read them as substitutions) outside inline literals and literal blocks.
@@ -203,9 +203,10 @@ class ResultVariables(CaseKeys):
 
         rows = [".. list-table::", "   :header-rows: 1", "   :widths: 25 10 65", "",
                 "   * - variable", "     - unit", "     - meaning"]
-        for table in (results.VARIABLES, getattr(results, "SCALES", {})):
+        for table, kind in ((results.VARIABLES, ""), (results.SCALES, ""), (results.COORDINATES, "coordinate: ")):
             for name, (unit, long_name) in table.items():
-                rows += [f"   * - ``{name}``", f"     - {_cell(_plain(unit))}", f"     - {_cell(_plain(long_name))}"]
+                rows += [f"   * - ``{name}``", f"     - {_cell(_plain(unit))}",
+                         f"     - {_cell(kind + _plain(long_name))}"]
         return self._parse(rows + [""])
 
 

@@ -32,6 +32,7 @@ from typing import Annotated, Any, Callable, Literal
 import numpy as np
 import tomllib
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, model_validator
+from pydantic.fields import FieldInfo
 
 from .errors import ParameterError
 from .grid import Grid
@@ -477,7 +478,8 @@ class SolverSection(_Section):
     product in double)."""
 
     tolerance: float = _num(SolverSettings.tolerance, unit="", gt=0, lt=1,
-                            description="relative residual of the constrained conjugate-gradient solves")
+                            description="the constrained conjugate-gradient solves stop when the relative "
+                            "change of their unknown in an iteration, sum|x - x_old| / sum|x|, falls below it")
     max_iterations: int = _int(SolverSettings.max_iterations, ge=1, description="iteration cap of one solve")
     coupling_tolerance: float = _num(SolverSettings.coupling_tolerance, unit="", gt=0, lt=1,
                                      description="relative change of the tractions that ends the normal/"
@@ -766,14 +768,15 @@ def closest(name: str, valid: Sequence[str]) -> str | None:
 
 def case_keys() -> dict[str, Any]:
     """Every settable dotted case key (``"grid.n"``) -> its pydantic FieldInfo; the keys of every
-    material type together under ``material.``. The unit is in ``json_schema_extra["unit"]``."""
+    material type together under ``material.`` (:func:`_material_keys`: ``material.type`` takes
+    every type, and a key that only some types take says which at the end of its description). The
+    unit is in ``json_schema_extra["unit"]``."""
     keys: dict[str, Any] = {}
 
     def walk(model: type[BaseModel], prefix: str) -> None:
         for name, info in model.model_fields.items():
             if model is Case and name == "material":
-                for material in MATERIALS.values():
-                    walk(material, "material.")
+                keys.update(_material_keys())
                 continue
             sub = model_of(info.annotation)
             if sub is not None:
@@ -783,6 +786,32 @@ def case_keys() -> dict[str, Any]:
 
     walk(Case, "")
     return keys
+
+
+def _material_keys() -> dict[str, Any]:
+    """The ``material.`` keys of every type of :data:`MATERIALS` -> FieldInfo: ``material.type`` one
+    of every type; a key that only some types take, a copy whose description ends with them
+    (``(material.type = "zener" or "prony")``); the others as the types declare them."""
+    takers: dict[str, list[str]] = {}
+    fields: dict[str, Any] = {}
+    for tag, model in MATERIALS.items():
+        for name, info in model.model_fields.items():
+            takers.setdefault(name, []).append(tag)
+            fields.setdefault(name, info)
+    keys = {}
+    for name, info in fields.items():
+        if name == "type":
+            info = FieldInfo(annotation=Literal[tuple(MATERIALS)], description="the material model; the keys "
+                             "that only some models take name them")
+        elif len(takers[name]) < len(MATERIALS):
+            info = copy.copy(info)
+            info.description = f"{info.description} (material.type = {' or '.join(map(_quoted, takers[name]))})"
+        keys[f"material.{name}"] = info
+    return keys
+
+
+def _quoted(text: str) -> str:
+    return f'"{text}"'
 
 
 # --- ValidationError -> ParameterError ------------------------------------------------------------

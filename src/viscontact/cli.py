@@ -1,10 +1,10 @@
 """``viscontact`` command line: a thin shell over :mod:`viscontact.api`.
 
-Bad input (case file, missing file, existing result) prints one line
-``viscontact: error: <key>: <message>`` and exits with status 2 (input found unsolvable during a
-run, such as partial slip reaching full contact on a periodic domain, keeps the steps done and says
-where); a failed solve (no convergence, numerical guard) exits with status 1, keeping the steps done
-in the result file (``complete = 0``).
+Bad input (an option, case file, missing file, existing result) prints one line
+``viscontact: error: <key>: <message>`` and exits with status 2 (argparse's own errors too:
+:class:`_Parser`; input found unsolvable during a run, such as partial slip reaching full contact
+on a periodic domain, keeps the steps done and says where); a failed solve (no convergence,
+numerical guard) exits with status 1, keeping the steps done in the result file (``complete = 0``).
 SIGINT / SIGTERM stop a run after its current step, keep the steps done (``complete = 0``) and
 exit with 130 / 143. ``run`` streams its records to ``RESULT.nc.partial`` and renames it to
 ``RESULT.nc`` when it ends (:mod:`viscontact.streaming`); after a kill the steps done are in
@@ -31,7 +31,7 @@ import warnings
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 
 from .errors import (EXIT_INTERRUPTED, ConvergenceError, NumericalGuardError, OutputReplacedError, ParameterError,
                      RunInterrupted, ViscontactWarning, raised_by_interrupt)
@@ -49,6 +49,43 @@ def _version() -> str:
 
 
 # --- the parser: one ``_add_<command>`` per sub-command, each setting its ``_cmd_<command>`` handler --
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line like every other bad input: argparse's own
+    (a missing or unknown option, a value not among the choices, not a number) raise
+    :class:`ParameterError` keyed by the option, pointing at the command's ``--help``, in place of its
+    usage block. The sub-commands' parsers are of this class too (``add_subparsers`` makes its own)."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.commands: dict[str, argparse.ArgumentParser] = {}  # the sub-commands' parsers (set by _parser)
+
+    def error(self, message: str) -> NoReturn:
+        key, message = _argparse_error(message)
+        raise ParameterError(key, f"{message}; see {self.prog} --help")
+
+    def parse_args(self, args: Any = None, namespace: Any = None) -> Any:
+        """The arguments; those no parser knows are refused by the sub-command's parser (argparse
+        refuses them at the top level, whose help does not list the sub-command's options)."""
+        parsed, extra = self.parse_known_args(args, namespace)
+        if extra:
+            self.commands.get(getattr(parsed, "command", None) or "", self).error(
+                f"unrecognized arguments: {' '.join(extra)}")
+        return parsed
+
+
+def _argparse_error(message: str) -> tuple[str, str]:
+    """argparse's error ``message`` as (key, message): ``argument --format: invalid choice ...`` is
+    keyed by ``--format``, ``the following arguments are required: --out`` by ``--out``."""
+    required = "the following arguments are required: "
+    if message.startswith(required):
+        return message.removeprefix(required), "required"
+    if message.startswith("argument ") and ": " in message:
+        key, _, rest = message.removeprefix("argument ").partition(": ")
+        return key, rest
+    key, sep, rest = message.partition(": ")
+    return (key, rest) if sep else ("command line", message)
+
+
 def _set_argument(p: argparse.ArgumentParser, what: str = "a case-file key") -> None:
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
                    help=f"override {what}, e.g. --set tangential.sliding_speed=0.1 (repeatable; "
@@ -78,12 +115,14 @@ def _add_run(sub: Any) -> None:
     _case_arguments(p)
     p.add_argument("--quiet", action="store_true", help="no progress bar, no summary, no warnings")
     p.add_argument("--checkpoint-every", type=int, default=0, metavar="N",
-                   help="write the solver state every N steps to RESULT.nc.checkpoint.npz (atomic)")
+                   help="write the solver state every N steps to RESULT.nc.checkpoint.npz (atomic); 0, the "
+                        "default: no checkpoint")
     p.add_argument("--resume", action="store_true",
                    help="continue from RESULT.nc.checkpoint.npz (same case file) and the records streamed to "
                         "RESULT.nc.partial, and overwrite RESULT.nc")
     p.add_argument("--dry-run", action="store_true",
-                   help="validate the case and print the estimated result size and memory; run nothing")
+                   help="validate the case and print the estimated result size, peak memory and run time; "
+                        "run nothing")
     p.set_defaults(handler=_cmd_run)
 
 
@@ -99,6 +138,7 @@ def _add_material(sub: Any) -> None:
     p = sub.add_parser("material", help="the case's material: moduli, retardation times, a_T (and figures)")
     p.add_argument("case", metavar="CASE.toml", help="case file")
     p.add_argument("--plots", metavar="DIR", help="also draw G(t), J(t), G'(omega), G''(omega), tan delta into DIR")
+    _figure_arguments(p)
     _set_argument(p)
     p.set_defaults(handler=_cmd_material)
 
@@ -140,7 +180,8 @@ def _add_reproduce(sub: Any) -> None:
     p.add_argument("--out", required=True, metavar="DIR", help="folder for the figures and the results (.nc)")
     p.add_argument("--n", type=int, default=None, metavar="N",
                    help="grid cells per side instead of the seed's 256 (quick preview; dt follows, and is cut "
-                        "where the seed's scheme would be near its stability limit: the cases are named)")
+                        "where the seed's scheme would be over half its stability limit or miss the material's "
+                        "response by more than 7 %%, the time-step guard's warning limit: the cases are named)")
     _set_argument(p, "a key of every case of the figure")
     _figure_arguments(p)
     p.add_argument("--cases", default=None, metavar="DIR", help="folder of the seed_*.toml cases")
@@ -148,13 +189,14 @@ def _add_reproduce(sub: Any) -> None:
     p.set_defaults(handler=_cmd_reproduce)
 
 
-def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+def _parser() -> _Parser:
+    parser = _Parser(
         prog=PROG, description="Transient frictional sliding contact on a linear viscoelastic half-space.")
     parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for add in (_add_run, _add_steady, _add_material, _add_plot, _add_sweep, _add_reproduce):
         add(sub)
+    parser.commands = sub.choices
     for command in sub.choices.values():  # options every sub-command shares
         _add_shared_option(command, "--quiet", action="store_true", help="no progress bar, no summary, no warnings")
         _add_shared_option(command, "--log-level", choices=LOG_LEVELS, default="warning", type=str.lower,
@@ -495,8 +537,9 @@ def _cmd_material(args: argparse.Namespace) -> int:
 
     case = _load(args)
     if args.plots:
-        from .plotting import pyplot
+        from .plotting import check_format, pyplot
 
+        check_format(args.fmt, args.dpi)
         pyplot()
     section = case.material
     problem = case.to_problem()
@@ -523,7 +566,7 @@ def _cmd_material(args: argparse.Namespace) -> int:
     if args.plots:
         from .plotting import plot_material
 
-        for path in plot_material(material_dataset(material), args.plots):
+        for path in plot_material(material_dataset(material), args.plots, fmt=args.fmt, dpi=args.dpi):
             print(f"wrote {path}")
     return 0
 

@@ -86,6 +86,17 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "von_mises_stress": ("Pa", "von Mises stress sqrt(3 J2) in the section y = 0"),
     "max_shear_stress": ("Pa", "maximum shear stress (sigma_1 - sigma_3)/2 in the section y = 0"),
 }
+#: units and long names of the coordinates a result may hold ("": no units, an index)
+COORDINATES: dict[str, tuple[str, str]] = {
+    "t": ("s", "time"),
+    "step": ("", "time-step index"),
+    "y": ("m", "y in the frame of the indenter"),
+    "x": ("m", "x in the frame of the indenter (sliding towards +x)"),
+    "speed": ("m/s", "sliding speed v"),  # of a steady speed curve, and deborah along it
+    "deborah": ("1", "Deborah number v tau / a0"),
+    "t_sub": ("s", "time of the subsurface output"),
+    "z": ("m", "depth below the surface"),
+}
 #: subsurface variables (dims t_sub, z, x)
 SUBSURFACE_VARIABLES = ("stress_xx", "stress_yy", "stress_zz", "stress_xz", "von_mises_stress", "max_shear_stress")
 
@@ -307,7 +318,8 @@ def global_attrs(problem: Problem, case_text: str = "") -> dict[str, Any]:
         "case": case_text,
         "version": __version__,
         "Conventions": "CF-1.8",
-        "source": f"viscontact {__version__}: boundary elements with DC-FFT convolutions",
+        "source": f"viscontact {__version__}: boundary elements with "
+                  + ("periodic FFT convolutions" if problem.grid.periodic else "DC-FFT convolutions"),
         "references": REFERENCES,
         "history": history_stamp("created"),
     }
@@ -375,17 +387,20 @@ def subsurface_variables(records: Sequence[StepRecord], problem: Problem) -> tup
         stacks["max_shear_stress"].append(sec.max_shear)
     mode = problem.tangential.mode
     variables = {name: _variable(name, ("t_sub", "z", "x"), np.stack(v), mode) for name, v in stacks.items()}
-    coords = {"t_sub": ("t_sub", t[picks], {"units": "s", "long_name": "time of the subsurface output"}),
-              "z": ("z", depths, {"units": "m", "long_name": "depth below the surface"})}
+    coords = {"t_sub": _coordinate("t_sub", t[picks]), "z": _coordinate("z", depths)}
     return variables, coords
 
 
 def _coords(problem: Problem) -> dict[str, Any]:
     x = problem.grid.x
-    return {
-        "y": ("y", x, {"units": "m", "long_name": "y in the frame of the indenter"}),
-        "x": ("x", x, {"units": "m", "long_name": "x in the frame of the indenter (sliding towards +x)"}),
-    }
+    return {"y": _coordinate("y", x), "x": _coordinate("x", x)}
+
+
+def _coordinate(name: str, data: np.ndarray, dim: str | None = None) -> VariableSpec:
+    """The coordinate ``name`` along ``dim`` (its own name by default) with the attributes of
+    :data:`COORDINATES`."""
+    units, long_name = COORDINATES[name]
+    return (dim or name,), data, ({"units": units} if units else {}) | {"long_name": long_name}
 
 
 def _variable(name: str, dims: tuple[str, ...], data: np.ndarray, mode: str) -> VariableSpec:
@@ -475,9 +490,8 @@ def result_layout(records: Sequence[StepRecord], problem: Problem, *, case_text:
         data = np.array([getattr(r, name) for r in records], dtype=dtype)
         variables[name] = _variable(name, ("t",), data, mode)
 
-    coords = {"t": ("t", t, {"units": "s", "long_name": "time"}),
-              "step": ("t", np.array([r.step for r in records], dtype=int), {"long_name": "time-step index"}),
-              **_coords(problem)}
+    steps = np.array([r.step for r in records], dtype=int)
+    coords = {"t": _coordinate("t", t), "step": _coordinate("step", steps, "t"), **_coords(problem)}
     sub_vars, sub_coords = subsurface_variables(records, problem)
     ds_attrs = global_attrs(problem, case_text)
     ds_attrs["t_gross_sliding"] = t_gross_sliding(mode, t, variables["phase"][1])
@@ -523,8 +537,7 @@ def sweep_dataset(records: Sequence[StepRecord], speeds: Sequence[float], proble
     variables["pressure"] = _variable("pressure", ("speed", "y", "x"), pressure, mode)
     base = global_attrs(problem, case_text)
     deborah = speeds * base["retardation_time"] / base["a0"]
-    coords = {"speed": ("speed", speeds, {"units": "m/s", "long_name": "sliding speed v"}),
-              "deborah": ("speed", deborah, {"units": "1", "long_name": "Deborah number v tau / a0"}),
+    coords = {"speed": _coordinate("speed", speeds), "deborah": _coordinate("deborah", deborah, "speed"),
               **_coords(problem)}
     ds = xr.Dataset(variables, coords=coords)
     ds.attrs.update(base)

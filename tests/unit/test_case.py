@@ -147,3 +147,25 @@ def test_what_partial_slip_needs_is_decided_in_one_place(field: str, value: floa
                              **{f"tangential.{k}": v for k, v in {**good, field: value}.items()}})
     assert direct.value.key == from_case.value.key == key
     assert direct.value.message == from_case.value.message
+
+
+def test_case_keys_list_every_material_type() -> None:
+    """``case_keys()`` merged the material types' keys first come, first kept: ``material.type`` took
+    only ``Literal["zener"]`` and nothing said which type a key belongs to. Now ``material.type``
+    takes every type, every type's every key is listed, and a key some types lack names those that
+    take it."""
+    import typing
+
+    from viscontact.case import MATERIALS, case_keys
+
+    keys = case_keys()
+    assert typing.get_args(keys["material.type"].annotation) == tuple(MATERIALS) == ("zener", "prony", "elastic")
+    assert all(f"material.{name}" in keys for model in MATERIALS.values() for name in model.model_fields)
+    for key, takers in {"material.shear_modulus": ['"elastic"'], "material.g": ['"prony"'],
+                        "material.retardation_time": ['"zener"'],
+                        "material.temperature": ['"zener"', '"prony"']}.items():
+        description = keys[key].description
+        assert description.endswith(f"(material.type = {' or '.join(takers)})"), (key, description)
+        assert keys[key].json_schema_extra == MATERIALS[takers[0].strip('"')].model_fields[key[9:]].json_schema_extra
+    assert keys["material.poisson_ratio"].description == MATERIALS["elastic"].model_fields["poisson_ratio"].description
+    assert keys["grid.n"].description  # the other sections as they are

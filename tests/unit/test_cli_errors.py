@@ -259,3 +259,36 @@ def test_partial_slip_reaching_full_periodic_contact_is_one_line(tmp_path: Path,
     assert lines[0].endswith(f"(the 3 records done are in {out}, complete = 0)"), lines[0]
     with xr.open_dataset(out, engine="h5netcdf") as ds:
         assert ds.attrs["complete"] == 0 and ds.sizes["t"] == 3 and float(ds["contact_fraction"][-1]) < 1
+
+
+# --- argparse's own errors: one line naming the option, status 2 (argparse printed its usage block first) --
+OPTION_ERRORS = {
+    "missing_out": (["run", "case.toml"], "--out", "required"),
+    "format": (["run", "case.toml", "--out", "out.nc", "--format", "jpg"], "--format", "'png'"),
+    "figure": (["reproduce", "fig5", "--out", "figs"], "figure", "'fig4'"),
+    "checkpoint_every": (["run", "case.toml", "--out", "out.nc", "--checkpoint-every", "x"], "--checkpoint-every",
+                         "int"),
+    "log_level": (["run", "case.toml", "--out", "out.nc", "--log-level", "verbose"], "--log-level", "'debug'"),
+    "unknown_option": (["run", "case.toml", "--out", "out.nc", "--sets", "grid.n=64"], "unrecognized arguments",
+                       "--sets grid.n=64"),
+    "no_command": ([], "COMMAND", "required"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(OPTION_ERRORS))
+def test_option_errors_are_one_line(tmp_path: Path, name: str) -> None:
+    args, key, allowed = OPTION_ERRORS[name]
+    (tmp_path / "case.toml").write_text(BASE)
+    proc = viscontact(*args, cwd=tmp_path)
+    assert_one_line_error(proc, key)
+    assert allowed in proc.stderr and "--help" in proc.stderr and "usage:" not in proc.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["case.toml"]
+
+
+def test_option_errors_in_process_return_2(capsys) -> None:
+    """``cli.main`` returns the status of an option error like any other (argparse raised SystemExit)."""
+    from viscontact import cli
+
+    assert cli.main(["plot", "r.nc", "--out", "figs", "--format", "gif"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("viscontact: error: --format: invalid choice: 'gif'"), err

@@ -87,3 +87,16 @@ def test_a_bulk_modulus_material_shows_its_poisson_ratio_in_time(capsys):
     nu = [(3 * k - 2 * g) / (2 * (3 * k + g)) for g in (g0, ginf)]
     assert code == 0 and "bulk_modulus K = 5e+06 Pa" in line
     assert f"from {nu[0]:.6g} (t = 0) to {nu[1]:.6g} (t = inf)" in line
+
+
+def test_material_figure_takes_format_and_dpi(tmp_path: Path, capsys) -> None:
+    """``material --plots`` takes ``--format`` and ``--dpi`` as every other command that draws (it had
+    neither: "unrecognized arguments"); a bad one is refused in one line before anything is drawn."""
+    case = str(ROOT / "cases" / "creep_indentation.toml")
+    assert cli.main(["material", case, "--plots", str(tmp_path / "figs"), "--format", "svg", "--dpi", "50"]) == 0
+    assert [p.name for p in (tmp_path / "figs").iterdir()] == ["material.svg"]
+    capsys.readouterr()
+    assert cli.main(["material", case, "--plots", str(tmp_path / "bad"), "--dpi", "5"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("viscontact: error: --dpi: "), err
+    assert not (tmp_path / "bad").exists()

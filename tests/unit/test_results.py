@@ -143,6 +143,38 @@ def test_plots(tmp_path: Path) -> None:
     assert [p.name for p in plot_speed_curve(sweep, tmp_path)] == ["speed_curve.png"]
 
 
+def test_every_coordinate_is_described() -> None:
+    """The coordinates of a transient (with subsurface output) and of a speed curve are those of
+    results.COORDINATES, which the documentation's result-variable table lists (``deborah`` was in
+    no table), with its units and long names."""
+    from viscontact.results import COORDINATES
+
+    problem = make_problem()
+    problem = dataclasses.replace(problem, output=dataclasses.replace(problem.output, subsurface_depths=(1e-4,)))
+    records = fake_records(problem)
+    seen = set()
+    for ds in (to_dataset(records, problem), sweep_dataset(records[:2], [0.01, 0.1], problem)):
+        for name, coord in ds.coords.items():
+            units, long_name = COORDINATES[name]
+            assert coord.attrs["long_name"] == long_name and coord.attrs.get("units", "") == units, name
+            seen.add(name)
+    assert seen == set(COORDINATES)
+    assert COORDINATES["deborah"] == ("1", "Deborah number v tau / a0")
+
+
+def test_source_names_the_convolutions_of_the_domain() -> None:
+    """A periodic result's ``source`` says periodic FFTs (it said DC-FFT, the zero-padded ones of an
+    isolated contact, on every result)."""
+    from viscontact.case import load_case
+    from viscontact.results import global_attrs
+    from viscontact.shipped import shipped_case
+
+    for name, expected in (("rough_periodic_sliding", "periodic FFT convolutions"),
+                           ("creep_indentation", "DC-FFT convolutions")):
+        problem = load_case(shipped_case(name)).with_overrides({"grid.n": 16}).to_problem()
+        assert global_attrs(problem)["source"].endswith(f": boundary elements with {expected}"), name
+
+
 # --- self-describing result files (CF attributes, scales with units, provenance) -----------------------
 def test_scales_are_variables_with_units(tmp_path: Path) -> None:
     """a0, p0, tau and the onset of gross sliding are scalar variables with units; a0 and p0 stay

@@ -295,7 +295,8 @@ def reproduce(figure: str, out_dir: str | Path, *, n: int | None = None, overrid
         Folder for the figure(s) (PNG) and the results (``<case>.nc``; see :func:`check_outputs`).
     n
         Override ``grid.n`` for a quick preview (the seed uses 256; ``time.dt`` follows, cut where the
-        seed's scheme would be near its stability limit: :func:`stable_steps`).
+        seed's scheme would be over half its stability limit or miss the material's response by more
+        than the time-step guard's warning limit: :func:`stable_steps`).
     overrides
         Dotted case keys set in every case of the figure.
     progress
