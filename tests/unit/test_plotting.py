@@ -331,3 +331,38 @@ def test_a_result_keeps_the_prony_terms_of_a_material_file(tmp_path):
     assert len(ds.attrs["relaxation_times"]) == 11
     t = np.logspace(-3, 9, 13)
     np.testing.assert_allclose(material_of(ds).relaxation_modulus(t), run.relaxation_modulus(t), rtol=1e-12)
+
+
+# --- the docs/figures review ---------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def subsurface():
+    """The shipped subsurface case at 16^2 to 0.006 s, stresses at two recorded times."""
+    import viscontact as vc
+
+    case = vc.load_case(ROOT / "cases" / "creep_subsurface_stress.toml").with_overrides(
+        {"grid.n": 16, "time.t_end": 0.006, "output.subsurface_times": [0.0, 0.006]})
+    return vc.run(case)
+
+
+def test_subsurface_maps_have_depth_downwards_one_row_per_recorded_time_and_a_title(subsurface):
+    """The two panels share the y axis: each inverted it once and the two inversions cancelled
+    (the surface was drawn at the bottom); only the last time was drawn, with no title."""
+    from viscontact.plotting.result import subsurface_figure
+
+    ds = subsurface
+    fig = subsurface_figure(ds)
+    maps = [ax for ax in fig.axes if ax.collections and ax.get_label() != "<colorbar>"]
+    assert len(maps) == 2 * ds.sizes["t_sub"] == 4
+    a0, p0 = ds.attrs["a0"], ds.attrs["p0"]
+    for i, ax in enumerate(maps):
+        k, name = divmod(i, 2)
+        assert ax.yaxis_inverted(), ax.get_title()                       # depth downwards
+        bottom, top = ax.get_ylim()
+        assert top < 0.0 < ds["z"].values[-1] / a0 < bottom                # the surface z = 0 on top
+        assert ax.get_title().startswith(f"{('von Mises', 'maximum shear')[name]}, t/τ = "
+                                         f"{ds['t_sub'].values[k] / 0.01:.3g}:")
+        expected = ds[("von_mises_stress", "max_shear_stress")[name]].values[k] / p0
+        np.testing.assert_allclose(np.asarray(ax.collections[0].get_array()).reshape(expected.shape), expected,
+                                   rtol=1e-12)
+    title = _suptitle(fig)
+    assert title.startswith("Subsurface stresses under a Zener") and "a0 = 588.7 µm" in title and "τ = 10 ms" in title

@@ -339,28 +339,62 @@ def _pressure_animation(ds: xr.Dataset, files: FigureFiles) -> Path:
     return files.save_animation(fig, frame, len(picks), "pressure")
 
 
+#: recorded subsurface times drawn at most (rows of ``subsurface_stress``, evenly spread)
+MAX_SUBSURFACE_TIMES = 6
+#: the subsurface stresses drawn: (variable, panel title)
+_SUBSURFACE = (("von_mises_stress", "von Mises"), ("max_shear_stress", "maximum shear"))
+
+
 def subsurface_figure(ds: xr.Dataset) -> Any:
-    """Von Mises and maximum shear stress maps in the section y = 0 (x-z, depth downwards) at the
-    last subsurface time, scaled by p0 (else MPa) and x, z by a0 (else mm)."""
+    """Von Mises and maximum shear stress in the section y = 0, one row per recorded subsurface time
+    (``t_sub``; at most :data:`MAX_SUBSURFACE_TIMES`, evenly spread, the title saying how many of how
+    many): maps in x-z with the depth z downwards (the surface on top), each with its own colour
+    scale and its largest value marked (+), scaled by p0 (else MPa) and x, z by a0 (else mm). A single
+    depth: the stresses against x, one line per time. Returns the Figure."""
     plt = pyplot()
     sc = Scales(ds)
     (l_scale, l_label), (p_scale, p_label) = sc.length, sc.pressure
-    k = ds.sizes["t_sub"] - 1
+    count = ds.sizes["t_sub"]
+    picks = _time_indices(count, MAX_SUBSURFACE_TIMES)
+    times = ds["t_sub"].values
     x = ds["x"].values / l_scale
     z = ds["z"].values / l_scale
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True, constrained_layout=True)
     stress_unit = p_label.replace("p", "σ", 1)
-    for ax, name, title in zip(axes, ("von_mises_stress", "max_shear_stress"), ("von Mises", "maximum shear")):
-        data = ds[name].values[k] / p_scale
-        if z.size > 1:
-            mesh = ax.pcolormesh(x, z, data, shading="nearest", cmap="viridis")
-            fig.colorbar(mesh, ax=ax, label=stress_unit)
-            ax.invert_yaxis()
-        else:
-            ax.plot(x, data[0])
-        ax.set_title(f"{title}, {sc.t_label(float(ds['t_sub'].values[k]))}")
+    depth_label = "depth " + l_label.replace("x", "z", 1)
+
+    def at_depth(value: float) -> str:  # z/a0 = 0.5, or z = 0.3 mm
+        return f"z/a0 = {value:.3g}" if l_label.startswith("x /") else f"z = {value:.3g} mm"
+
+    stress_of = " p0" if p_label.startswith("p /") else " MPa"  # after a scaled stress
+
+    if z.size > 1:
+        fig, axes = plt.subplots(picks.size, 2, figsize=(10, 0.7 + 3.3 * picks.size), squeeze=False, sharex=True,
+                                 sharey=True, constrained_layout=True)
+        for row, k in zip(axes, picks):
+            for ax, (name, title) in zip(row, _SUBSURFACE):
+                data = ds[name].values[k] / p_scale
+                mesh = ax.pcolormesh(x, z, data, shading="nearest", cmap="viridis")
+                fig.colorbar(mesh, ax=ax, label=stress_unit)
+                iz, ix = np.unravel_index(int(np.argmax(data)), data.shape)
+                ax.plot(x[ix], z[iz], "w+", ms=9, mew=1.5)
+                ax.set_title(f"{title}, {sc.t_label(float(times[k]))}: largest {data[iz, ix]:.3g}{stress_of} "
+                             f"at {at_depth(z[iz])}", fontsize=10)
+            row[0].set_ylabel(depth_label)
+        axes[0, 0].invert_yaxis()  # once: the panels share the axis, and a second call flips it back
+    else:
+        fig, axes = plt.subplots(1, 2, figsize=(10, 4), squeeze=False, sharex=True, sharey=True,
+                                 constrained_layout=True)
+        for ax, (name, title) in zip(axes[0], _SUBSURFACE):
+            for k in picks:
+                ax.plot(x, ds[name].values[k][0] / p_scale, label=sc.t_label(float(times[k])))
+            ax.set_title(f"{title} at {at_depth(z[0])}", fontsize=10)
+            ax.legend(fontsize=8)
+            ax.grid(alpha=0.3)
+        axes[0, 0].set_ylabel(stress_unit)
+    for ax in axes[-1]:
         ax.set_xlabel(l_label)
-    axes[0].set_ylabel(l_label.replace("x", "z", 1) if z.size > 1 else stress_unit)
+    shown = f", {picks.size} of {count} recorded times" if picks.size < count else ""
+    set_title(fig, ds, f"stresses in the section y = 0{shown}")
     return fig
 
 
@@ -376,7 +410,7 @@ def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] |
     (an animation of the pressure field), when sliding ``friction`` (apparent friction against time)
     and in partial slip ``tangential_loop`` (Q against δ_x, with Cattaneo-Mindlin) and
     ``stick_map`` (stick/slip maps); with subsurface output ``subsurface_stress`` (von Mises and
-    maximum shear maps in the section y = 0). A steady state is drawn as one state, with no time histories.
+    maximum shear maps in the section y = 0, depth downwards, a row per recorded time). A steady state is drawn as one state, with no time histories.
 
     Parameters
     ----------
