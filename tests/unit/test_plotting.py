@@ -366,3 +366,41 @@ def test_subsurface_maps_have_depth_downwards_one_row_per_recorded_time_and_a_ti
                                    rtol=1e-12)
     title = _suptitle(fig)
     assert title.startswith("Subsurface stresses under a Zener") and "a0 = 588.7 µm" in title and "τ = 10 ms" in title
+
+
+def test_tangential_loop_divides_by_the_load_of_each_step_under_a_held_approach(result):
+    """Under displacement control the load relaxes: Q was divided by mu_f max(W) = mu_f W(0) and the
+    curve levelled at W(t)/W(0) (about 0.1 for the seed's Table 3 case 4) at the onset of gross
+    sliding, where Q = mu_f W(t). Now Q(t)/(mu_f W(t)) reaches 1 there; a step without load has no
+    ratio; the elastic Cattaneo-Mindlin curve of the held approach is drawn (any G gives it)."""
+    from viscontact.plotting.result import tangential_loop_figure
+    from viscontact.reference import cattaneo_mindlin, hertz_from_approach
+
+    ds = result
+    mu, load = ds.attrs["friction_coefficient"], np.array([0.0, 0.15, 0.06, 0.02, 0.015])
+    ds.attrs["normal_control"] = "displacement"
+    ds["delta_z"].values[:] = 3e-5
+    ds["load"].values[:] = load
+    ds["friction_force"].values[:] = [0.0, 0.3 * mu * 0.15, 0.8 * mu * 0.06, mu * 0.02, mu * 0.015]
+    assert list(ds["phase"].values[3:]) == [PHASE_GROSS_SLIDING] * 2
+    fig = tangential_loop_figure(ds)
+    (ax,) = fig.axes
+    simulated, reference = ax.get_lines()
+    ratio = simulated.get_ydata()
+    assert np.isnan(ratio[0])                                               # W = 0: no ratio
+    np.testing.assert_allclose(ratio[1:], [0.3, 0.8, 1.0, 1.0], rtol=1e-12)  # 1 in gross sliding
+    assert ax.get_ylabel() == "Q(t) / (μ_f W(t))" and "W(t)" in ax.get_title()
+    assert reference.get_label() == "Cattaneo-Mindlin, elastic at the held approach (any G)"
+    nu, R = ds.attrs["poisson_ratio"], ds.attrs["radius"]
+    for g in (ds.attrs["shear_modulus_instantaneous"], ds.attrs["shear_modulus_long_term"]):
+        cm = cattaneo_mindlin(hertz_from_approach(3e-5, R, g, nu).load, R, mu, g, nu)
+        d = reference.get_xdata() * 1e-6
+        np.testing.assert_allclose(reference.get_ydata(), cm.force(d) / (mu * cm.load), rtol=1e-9, atol=1e-12)
+    assert "(here 0.3)" in ax.get_legend().get_title().get_text()              # exact only at nu = 0.5
+    # a held load: Q / (mu_f W), G(0) and G(inf) under that load
+    ds.attrs["normal_control"] = "load"
+    ds["load"].values[:] = 0.15
+    ax = tangential_loop_figure(ds).axes[0]
+    assert ax.get_ylabel() == "Q / (μ_f W)"
+    assert [line.get_label() for line in ax.get_lines()] == \
+        ["viscontact", "Cattaneo-Mindlin, elastic G(0)", "Cattaneo-Mindlin, elastic G(∞)"]

@@ -246,35 +246,65 @@ def rough_contact_figure(ds: xr.Dataset) -> Any:
     return fig
 
 
-def tangential_loop_figure(ds: xr.Dataset) -> Any:
-    """The tangential force Q = Σ q_x ΔA against the tangential displacement δ_x of partial slip,
-    with the elastic Cattaneo-Mindlin curves (:class:`~viscontact.reference.CattaneoMindlin`) for
-    G(0) and G(∞) under the same load; returns the Figure."""
-    from ..reference import cattaneo_mindlin
+def _cattaneo_mindlin_references(ds: xr.Dataset) -> list[tuple[Any, str, str]]:
+    """(:class:`~viscontact.reference.CattaneoMindlin`, legend label, line style) of the elastic
+    references of a sphere's partial slip: under a held load W those for G(0) and G(∞) at W; under a
+    held approach δ_z the one curve Q/(μ_f W) against δ_x that every modulus gives there (a = √(R δ_z)
+    and δ* = μ_f a² (2 - ν) / (2 R (1 - ν)) do not depend on G), which a viscoelastic body follows
+    only for a tangential ramp fast or slow against its relaxation (the load relaxes under the
+    held approach; in between, the shear held from when the load was higher reaches μ_f W(t)
+    earlier). None under a varying load or approach, nor without a sphere."""
+    from ..reference import cattaneo_mindlin, hertz_from_approach
 
-    mu = float(ds.attrs.get("friction_coefficient", 0.0) or 0.0)
-    load = float(np.max(ds["load"].values))
-    delta_x = ds["delta_x"].values
-    references = []
     sphere = positive_attr(ds, "radius")
-    if sphere and ds.attrs.get("normal_control") == "load":
-        references = [(cattaneo_mindlin(load, sphere, mu, float(ds.attrs[key]), float(ds.attrs["poisson_ratio"])),
-                       name, style) for key, name, style in (("shear_modulus_instantaneous", "G(0)", "k--"),
-                                                             ("shear_modulus_long_term", "G(∞)", "k:"))]
-    # up to 1.5 times the onset of gross sliding (or the elastic G(inf) one): the loop, not the sliding
+    mu = float(ds.attrs.get("friction_coefficient", 0.0) or 0.0)
+    if not sphere or mu <= 0:
+        return []
+    nu = float(ds.attrs["poisson_ratio"])
+    control = ds.attrs.get("normal_control")
+    if control == "load" and _held(ds["load"].values):
+        load = float(ds["load"].values[0])
+        return [(cattaneo_mindlin(load, sphere, mu, float(ds.attrs[key]), nu), f"Cattaneo-Mindlin, elastic {name}",
+                 style) for key, name, style in (("shear_modulus_instantaneous", "G(0)", "k--"),
+                                                 ("shear_modulus_long_term", "G(∞)", "k:"))]
+    if control == "displacement" and _held(ds["delta_z"].values):
+        g0 = float(ds.attrs["shear_modulus_instantaneous"])
+        hertz = hertz_from_approach(float(ds["delta_z"].values[0]), sphere, g0, nu)
+        return [(cattaneo_mindlin(float(hertz.load), sphere, mu, g0, nu),
+                 "Cattaneo-Mindlin, elastic at the held approach (any G)", "k--")]
+    return []
+
+
+def tangential_loop_figure(ds: xr.Dataset) -> Any:
+    """The tangential force Q = Σ q_x ΔA over μ_f times the load W(t) of the same record (held or
+    relaxing) against the tangential displacement δ_x of partial slip, 1 at the onset of gross
+    sliding, with the elastic Cattaneo-Mindlin curves of :func:`_cattaneo_mindlin_references`
+    (exact for ν = 0.5, where the normal and tangential problems do not couple); returns the Figure."""
+    mu = float(ds.attrs.get("friction_coefficient", 0.0) or 0.0)
+    load = ds["load"].values
+    delta_x = ds["delta_x"].values
+    references = _cattaneo_mindlin_references(ds)
+    # up to 1.5 times the onset of gross sliding (or the elastic one, the largest): the loop, not the sliding
     sliding = np.flatnonzero(ds["phase"].values == PHASE_GROSS_SLIDING)
     onset = [float(delta_x[sliding[0]])] if sliding.size else [float(np.max(delta_x))]
-    end = 1.5 * max(onset + [cm.sliding_displacement for cm, _, _ in references[1:]])
+    end = 1.5 * max(onset + [cm.sliding_displacement for cm, _, _ in references])
     keep = delta_x <= end
+    with np.errstate(divide="ignore", invalid="ignore"):  # no load (no contact): no ratio
+        ratio = np.where(load[keep] > 0, ds["friction_force"].values[keep] / (mu * load[keep]), np.nan)
     fig, ax = pyplot().subplots(figsize=(6.4, 4.6))
-    ax.plot(delta_x[keep] * 1e6, ds["friction_force"].values[keep] / (mu * load), "o-", ms=2.5, label="viscontact")
+    ax.plot(delta_x[keep] * 1e6, ratio, "o-", ms=2.5, label="viscontact")
     d = np.linspace(0.0, end, 300)
     for cm, name, style in references:
-        ax.plot(d * 1e6, cm.force(d) / (mu * load), style, lw=1.0, label=f"Cattaneo-Mindlin, elastic {name}")
-    ax.set(xlabel="tangential displacement δ_x [µm]", ylabel="Q / (μ_f W)", ylim=(0, 1.1))
+        ax.plot(d * 1e6, cm.force(d) / (mu * cm.load), style, lw=1.0, label=name)
+    ax.set(xlabel="tangential displacement δ_x [µm]", ylim=(0, 1.1),
+           ylabel="Q / (μ_f W)" if _held(load) else "Q(t) / (μ_f W(t))")
+    if not _held(load):
+        ax.set_title("W(t): the load at the same step", fontsize=9)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    set_title(fig, ds, "tangential force against displacement")
+    nu = float(ds.attrs.get("poisson_ratio", 0.5))
+    ax.legend(fontsize=8, title_fontsize=8, loc="lower right",
+              title=f"Cattaneo-Mindlin exact for ν = 0.5 (here {nu:g})" if references and nu != 0.5 else None)
+    set_title(fig, ds, "tangential force against displacement" + _held_note(ds))
     fig.tight_layout()
     return fig
 
@@ -408,7 +438,7 @@ def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] |
     domain), for a rough contact (:func:`is_rough`) ``rough_contact`` (μ_app, real contact area
     fraction, contact patches, mean gap against time), ``pressure.gif``
     (an animation of the pressure field), when sliding ``friction`` (apparent friction against time)
-    and in partial slip ``tangential_loop`` (Q against δ_x, with Cattaneo-Mindlin) and
+    and in partial slip ``tangential_loop`` (Q / μ_f W(t) against δ_x, with Cattaneo-Mindlin) and
     ``stick_map`` (stick/slip maps); with subsurface output ``subsurface_stress`` (von Mises and
     maximum shear maps in the section y = 0, depth downwards, a row per recorded time). A steady state is drawn as one state, with no time histories.
 
