@@ -404,3 +404,16 @@ def test_tangential_loop_divides_by_the_load_of_each_step_under_a_held_approach(
     assert ax.get_ylabel() == "Q / (μ_f W)"
     assert [line.get_label() for line in ax.get_lines()] == \
         ["viscontact", "Cattaneo-Mindlin, elastic G(0)", "Cattaneo-Mindlin, elastic G(∞)"]
+
+
+def test_fig4_labels_each_speed_in_mm_per_s_and_in_the_a0_of_its_axes(result):
+    """The seed's cases give v = 1.2 a0/tau with the a0 of 0.15 N (588.7 um); panel (c) said
+    "v tau/a0 = 1.21" with the a0 of its 0.148 N without saying which: the speed is given in mm/s
+    too, and v tau/a0 is the one of the a0 in the figure's title."""
+    from viscontact.plotting.seed import profiles_figure as fig4
+
+    fig = fig4({"case": result}, (0.0, 0.001), "test")
+    expected = 0.05 * 0.01 / result.attrs["a0"]                # the fake run: 50 mm/s, tau = 10 ms
+    assert fig.axes[0].get_title() == f"(a) v = 50 mm/s = {expected:.2f} a0/τ"
+    assert fig.axes[1].get_legend_handles_labels()[1] == [f"v = 50 mm/s = {expected:.2f} a0/τ"]
+    assert "a0 = 588.7 µm" in _suptitle(fig)
