@@ -17,6 +17,15 @@ from viscontact.results import to_dataset
 ROOT = Path(__file__).resolve().parents[2]
 
 
+@pytest.fixture(autouse=True)
+def _close_figures():
+    """The figures a test draws are closed after it (pyplot keeps them open)."""
+    yield
+    from viscontact.plotting import pyplot
+
+    pyplot().close("all")
+
+
 @pytest.fixture
 def result():
     """A partial-slip result whose fields vary with y and whose indenter sits off the grid centre."""
@@ -417,3 +426,84 @@ def test_fig4_labels_each_speed_in_mm_per_s_and_in_the_a0_of_its_axes(result):
     assert fig.axes[0].get_title() == f"(a) v = 50 mm/s = {expected:.2f} a0/τ"
     assert fig.axes[1].get_legend_handles_labels()[1] == [f"v = 50 mm/s = {expected:.2f} a0/τ"]
     assert "a0 = 588.7 µm" in _suptitle(fig)
+
+
+def _extent(fig, artist):
+    return artist.get_window_extent(fig.canvas.get_renderer())
+
+
+def test_the_pressure_animation_title_fits_its_frames(result):
+    """The frames are saved at the figure's size (no tight bounding box): a long title ran off both
+    sides ("stomer on a periodic ... pressu"). It is wrapped to the width and sits above the map's."""
+    from viscontact.plotting.result import pressure_animation_figure
+
+    result.attrs["title"] = "Elastomer on a periodic self-affine surface: partial slip to gross sliding"
+    fig, frame, count = pressure_animation_figure(result)
+    assert count == result.sizes["t"]
+    frame(count - 1)
+    title, (ax, _) = fig._suptitle, fig.axes
+    box, page = _extent(fig, title), fig.bbox
+    assert page.x0 <= box.x0 and box.x1 <= page.x1 and box.y1 <= page.y1, (box, page)
+    assert _extent(fig, ax.title).y1 <= box.y0                                 # the frame's t/tau below it
+    assert title.get_text().replace("\n", " ").startswith(result.attrs["title"] + ": pressure")
+
+
+def test_the_material_figure_labels_do_not_overlap():
+    """J(t)'s axis label ran into the middle panel's "[Pa]" (2 px apart at 100 dpi), the title into
+    the middle panel's (3.7 px)."""
+    from viscontact.materials import Material
+    from viscontact.plotting.material import material_figure
+    from viscontact.results import material_dataset
+
+    fig = material_figure(material_dataset(Material.zener(1.93e6, 0.193e6, 0.01, 0.3)))
+    fig.canvas.draw()
+    first, middle, last, twin = fig.axes
+    assert middle.get_ylabel() == "G', G'' [Pa]"
+    assert _extent(fig, middle.yaxis.label).x0 - _extent(fig, twin.yaxis.label).x1 >= 0.2 * fig.dpi
+    for ax in (first, middle, last):
+        assert _extent(fig, fig._suptitle).y0 - _extent(fig, ax.title).y1 >= 0.05 * fig.dpi
+
+
+def test_tau_is_given_in_a_unit_that_suits_it_and_said_to_be_the_shortest(result):
+    """The PU elastomer's title said "τ = 0.0001368 ms" and its Deborah number used the shortest of
+    10 retardation times without saying so."""
+    from viscontact.plotting.base import format_duration, scales_line
+    from viscontact.plotting.result import speed_curve_figure
+    from viscontact.results import sweep_dataset
+
+    assert [format_duration(t) for t in (0.01, 1.368063495551196e-07, 2.5, 3600.0, 4e-6)] == \
+        ["10 ms", "136.8 ns", "2.5 s", "3600 s", "4 µs"]
+    assert scales_line(result).endswith("τ = 10 ms")                          # one retardation time
+    problem = make_problem()
+    sweep = sweep_dataset(fake_records(problem)[:3], [0.01, 0.1, 1.0], problem)
+    sweep.attrs.update(retardation_time=1.368063495551196e-07, relaxation_times=np.logspace(-7, 2, 10))
+    fig = speed_curve_figure(sweep)
+    assert _suptitle(fig).endswith("τ = 136.8 ns (the shortest of 10 retardation times)")
+    assert fig.axes[2].get_xlabel() == "Deborah number v τ / a0, τ the shortest retardation time"
+
+
+def test_an_elastic_material_is_compared_with_hertz(tmp_path):
+    from vc_testing import SEED_G0, SEED_NU, sphere_problem
+
+    from viscontact.api import run
+    from viscontact.materials import Material
+    from viscontact.plotting.result import contact_history_figure
+
+    problem = sphere_problem(Material.elastic(SEED_G0, SEED_NU), 16, 1.6e-3, control="displacement", value=3e-5,
+                             t_end=2e-3, dt=1e-3, title="elastic")
+    ds = run(problem)
+    ds.attrs["case"] = '[material]\ntype = "elastic"\n'
+    labels = [line.get_label() for ax in contact_history_figure(ds).axes for line in ax.get_lines()]
+    assert "Hertz (1882)" in labels and "Lee & Radok (1960)" not in labels
+
+
+def test_the_coulomb_bound_is_drawn_over_the_shear_it_bounds(result):
+    """In full slip q_x = mu_f p: the dotted mu_f p of a record lay under its own q_x and the later
+    records' (the fake result: q = 0.3 p, mu_f = 0.3)."""
+    fig = profiles_figure(result)
+    shear = fig.axes[1].get_lines()
+    solid = [line for line in shear if line.get_linestyle() == "-"]
+    dotted = [line for line in shear if line.get_linestyle() == ":"]
+    assert len(solid) == len(dotted) == result.sizes["t"]
+    assert min(line.get_zorder() for line in dotted) > max(line.get_zorder() for line in solid)
+    assert all(line.get_color() == "k" for line in dotted) and "black dotted: μ_f p" in fig.axes[1].get_title()

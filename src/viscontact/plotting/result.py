@@ -13,8 +13,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..problem import PHASE_GROSS_SLIDING
-from .base import (FigureFiles, Scales, cell_limits, check_format, draw_contact_maps, draw_map, is_periodic, is_steady,
-                   map_axes, map_image, positive_attr, profile, pyplot, set_title, time_index)
+from .base import (FigureFiles, Scales, cell_limits, check_format, draw_contact_maps, draw_map, fit_title, is_periodic,
+                   is_steady, map_axes, map_image, positive_attr, profile, pyplot, retardation_count, set_title,
+                   time_index)
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -22,8 +23,9 @@ if TYPE_CHECKING:
     from ..materials import Material
 
 __all__ = ["ROUGH_VARIABLES", "contact_history_figure", "friction_figure", "is_rough", "material_of", "plot_result",
-           "plot_speed_curve", "pressure_maps_figure", "profiles_figure", "rough_contact_figure", "speed_curve_figure",
-           "stick_maps_figure", "subsurface_figure", "tangential_loop_figure"]
+           "plot_speed_curve", "pressure_animation_figure", "pressure_maps_figure", "profiles_figure",
+           "rough_contact_figure", "speed_curve_figure", "stick_maps_figure", "subsurface_figure",
+           "tangential_loop_figure"]
 
 #: frames of the pressure animation at most
 MAX_FRAMES = 60
@@ -107,13 +109,13 @@ def profiles_figure(ds: xr.Dataset, times: Sequence[float] | None = None) -> Any
         if shear:
             _, q = profile(ds, "shear_x", k)
             axes[0, 1].plot(x / sc.length[0], q / sc.shear[0], color=line.get_color(), label=label)
-            if mu > 0:
-                axes[0, 1].plot(x / sc.length[0], mu * p / sc.shear[0], color=line.get_color(), ls=":", lw=0.8)
+            if mu > 0:  # on top of every q_x (in full slip q_x = μ_f p: the line would hide under its own)
+                axes[0, 1].plot(x / sc.length[0], mu * p / sc.shear[0], color="k", ls=":", lw=0.9, zorder=3)
     ax_p.set(xlabel=sc.length[1], ylabel=sc.pressure[1], title="pressure")
     ax_p.legend(fontsize=8)
     if shear:
         axes[0, 1].set(xlabel=sc.length[1], ylabel=sc.shear[1],
-                       title="shear traction (dotted: μ_f p)" if mu > 0 else "shear traction")
+                       title="shear traction (black dotted: μ_f p)" if mu > 0 else "shear traction")
     for ax in axes[0]:
         ax.grid(alpha=0.3)
     what = f"steady tractions along y = 0 (μ_app = {float(ds['mu_app'][0]):.4g})" if steady else \
@@ -127,7 +129,8 @@ def profiles_figure(ds: xr.Dataset, times: Sequence[float] | None = None) -> Any
 def contact_history_figure(ds: xr.Dataset) -> Any:
     """Contact radius, load and approach against time, without the one the boundary condition holds,
     and with Lee & Radok's solution (:mod:`viscontact.reference`) for a sphere indented without
-    sliding under a held load (creep) or approach (relaxation); returns the Figure."""
+    sliding under a held load (creep) or approach (relaxation), labelled Hertz for an elastic
+    material (G(0) = G(∞)), where it is his; returns the Figure."""
     from ..reference import lee_radok_creep, lee_radok_relaxation
 
     sc = Scales(ds)
@@ -146,11 +149,13 @@ def contact_history_figure(ds: xr.Dataset) -> Any:
         elif ds.attrs.get("normal_control") == "displacement" and _held(ds["delta_z"].values):
             ref = lee_radok_relaxation(float(ds["delta_z"].values[0]), sphere, material, t)
             curves = {"contact_area": ref.radius, "load": ref.load}
+    elastic = bool(np.isclose(float(ds.attrs.get("shear_modulus_instantaneous", np.nan)),
+                              float(ds.attrs.get("shear_modulus_long_term", np.nan)), rtol=1e-12, atol=0.0))
     for ax, (name, values, label, scale) in zip(axes[0], panels):
         ax.plot(t / sc.time[0], values, label="viscontact")
         if name in curves:
             ax.plot(t / sc.time[0], curves[name] * (1 / sc.radius[0] if name == "contact_area" else scale),
-                    "k--", lw=1.0, label="Lee & Radok (1960)")
+                    "k--", lw=1.0, label="Hertz (1882)" if elastic else "Lee & Radok (1960)")
             ax.legend(fontsize=8)
         ax.set(xlabel=sc.time[1], ylabel=label)
         ax.grid(alpha=0.3)
@@ -344,7 +349,11 @@ def stick_maps_figure(ds: xr.Dataset, times: Sequence[float] | None = None) -> A
     return draw_contact_maps(ds, picks or [0], titles, "contact: slip (orange), stick (blue)")
 
 
-def _pressure_animation(ds: xr.Dataset, files: FigureFiles) -> Path:
+def pressure_animation_figure(ds: xr.Dataset) -> tuple[Any, Any, int]:
+    """The frames of ``pressure.gif``: (Figure, ``frame(i)`` drawing the i-th, count), at most
+    :data:`MAX_FRAMES` records evenly spread, one colour scale. The frames are saved at the figure's
+    size, so the title is wrapped to its width (:func:`~viscontact.plotting.base.fit_title`) and the
+    map placed below it."""
     sc = Scales(ds)
     picks = _time_indices(ds.sizes["t"], MAX_FRAMES)
     pressure = ds["pressure"].values
@@ -353,8 +362,10 @@ def _pressure_animation(ds: xr.Dataset, files: FigureFiles) -> Path:
                      vmax=float(pressure.max()) / sc.pressure[0] or 1.0, cmap="viridis")
     fig.colorbar(image, ax=ax, label=sc.pressure[1])
     ax.set(xlabel=sc.length[1], ylabel=sc.length[1].replace("x", "y"))
-    set_title(fig, ds, "pressure")
-    fig.subplots_adjust(top=0.8)
+    title = set_title(fig, ds, "pressure")
+    title.set_y(0.99)
+    height = fit_title(fig, title)
+    fig.subplots_adjust(top=0.99 - height - 0.09, bottom=0.11)
 
     def frame(i: int) -> tuple[Any]:
         k = picks[i]
@@ -366,7 +377,13 @@ def _pressure_animation(ds: xr.Dataset, files: FigureFiles) -> Path:
         ax.set_title(sc.t_label(float(ds["t"].values[k])))
         return (image,)
 
-    return files.save_animation(fig, frame, len(picks), "pressure")
+    frame(0)
+    return fig, frame, len(picks)
+
+
+def _pressure_animation(ds: xr.Dataset, files: FigureFiles) -> Path:
+    fig, frame, count = pressure_animation_figure(ds)
+    return files.save_animation(fig, frame, count, "pressure")
 
 
 #: recorded subsurface times drawn at most (rows of ``subsurface_stress``, evenly spread)
@@ -434,13 +451,14 @@ def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] |
 
     ``pressure_profiles``: pressure (and shear, when nonzero) along y = 0; ``pressure_maps``: p/p0
     maps at ``times`` [s] (default: four records). A transient adds ``contact_history`` (contact
-    radius, load and approach against time; Lee & Radok for held indentation; not on a periodic
-    domain), for a rough contact (:func:`is_rough`) ``rough_contact`` (μ_app, real contact area
-    fraction, contact patches, mean gap against time), ``pressure.gif``
-    (an animation of the pressure field), when sliding ``friction`` (apparent friction against time)
-    and in partial slip ``tangential_loop`` (Q / μ_f W(t) against δ_x, with Cattaneo-Mindlin) and
+    radius, load and approach against time; Lee & Radok, or Hertz when elastic, for held indentation;
+    not on a periodic domain), for a rough contact (:func:`is_rough`) ``rough_contact`` (μ_app, real
+    contact area fraction, contact patches, mean gap against time), ``pressure.gif`` (an animation
+    of the pressure field), when sliding ``friction`` (apparent friction against time) and in
+    partial slip ``tangential_loop`` (Q / μ_f W(t) against δ_x, with Cattaneo-Mindlin) and
     ``stick_map`` (stick/slip maps); with subsurface output ``subsurface_stress`` (von Mises and
-    maximum shear maps in the section y = 0, depth downwards, a row per recorded time). A steady state is drawn as one state, with no time histories.
+    maximum shear maps in the section y = 0, depth downwards, a row per recorded time). A steady
+    state is drawn as one state, with no time histories.
 
     Parameters
     ----------
@@ -504,8 +522,9 @@ def speed_curve_figure(ds: xr.Dataset) -> Any:
         ax.semilogx(x, ds[name].values[order] / scale, "o-", ms=4)
         ax.set(ylabel=label)
         ax.grid(alpha=0.3, which="both")
+    deborah = "Deborah number v τ / a0" + (", τ the shortest retardation time" if retardation_count(ds) > 1 else "")
     for ax in axes[1]:
-        ax.set_xlabel("Deborah number v τ / a0" if k else "sliding speed v [m/s]")
+        ax.set_xlabel(deborah if k else "sliding speed v [m/s]")
     if k:
         for ax in axes[0]:
             top = ax.secondary_xaxis("top", functions=(lambda d, k=k: d / k, lambda v, k=k: v * k))
