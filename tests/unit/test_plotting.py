@@ -17,6 +17,15 @@ from viscontact.results import to_dataset
 ROOT = Path(__file__).resolve().parents[2]
 
 
+@pytest.fixture(autouse=True)
+def _close_figures():
+    """The figures a test draws are closed after it (pyplot keeps them open)."""
+    yield
+    from viscontact.plotting import pyplot
+
+    pyplot().close("all")
+
+
 @pytest.fixture
 def result():
     """A partial-slip result whose fields vary with y and whose indenter sits off the grid centre."""
@@ -340,3 +349,170 @@ def test_a_result_keeps_the_prony_terms_of_a_material_file(tmp_path):
     assert len(ds.attrs["relaxation_times"]) == 11
     t = np.logspace(-3, 9, 13)
     np.testing.assert_allclose(material_of(ds).relaxation_modulus(t), run.relaxation_modulus(t), rtol=1e-12)
+
+
+# --- the docs/figures review ---------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def subsurface():
+    """The shipped subsurface case at 16^2 to 0.006 s, stresses at two recorded times."""
+    import viscontact as vc
+
+    case = vc.load_case(ROOT / "cases" / "creep_subsurface_stress.toml").with_overrides(
+        {"grid.n": 16, "time.t_end": 0.006, "output.subsurface_times": [0.0, 0.006]})
+    return vc.run(case)
+
+
+def test_subsurface_maps_have_depth_downwards_one_row_per_recorded_time_and_a_title(subsurface):
+    """The two panels share the y axis: each inverted it once and the two inversions cancelled
+    (the surface was drawn at the bottom); only the last time was drawn, with no title."""
+    from viscontact.plotting.result import subsurface_figure
+
+    ds = subsurface
+    fig = subsurface_figure(ds)
+    maps = [ax for ax in fig.axes if ax.collections and ax.get_label() != "<colorbar>"]
+    assert len(maps) == 2 * ds.sizes["t_sub"] == 4
+    a0, p0 = ds.attrs["a0"], ds.attrs["p0"]
+    for i, ax in enumerate(maps):
+        k, name = divmod(i, 2)
+        assert ax.yaxis_inverted(), ax.get_title()                       # depth downwards
+        bottom, top = ax.get_ylim()
+        assert top < 0.0 < ds["z"].values[-1] / a0 < bottom                # the surface z = 0 on top
+        assert ax.get_title().startswith(f"{('von Mises', 'maximum shear')[name]}, t/τ = "
+                                         f"{ds['t_sub'].values[k] / 0.01:.3g}:")
+        expected = ds[("von_mises_stress", "max_shear_stress")[name]].values[k] / p0
+        np.testing.assert_allclose(np.asarray(ax.collections[0].get_array()).reshape(expected.shape), expected,
+                                   rtol=1e-12)
+    title = _suptitle(fig)
+    assert title.startswith("Subsurface stresses under a Zener") and "a0 = 588.7 µm" in title and "τ = 10 ms" in title
+
+
+def test_tangential_loop_divides_by_the_load_of_each_step_under_a_held_approach(result):
+    """Under displacement control the load relaxes: Q was divided by mu_f max(W) = mu_f W(0) and the
+    curve levelled at W(t)/W(0) (about 0.1 for the seed's Table 3 case 4) at the onset of gross
+    sliding, where Q = mu_f W(t). Now Q(t)/(mu_f W(t)) reaches 1 there; a step without load has no
+    ratio; the elastic Cattaneo-Mindlin curve of the held approach is drawn (any G gives it)."""
+    from viscontact.plotting.result import tangential_loop_figure
+    from viscontact.reference import cattaneo_mindlin, hertz_from_approach
+
+    ds = result
+    mu, load = ds.attrs["friction_coefficient"], np.array([0.0, 0.15, 0.06, 0.02, 0.015])
+    ds.attrs["normal_control"] = "displacement"
+    ds["delta_z"].values[:] = 3e-5
+    ds["load"].values[:] = load
+    ds["friction_force"].values[:] = [0.0, 0.3 * mu * 0.15, 0.8 * mu * 0.06, mu * 0.02, mu * 0.015]
+    assert list(ds["phase"].values[3:]) == [PHASE_GROSS_SLIDING] * 2
+    fig = tangential_loop_figure(ds)
+    (ax,) = fig.axes
+    simulated, reference = ax.get_lines()
+    ratio = simulated.get_ydata()
+    assert np.isnan(ratio[0])                                               # W = 0: no ratio
+    np.testing.assert_allclose(ratio[1:], [0.3, 0.8, 1.0, 1.0], rtol=1e-12)  # 1 in gross sliding
+    assert ax.get_ylabel() == "Q(t) / (μ_f W(t))" and "W(t)" in ax.get_title()
+    assert reference.get_label() == "Cattaneo-Mindlin, elastic at the held approach (any G)"
+    nu, R = ds.attrs["poisson_ratio"], ds.attrs["radius"]
+    for g in (ds.attrs["shear_modulus_instantaneous"], ds.attrs["shear_modulus_long_term"]):
+        cm = cattaneo_mindlin(hertz_from_approach(3e-5, R, g, nu).load, R, mu, g, nu)
+        d = reference.get_xdata() * 1e-6
+        np.testing.assert_allclose(reference.get_ydata(), cm.force(d) / (mu * cm.load), rtol=1e-9, atol=1e-12)
+    assert "(here 0.3)" in ax.get_legend().get_title().get_text()              # exact only at nu = 0.5
+    # a held load: Q / (mu_f W), G(0) and G(inf) under that load
+    ds.attrs["normal_control"] = "load"
+    ds["load"].values[:] = 0.15
+    ax = tangential_loop_figure(ds).axes[0]
+    assert ax.get_ylabel() == "Q / (μ_f W)"
+    assert [line.get_label() for line in ax.get_lines()] == \
+        ["viscontact", "Cattaneo-Mindlin, elastic G(0)", "Cattaneo-Mindlin, elastic G(∞)"]
+
+
+def test_fig4_labels_each_speed_in_mm_per_s_and_in_the_a0_of_its_axes(result):
+    """The seed's cases give v = 1.2 a0/tau with the a0 of 0.15 N (588.7 um); panel (c) said
+    "v tau/a0 = 1.21" with the a0 of its 0.148 N without saying which: the speed is given in mm/s
+    too, and v tau/a0 is the one of the a0 in the figure's title."""
+    from viscontact.plotting.seed import profiles_figure as fig4
+
+    fig = fig4({"case": result}, (0.0, 0.001), "test")
+    expected = 0.05 * 0.01 / result.attrs["a0"]                # the fake run: 50 mm/s, tau = 10 ms
+    assert fig.axes[0].get_title() == f"(a) v = 50 mm/s = {expected:.2f} a0/τ"
+    assert fig.axes[1].get_legend_handles_labels()[1] == [f"v = 50 mm/s = {expected:.2f} a0/τ"]
+    assert "a0 = 588.7 µm" in _suptitle(fig)
+
+
+def _extent(fig, artist):
+    return artist.get_window_extent(fig.canvas.get_renderer())
+
+
+def test_the_pressure_animation_title_fits_its_frames(result):
+    """The frames are saved at the figure's size (no tight bounding box): a long title ran off both
+    sides ("stomer on a periodic ... pressu"). It is wrapped to the width and sits above the map's."""
+    from viscontact.plotting.result import pressure_animation_figure
+
+    result.attrs["title"] = "Elastomer on a periodic self-affine surface: partial slip to gross sliding"
+    fig, frame, count = pressure_animation_figure(result)
+    assert count == result.sizes["t"]
+    frame(count - 1)
+    title, (ax, _) = fig._suptitle, fig.axes
+    box, page = _extent(fig, title), fig.bbox
+    assert page.x0 <= box.x0 and box.x1 <= page.x1 and box.y1 <= page.y1, (box, page)
+    assert _extent(fig, ax.title).y1 <= box.y0                                 # the frame's t/tau below it
+    assert title.get_text().replace("\n", " ").startswith(result.attrs["title"] + ": pressure")
+
+
+def test_the_material_figure_labels_do_not_overlap():
+    """J(t)'s axis label ran into the middle panel's "[Pa]" (2 px apart at 100 dpi), the title into
+    the middle panel's (3.7 px)."""
+    from viscontact.materials import Material
+    from viscontact.plotting.material import material_figure
+    from viscontact.results import material_dataset
+
+    fig = material_figure(material_dataset(Material.zener(1.93e6, 0.193e6, 0.01, 0.3)))
+    fig.canvas.draw()
+    first, middle, last, twin = fig.axes
+    assert middle.get_ylabel() == "G', G'' [Pa]"
+    assert _extent(fig, middle.yaxis.label).x0 - _extent(fig, twin.yaxis.label).x1 >= 0.2 * fig.dpi
+    for ax in (first, middle, last):
+        assert _extent(fig, fig._suptitle).y0 - _extent(fig, ax.title).y1 >= 0.05 * fig.dpi
+
+
+def test_tau_is_given_in_a_unit_that_suits_it_and_said_to_be_the_shortest(result):
+    """The PU elastomer's title said "τ = 0.0001368 ms" and its Deborah number used the shortest of
+    10 retardation times without saying so."""
+    from viscontact.plotting.base import format_duration, scales_line
+    from viscontact.plotting.result import speed_curve_figure
+    from viscontact.results import sweep_dataset
+
+    assert [format_duration(t) for t in (0.01, 1.368063495551196e-07, 2.5, 3600.0, 4e-6)] == \
+        ["10 ms", "136.8 ns", "2.5 s", "3600 s", "4 µs"]
+    assert scales_line(result).endswith("τ = 10 ms")                          # one retardation time
+    problem = make_problem()
+    sweep = sweep_dataset(fake_records(problem)[:3], [0.01, 0.1, 1.0], problem)
+    sweep.attrs.update(retardation_time=1.368063495551196e-07, relaxation_times=np.logspace(-7, 2, 10))
+    fig = speed_curve_figure(sweep)
+    assert _suptitle(fig).endswith("τ = 136.8 ns (the shortest of 10 retardation times)")
+    assert fig.axes[2].get_xlabel() == "Deborah number v τ / a0, τ the shortest retardation time"
+
+
+def test_an_elastic_material_is_compared_with_hertz(tmp_path):
+    from vc_testing import SEED_G0, SEED_NU, sphere_problem
+
+    from viscontact.api import run
+    from viscontact.materials import Material
+    from viscontact.plotting.result import contact_history_figure
+
+    problem = sphere_problem(Material.elastic(SEED_G0, SEED_NU), 16, 1.6e-3, control="displacement", value=3e-5,
+                             t_end=2e-3, dt=1e-3, title="elastic")
+    ds = run(problem)
+    ds.attrs["case"] = '[material]\ntype = "elastic"\n'
+    labels = [line.get_label() for ax in contact_history_figure(ds).axes for line in ax.get_lines()]
+    assert "Hertz (1882)" in labels and "Lee & Radok (1960)" not in labels
+
+
+def test_the_coulomb_bound_is_drawn_over_the_shear_it_bounds(result):
+    """In full slip q_x = mu_f p: the dotted mu_f p of a record lay under its own q_x and the later
+    records' (the fake result: q = 0.3 p, mu_f = 0.3)."""
+    fig = profiles_figure(result)
+    shear = fig.axes[1].get_lines()
+    solid = [line for line in shear if line.get_linestyle() == "-"]
+    dotted = [line for line in shear if line.get_linestyle() == ":"]
+    assert len(solid) == len(dotted) == result.sizes["t"]
+    assert min(line.get_zorder() for line in dotted) > max(line.get_zorder() for line in solid)
+    assert all(line.get_color() == "k" for line in dotted) and "black dotted: μ_f p" in fig.axes[1].get_title()

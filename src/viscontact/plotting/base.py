@@ -19,8 +19,9 @@ if TYPE_CHECKING:  # xarray is imported where it is used
     import xarray as xr
 
 __all__ = ["DPI", "FORMATS", "FigureFiles", "Scales", "cell_limits", "check_format", "contact_state",
-           "draw_contact_maps", "draw_map", "is_periodic", "is_steady", "map_image", "nominal_pressure", "period",
-           "phase_name", "positive_attr", "profile", "pyplot", "save_figure", "scales_line", "set_title", "time_index"]
+           "draw_contact_maps", "draw_map", "fit_title", "format_duration", "is_periodic", "is_steady", "map_image",
+           "nominal_pressure", "period", "phase_name", "positive_attr", "profile", "pyplot", "retardation_count",
+           "save_figure", "scales_line", "set_title", "tau_line", "time_index"]
 
 #: resolution of raster figures [dots per inch] unless asked otherwise
 DPI = 150
@@ -135,23 +136,63 @@ def nominal_pressure(ds: xr.Dataset) -> float | None:
     return load / side**2
 
 
+def format_duration(seconds: float) -> str:
+    """A duration in the unit that puts it in [1, 1000): ``10 ms``, ``136.8 ns``, ``2.5 s``."""
+    for scale, unit in ((1.0, "s"), (1e-3, "ms"), (1e-6, "µs"), (1e-9, "ns")):
+        if abs(seconds) >= scale:
+            return f"{seconds / scale:.4g} {unit}"
+    return f"{seconds / 1e-12:.4g} ps" if seconds else "0 s"
+
+
+def retardation_count(ds: xr.Dataset) -> int:
+    """How many retardation times the result's material has (as many as its Prony terms; 1 when the
+    result does not keep them)."""
+    return int(np.atleast_1d(ds.attrs["relaxation_times"]).size) if "relaxation_times" in ds.attrs else 1
+
+
+def tau_line(ds: xr.Dataset) -> str:
+    """``τ = 10 ms``, or ``τ = 136.8 ns (the shortest of 10 retardation times)``; empty without τ."""
+    tau = positive_attr(ds, "retardation_time")
+    if not tau:
+        return ""
+    count = retardation_count(ds)
+    return f"τ = {format_duration(tau)}" + (f" (the shortest of {count} retardation times)" if count > 1 else "")
+
+
 def scales_line(ds: xr.Dataset) -> str:
-    """``a0 = 588.7 µm, p0 = 0.2067 MPa, τ = 10 ms``: the scales of a result (those it has); a periodic
-    result: ``period L = 1 mm, p̄ = W/L² = 10 kPa, τ = 10 ms``."""
-    a0, p0, tau = positive_attr(ds, "a0"), positive_attr(ds, "p0"), positive_attr(ds, "retardation_time")
+    """``a0 = 588.7 µm, p0 = 0.2067 MPa, τ = 10 ms``: the scales of a result (those it has; τ in the unit
+    that suits it, and said to be the shortest retardation time where the material has several); a
+    periodic result: ``period L = 1 mm, p̄ = W/L² = 10 kPa, τ = 10 ms``."""
+    a0, p0 = positive_attr(ds, "a0"), positive_attr(ds, "p0")
     side, mean_p = (period(ds), nominal_pressure(ds)) if is_periodic(ds) else (None, None)
     parts = [f"period L = {side * 1e3:.4g} mm" if side else "",
              f"p̄ = W/L² = {mean_p * 1e-3:.4g} kPa" if mean_p else "",
              f"a0 = {a0 * 1e6:.4g} µm" if a0 else "", f"p0 = {p0 * 1e-6:.4g} MPa" if p0 else "",
-             f"τ = {tau * 1e3:.4g} ms" if tau else ""]
+             tau_line(ds)]
     return ", ".join(p for p in parts if p)
 
 
-def set_title(fig: Any, ds: xr.Dataset, what: str) -> None:
-    """The figure's title: the result's title (or case), what is drawn, and its scales."""
+def set_title(fig: Any, ds: xr.Dataset, what: str) -> Any:
+    """The figure's title: the result's title (or case), what is drawn, and its scales; returns the
+    Text."""
     name = str(ds.attrs.get("title", "") or "")
-    fig.suptitle("\n".join(line for line in (f"{name}: {what}" if name else what, scales_line(ds)) if line),
-                 fontsize=10)
+    return fig.suptitle("\n".join(line for line in (f"{name}: {what}" if name else what, scales_line(ds)) if line),
+                        fontsize=10)
+
+
+def fit_title(fig: Any, title: Any, margin: float = 0.02) -> float:
+    """Wrap the lines of the figure title ``title`` (a Text) until it fits the figure's width less
+    ``margin`` on each side, for a figure saved at its own size (an animation's frames: nothing is
+    cut by ``bbox_inches="tight"`` there); returns the height it takes, a fraction of the figure's."""
+    import textwrap
+
+    lines = title.get_text().split("\n")
+    renderer = fig.canvas.get_renderer()
+    for width in range(max(len(line) for line in lines), 9, -1):
+        title.set_text("\n".join(textwrap.fill(line, width) for line in lines))
+        if title.get_window_extent(renderer).width <= (1 - 2 * margin) * fig.bbox.width:
+            break
+    return title.get_window_extent(renderer).height / fig.bbox.height
 
 
 def is_steady(ds: xr.Dataset) -> bool:

@@ -3,22 +3,27 @@ and G''(omega), tan delta, so that an imported Prony series can be checked befor
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from .base import FigureFiles, pyplot
 
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["plot_material"]
+__all__ = ["material_figure", "plot_material"]
 
 
 def plot_material(ds: xr.Dataset, out_dir: str | Path, *, fmt: str = "png", dpi: int | None = None) -> list[Path]:
-    """``material.<fmt>`` in ``out_dir``: relaxation modulus and creep compliance against time, storage
-    and loss moduli and tan delta against angular frequency (log axes). Returns the paths."""
+    """``material.<fmt>`` in ``out_dir``: :func:`material_figure`. Returns the paths."""
+    return [FigureFiles(Path(out_dir), fmt, dpi).save(material_figure(ds), "material")]
+
+
+def material_figure(ds: xr.Dataset) -> Any:
+    """Relaxation modulus and creep compliance against time (J(t) on a second axis), storage and loss
+    moduli and tan delta against angular frequency (log axes); returns the Figure."""
     plt = pyplot()
-    fig, axes = plt.subplots(1, 3, figsize=(16, 4.2))
-    fig.subplots_adjust(wspace=0.45)
+    fig, axes = plt.subplots(1, 3, figsize=(16, 4.4), layout="constrained")  # room for J(t)'s axis and the title
+    fig.get_layout_engine().set(w_pad=0.1, wspace=0.06)
     t, omega = ds["t"].values, ds["omega"].values
     ax = axes[0]
     ax.loglog(t, ds["relaxation_modulus"].values, color="C0", label="G(t)")
@@ -30,7 +35,7 @@ def plot_material(ds: xr.Dataset, out_dir: str | Path, *, fmt: str = "png", dpi:
     ax = axes[1]
     ax.loglog(omega, ds["storage_modulus"].values, label="G'")
     ax.loglog(omega, ds["loss_modulus"].values, label="G''")
-    ax.set(xlabel="omega [rad/s]", ylabel="[Pa]", title="storage and loss moduli")
+    ax.set(xlabel="omega [rad/s]", ylabel="G', G'' [Pa]", title="storage and loss moduli")
     ax.legend()
     ax = axes[2]
     ax.semilogx(omega, ds["tan_delta"].values)
@@ -38,4 +43,4 @@ def plot_material(ds: xr.Dataset, out_dir: str | Path, *, fmt: str = "png", dpi:
     a_t = float(ds.attrs.get("a_T", 1.0))
     fig.suptitle(f"{ds.attrs.get('title') or 'material'}: G(0) = {ds.attrs['shear_modulus_instantaneous']:.4g} Pa, "
                  f"G(inf) = {ds.attrs['shear_modulus_long_term']:.4g} Pa, a_T = {a_t:.4g}")
-    return [FigureFiles(Path(out_dir), fmt, dpi).save(fig, "material")]
+    return fig

@@ -13,8 +13,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..problem import PHASE_GROSS_SLIDING
-from .base import (FigureFiles, Scales, cell_limits, check_format, draw_contact_maps, draw_map, is_periodic, is_steady,
-                   map_axes, map_image, positive_attr, profile, pyplot, set_title, time_index)
+from .base import (FigureFiles, Scales, cell_limits, check_format, draw_contact_maps, draw_map, fit_title, is_periodic,
+                   is_steady, map_axes, map_image, positive_attr, profile, pyplot, retardation_count, set_title,
+                   time_index)
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -22,8 +23,9 @@ if TYPE_CHECKING:
     from ..materials import Material
 
 __all__ = ["ROUGH_VARIABLES", "contact_history_figure", "friction_figure", "is_rough", "material_of", "plot_result",
-           "plot_speed_curve", "pressure_maps_figure", "profiles_figure", "rough_contact_figure", "speed_curve_figure",
-           "stick_maps_figure", "subsurface_figure", "tangential_loop_figure"]
+           "plot_speed_curve", "pressure_animation_figure", "pressure_maps_figure", "profiles_figure",
+           "rough_contact_figure", "speed_curve_figure", "stick_maps_figure", "subsurface_figure",
+           "tangential_loop_figure"]
 
 #: frames of the pressure animation at most
 MAX_FRAMES = 60
@@ -107,13 +109,13 @@ def profiles_figure(ds: xr.Dataset, times: Sequence[float] | None = None) -> Any
         if shear:
             _, q = profile(ds, "shear_x", k)
             axes[0, 1].plot(x / sc.length[0], q / sc.shear[0], color=line.get_color(), label=label)
-            if mu > 0:
-                axes[0, 1].plot(x / sc.length[0], mu * p / sc.shear[0], color=line.get_color(), ls=":", lw=0.8)
+            if mu > 0:  # on top of every q_x (in full slip q_x = μ_f p: the line would hide under its own)
+                axes[0, 1].plot(x / sc.length[0], mu * p / sc.shear[0], color="k", ls=":", lw=0.9, zorder=3)
     ax_p.set(xlabel=sc.length[1], ylabel=sc.pressure[1], title="pressure")
     ax_p.legend(fontsize=8)
     if shear:
         axes[0, 1].set(xlabel=sc.length[1], ylabel=sc.shear[1],
-                       title="shear traction (dotted: μ_f p)" if mu > 0 else "shear traction")
+                       title="shear traction (black dotted: μ_f p)" if mu > 0 else "shear traction")
     for ax in axes[0]:
         ax.grid(alpha=0.3)
     what = f"steady tractions along y = 0 (μ_app = {float(ds['mu_app'][0]):.4g})" if steady else \
@@ -127,7 +129,8 @@ def profiles_figure(ds: xr.Dataset, times: Sequence[float] | None = None) -> Any
 def contact_history_figure(ds: xr.Dataset) -> Any:
     """Contact radius, load and approach against time, without the one the boundary condition holds,
     and with Lee & Radok's solution (:mod:`viscontact.reference`) for a sphere indented without
-    sliding under a held load (creep) or approach (relaxation); returns the Figure."""
+    sliding under a held load (creep) or approach (relaxation), labelled Hertz for an elastic
+    material (G(0) = G(∞)), where it is his; returns the Figure."""
     from ..reference import lee_radok_creep, lee_radok_relaxation
 
     sc = Scales(ds)
@@ -146,11 +149,13 @@ def contact_history_figure(ds: xr.Dataset) -> Any:
         elif ds.attrs.get("normal_control") == "displacement" and _held(ds["delta_z"].values):
             ref = lee_radok_relaxation(float(ds["delta_z"].values[0]), sphere, material, t)
             curves = {"contact_area": ref.radius, "load": ref.load}
+    elastic = bool(np.isclose(float(ds.attrs.get("shear_modulus_instantaneous", np.nan)),
+                              float(ds.attrs.get("shear_modulus_long_term", np.nan)), rtol=1e-12, atol=0.0))
     for ax, (name, values, label, scale) in zip(axes[0], panels):
         ax.plot(t / sc.time[0], values, label="viscontact")
         if name in curves:
             ax.plot(t / sc.time[0], curves[name] * (1 / sc.radius[0] if name == "contact_area" else scale),
-                    "k--", lw=1.0, label="Lee & Radok (1960)")
+                    "k--", lw=1.0, label="Hertz (1882)" if elastic else "Lee & Radok (1960)")
             ax.legend(fontsize=8)
         ax.set(xlabel=sc.time[1], ylabel=label)
         ax.grid(alpha=0.3)
@@ -246,38 +251,68 @@ def rough_contact_figure(ds: xr.Dataset) -> Any:
     return fig
 
 
-def tangential_loop_figure(ds: xr.Dataset) -> Any:
-    """The tangential force Q = Σ q_x ΔA against the tangential displacement δ_x of partial slip
-    since the first contact (a normal history that starts at zero touches after the indenter has
-    moved), with the elastic Cattaneo-Mindlin curves (:class:`~viscontact.reference.CattaneoMindlin`)
-    for G(0) and G(∞) under the same load; returns the Figure."""
-    from ..reference import cattaneo_mindlin
+def _cattaneo_mindlin_references(ds: xr.Dataset) -> list[tuple[Any, str, str]]:
+    """(:class:`~viscontact.reference.CattaneoMindlin`, legend label, line style) of the elastic
+    references of a sphere's partial slip: under a held load W those for G(0) and G(∞) at W; under a
+    held approach δ_z the one curve Q/(μ_f W) against δ_x that every modulus gives there (a = √(R δ_z)
+    and δ* = μ_f a² (2 - ν) / (2 R (1 - ν)) do not depend on G), which a viscoelastic body follows
+    only for a tangential ramp fast or slow against its relaxation (the load relaxes under the
+    held approach; in between, the shear held from when the load was higher reaches μ_f W(t)
+    earlier). None under a varying load or approach, nor without a sphere."""
+    from ..reference import cattaneo_mindlin, hertz_from_approach
 
+    sphere = positive_attr(ds, "radius")
     mu = float(ds.attrs.get("friction_coefficient", 0.0) or 0.0)
-    load = float(np.max(ds["load"].values))
+    if not sphere or mu <= 0:
+        return []
+    nu = float(ds.attrs["poisson_ratio"])
+    control = ds.attrs.get("normal_control")
+    if control == "load" and _held(ds["load"].values):
+        load = float(ds["load"].values[0])
+        return [(cattaneo_mindlin(load, sphere, mu, float(ds.attrs[key]), nu), f"Cattaneo-Mindlin, elastic {name}",
+                 style) for key, name, style in (("shear_modulus_instantaneous", "G(0)", "k--"),
+                                                 ("shear_modulus_long_term", "G(∞)", "k:"))]
+    if control == "displacement" and _held(ds["delta_z"].values):
+        g0 = float(ds.attrs["shear_modulus_instantaneous"])
+        hertz = hertz_from_approach(float(ds["delta_z"].values[0]), sphere, g0, nu)
+        return [(cattaneo_mindlin(float(hertz.load), sphere, mu, g0, nu),
+                 "Cattaneo-Mindlin, elastic at the held approach (any G)", "k--")]
+    return []
+
+
+def tangential_loop_figure(ds: xr.Dataset) -> Any:
+    """The tangential force Q = Σ q_x ΔA over μ_f times the load W(t) of the same record (held or
+    relaxing) against the tangential displacement δ_x of partial slip since the first contact (a
+    normal history that starts at zero touches after the indenter has moved), 1 at the onset of gross
+    sliding, with the elastic Cattaneo-Mindlin curves of :func:`_cattaneo_mindlin_references`
+    (exact for ν = 0.5, where the normal and tangential problems do not couple); returns the Figure."""
+    mu = float(ds.attrs.get("friction_coefficient", 0.0) or 0.0)
+    load = ds["load"].values
     delta_x = ds["delta_x"].values
     touched = np.flatnonzero(ds["contact_area"].values > 0)
     delta_x = delta_x - (delta_x[touched[0]] if touched.size else 0.0)
-    references = []
-    sphere = positive_attr(ds, "radius")
-    if sphere and ds.attrs.get("normal_control") == "load":
-        references = [(cattaneo_mindlin(load, sphere, mu, float(ds.attrs[key]), float(ds.attrs["poisson_ratio"])),
-                       name, style) for key, name, style in (("shear_modulus_instantaneous", "G(0)", "k--"),
-                                                             ("shear_modulus_long_term", "G(∞)", "k:"))]
-    # up to 1.5 times the onset of gross sliding (or the elastic G(inf) one): the loop, not the sliding
+    references = _cattaneo_mindlin_references(ds)
+    # up to 1.5 times the onset of gross sliding (or the elastic one, the largest): the loop, not the sliding
     sliding = np.flatnonzero(ds["phase"].values == PHASE_GROSS_SLIDING)
     onset = [float(delta_x[sliding[0]])] if sliding.size else [float(np.max(delta_x))]
-    end = 1.5 * max(onset + [cm.sliding_displacement for cm, _, _ in references[1:]])
+    end = 1.5 * max(onset + [cm.sliding_displacement for cm, _, _ in references])
     keep = (delta_x >= 0) & (delta_x <= end)
+    with np.errstate(divide="ignore", invalid="ignore"):  # no load (no contact): no ratio
+        ratio = np.where(load[keep] > 0, ds["friction_force"].values[keep] / (mu * load[keep]), np.nan)
     fig, ax = pyplot().subplots(figsize=(6.4, 4.6))
-    ax.plot(delta_x[keep] * 1e6, ds["friction_force"].values[keep] / (mu * load), "o-", ms=2.5, label="viscontact")
+    ax.plot(delta_x[keep] * 1e6, ratio, "o-", ms=2.5, label="viscontact")
     d = np.linspace(0.0, end, 300)
     for cm, name, style in references:
-        ax.plot(d * 1e6, cm.force(d) / (mu * load), style, lw=1.0, label=f"Cattaneo-Mindlin, elastic {name}")
-    ax.set(xlabel="tangential displacement since first contact δ_x [µm]", ylabel="Q / (μ_f W)", ylim=(0, 1.1))
+        ax.plot(d * 1e6, cm.force(d) / (mu * cm.load), style, lw=1.0, label=name)
+    ax.set(xlabel="tangential displacement since first contact δ_x [µm]", ylim=(0, 1.1),
+           ylabel="Q / (μ_f W)" if _held(load) else "Q(t) / (μ_f W(t))")
+    if not _held(load):
+        ax.set_title("W(t): the load at the same step", fontsize=9)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    set_title(fig, ds, "tangential force against displacement")
+    nu = float(ds.attrs.get("poisson_ratio", 0.5))
+    ax.legend(fontsize=8, title_fontsize=8, loc="lower right",
+              title=f"Cattaneo-Mindlin exact for ν = 0.5 (here {nu:g})" if references and nu != 0.5 else None)
+    set_title(fig, ds, "tangential force against displacement" + _held_note(ds))
     fig.tight_layout()
     return fig
 
@@ -317,7 +352,11 @@ def stick_maps_figure(ds: xr.Dataset, times: Sequence[float] | None = None) -> A
     return draw_contact_maps(ds, picks or [0], titles, "contact: slip (orange), stick (blue)")
 
 
-def _pressure_animation(ds: xr.Dataset, files: FigureFiles) -> Path:
+def pressure_animation_figure(ds: xr.Dataset) -> tuple[Any, Any, int]:
+    """The frames of ``pressure.gif``: (Figure, ``frame(i)`` drawing the i-th, count), at most
+    :data:`MAX_FRAMES` records evenly spread, one colour scale. The frames are saved at the figure's
+    size, so the title is wrapped to its width (:func:`~viscontact.plotting.base.fit_title`) and the
+    map placed below it."""
     sc = Scales(ds)
     picks = _time_indices(ds.sizes["t"], MAX_FRAMES)
     pressure = ds["pressure"].values
@@ -326,8 +365,10 @@ def _pressure_animation(ds: xr.Dataset, files: FigureFiles) -> Path:
                      vmax=float(pressure.max()) / sc.pressure[0] or 1.0, cmap="viridis")
     fig.colorbar(image, ax=ax, label=sc.pressure[1])
     ax.set(xlabel=sc.length[1], ylabel=sc.length[1].replace("x", "y"))
-    set_title(fig, ds, "pressure")
-    fig.subplots_adjust(top=0.8)
+    title = set_title(fig, ds, "pressure")
+    title.set_y(0.99)
+    height = fit_title(fig, title)
+    fig.subplots_adjust(top=0.99 - height - 0.09, bottom=0.11)
 
     def frame(i: int) -> tuple[Any]:
         k = picks[i]
@@ -339,31 +380,71 @@ def _pressure_animation(ds: xr.Dataset, files: FigureFiles) -> Path:
         ax.set_title(sc.t_label(float(ds["t"].values[k])))
         return (image,)
 
-    return files.save_animation(fig, frame, len(picks), "pressure")
+    frame(0)
+    return fig, frame, len(picks)
+
+
+def _pressure_animation(ds: xr.Dataset, files: FigureFiles) -> Path:
+    fig, frame, count = pressure_animation_figure(ds)
+    return files.save_animation(fig, frame, count, "pressure")
+
+
+#: recorded subsurface times drawn at most (rows of ``subsurface_stress``, evenly spread)
+MAX_SUBSURFACE_TIMES = 6
+#: the subsurface stresses drawn: (variable, panel title)
+_SUBSURFACE = (("von_mises_stress", "von Mises"), ("max_shear_stress", "maximum shear"))
 
 
 def subsurface_figure(ds: xr.Dataset) -> Any:
-    """Von Mises and maximum shear stress maps in the section y = 0 (x-z, depth downwards) at the
-    last subsurface time, scaled by p0 (else MPa) and x, z by a0 (else mm)."""
+    """Von Mises and maximum shear stress in the section y = 0, one row per recorded subsurface time
+    (``t_sub``; at most :data:`MAX_SUBSURFACE_TIMES`, evenly spread, the title saying how many of how
+    many): maps in x-z with the depth z downwards (the surface on top), each with its own colour
+    scale and its largest value marked (+), scaled by p0 (else MPa) and x, z by a0 (else mm). A single
+    depth: the stresses against x, one line per time. Returns the Figure."""
     plt = pyplot()
     sc = Scales(ds)
     (l_scale, l_label), (p_scale, p_label) = sc.length, sc.pressure
-    k = ds.sizes["t_sub"] - 1
+    count = ds.sizes["t_sub"]
+    picks = _time_indices(count, MAX_SUBSURFACE_TIMES)
+    times = ds["t_sub"].values
     x = ds["x"].values / l_scale
     z = ds["z"].values / l_scale
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True, constrained_layout=True)
     stress_unit = p_label.replace("p", "σ", 1)
-    for ax, name, title in zip(axes, ("von_mises_stress", "max_shear_stress"), ("von Mises", "maximum shear")):
-        data = ds[name].values[k] / p_scale
-        if z.size > 1:
-            mesh = ax.pcolormesh(x, z, data, shading="nearest", cmap="viridis")
-            fig.colorbar(mesh, ax=ax, label=stress_unit)
-            ax.invert_yaxis()
-        else:
-            ax.plot(x, data[0])
-        ax.set_title(f"{title}, {sc.t_label(float(ds['t_sub'].values[k]))}")
+    depth_label = "depth " + l_label.replace("x", "z", 1)
+
+    def at_depth(value: float) -> str:  # z/a0 = 0.5, or z = 0.3 mm
+        return f"z/a0 = {value:.3g}" if l_label.startswith("x /") else f"z = {value:.3g} mm"
+
+    stress_of = " p0" if p_label.startswith("p /") else " MPa"  # after a scaled stress
+
+    if z.size > 1:
+        fig, axes = plt.subplots(picks.size, 2, figsize=(10, 0.7 + 3.3 * picks.size), squeeze=False, sharex=True,
+                                 sharey=True, constrained_layout=True)
+        for row, k in zip(axes, picks):
+            for ax, (name, title) in zip(row, _SUBSURFACE):
+                data = ds[name].values[k] / p_scale
+                mesh = ax.pcolormesh(x, z, data, shading="nearest", cmap="viridis")
+                fig.colorbar(mesh, ax=ax, label=stress_unit)
+                iz, ix = np.unravel_index(int(np.argmax(data)), data.shape)
+                ax.plot(x[ix], z[iz], "w+", ms=9, mew=1.5)
+                ax.set_title(f"{title}, {sc.t_label(float(times[k]))}: largest {data[iz, ix]:.3g}{stress_of} "
+                             f"at {at_depth(z[iz])}", fontsize=10)
+            row[0].set_ylabel(depth_label)
+        axes[0, 0].invert_yaxis()  # once: the panels share the axis, and a second call flips it back
+    else:
+        fig, axes = plt.subplots(1, 2, figsize=(10, 4), squeeze=False, sharex=True, sharey=True,
+                                 constrained_layout=True)
+        for ax, (name, title) in zip(axes[0], _SUBSURFACE):
+            for k in picks:
+                ax.plot(x, ds[name].values[k][0] / p_scale, label=sc.t_label(float(times[k])))
+            ax.set_title(f"{title} at {at_depth(z[0])}", fontsize=10)
+            ax.legend(fontsize=8)
+            ax.grid(alpha=0.3)
+        axes[0, 0].set_ylabel(stress_unit)
+    for ax in axes[-1]:
         ax.set_xlabel(l_label)
-    axes[0].set_ylabel(l_label.replace("x", "z", 1) if z.size > 1 else stress_unit)
+    shown = f", {picks.size} of {count} recorded times" if picks.size < count else ""
+    set_title(fig, ds, f"stresses in the section y = 0{shown}")
     return fig
 
 
@@ -373,13 +454,14 @@ def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] |
 
     ``pressure_profiles``: pressure (and shear, when nonzero) along y = 0; ``pressure_maps``: p/p0
     maps at ``times`` [s] (default: four records). A transient adds ``contact_history`` (contact
-    radius, load and approach against time; Lee & Radok for held indentation; not on a periodic
-    domain), for a rough contact (:func:`is_rough`) ``rough_contact`` (μ_app, real contact area
-    fraction, contact patches, mean gap against time), ``pressure.gif``
-    (an animation of the pressure field), when sliding ``friction`` (apparent friction against time)
-    and in partial slip ``tangential_loop`` (Q against δ_x, with Cattaneo-Mindlin) and
+    radius, load and approach against time; Lee & Radok, or Hertz when elastic, for held indentation;
+    not on a periodic domain), for a rough contact (:func:`is_rough`) ``rough_contact`` (μ_app, real
+    contact area fraction, contact patches, mean gap against time), ``pressure.gif`` (an animation
+    of the pressure field), when sliding ``friction`` (apparent friction against time) and in
+    partial slip ``tangential_loop`` (Q / μ_f W(t) against δ_x, with Cattaneo-Mindlin) and
     ``stick_map`` (stick/slip maps); with subsurface output ``subsurface_stress`` (von Mises and
-    maximum shear maps in the section y = 0). A steady state is drawn as one state, with no time histories.
+    maximum shear maps in the section y = 0, depth downwards, a row per recorded time). A steady
+    state is drawn as one state, with no time histories.
 
     Parameters
     ----------
@@ -443,8 +525,9 @@ def speed_curve_figure(ds: xr.Dataset) -> Any:
         ax.semilogx(x, ds[name].values[order] / scale, "o-", ms=4)
         ax.set(ylabel=label)
         ax.grid(alpha=0.3, which="both")
+    deborah = "Deborah number v τ / a0" + (", τ the shortest retardation time" if retardation_count(ds) > 1 else "")
     for ax in axes[1]:
-        ax.set_xlabel("Deborah number v τ / a0" if k else "sliding speed v [m/s]")
+        ax.set_xlabel(deborah if k else "sliding speed v [m/s]")
     if k:
         for ax in axes[0]:
             top = ax.secondary_xaxis("top", functions=(lambda d, k=k: d / k, lambda v, k=k: v * k))

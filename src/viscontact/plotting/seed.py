@@ -78,12 +78,15 @@ def _mu_panel(ax: Any, runs: Runs, labels: Mapping[str, str], title: str) -> Non
 
 
 def profiles_figure(runs: Runs, times_tau: Sequence[float], title: str) -> Any:
-    """Fig. 4: p/p0 along y = 0 at ``times_tau`` for each speed, and μ_app(t/τ) of all."""
+    """Fig. 4: p/p0 along y = 0 at ``times_tau`` for each speed, and μ_app(t/τ) of all. Each speed
+    is labelled in mm/s and as v τ/a0 with the a0 of its result, the one of the axes and the title
+    (the seed's cases give their speeds in units of the a0 of 0.15 N: 1.2 a0/τ there is 1.21 a0/τ
+    with the a0 of their 0.148 N)."""
     fig, axes = _profile_axes(len(runs))
     labels = {}
     for i, (name, ds) in enumerate(runs.items()):
-        v = float(ds.attrs["sliding_speed"]) * _tau(ds) / float(ds.attrs["a0"])
-        labels[name] = f"v τ/a0 = {v:.2f}"
+        speed = float(ds.attrs["sliding_speed"])
+        labels[name] = f"v = {speed * 1e3:.4g} mm/s = {speed * _tau(ds) / float(ds.attrs['a0']):.2f} a0/τ"
         _profiles_panel(axes[i], ds, times_tau, f"({'abcdefgh'[i]}) {labels[name]}")
     _mu_panel(axes[-1], runs, labels, f"({'abcdefgh'[len(runs)]}) apparent friction")
     _title(fig, runs, title)
