@@ -72,8 +72,9 @@ class SectionStresses:
 
 
 def _plane_mode_stresses(kx: np.ndarray, ky: np.ndarray, z: float, nu: float, p_hat: np.ndarray,
-                         tx_hat: np.ndarray, ty_hat: np.ndarray) -> dict[str, np.ndarray]:
-    """Stress spectra at depth z [m] of surface traction spectra (module docstring)."""
+                         tx_hat: np.ndarray, ty_hat: np.ndarray, periodic: bool = False) -> dict[str, np.ndarray]:
+    """Stress spectra at depth z [m] of surface traction spectra (module docstring); ``periodic``: the
+    q = 0 mode is the mean traction of a periodic surface, not the limit of an isolated load's."""
     k = np.hypot(kx, ky)
     zero = k == 0
     k_safe = np.where(zero, 1.0, k)
@@ -98,31 +99,61 @@ def _plane_mode_stresses(kx: np.ndarray, ky: np.ndarray, z: float, nu: float, p_
         "xz": s_ez * c - s_zp * s,
         "yz": s_ez * s + s_zp * c,
     }
-    # q = 0: a uniform traction; sigma_zz, sigma_xz, sigma_yz carry it at every depth (equilibrium),
-    # the in-plane normal stresses take their direction average -(1 + 2 nu) p / 2
+    # q = 0: a uniform traction; sigma_zz, sigma_xz, sigma_yz carry it at every depth (equilibrium).
+    # periodic: the mean of a periodic traction, the half-space in uniaxial strain under its normal
+    # part (sigma_xx = sigma_yy = nu/(1 - nu) sigma_zz) and in simple shear under its shear part.
+    # isolated load (padded transform): the in-plane normal stresses take the average over the
+    # directions of e of the k -> 0 limits (-p along e, -2 nu p across): -(1 + 2 nu) p / 2
     if np.any(zero):
         p0, tx0, ty0 = p_hat[zero], tx_hat[zero], ty_hat[zero]
-        for name, value in (("zz", -p0), ("xz", -tx0), ("yz", -ty0), ("xx", -(1 + 2 * nu) * p0 / 2),
-                            ("yy", -(1 + 2 * nu) * p0 / 2), ("xy", 0.0 * p0)):
+        in_plane = -nu / (1 - nu) * p0 if periodic else -(1 + 2 * nu) * p0 / 2
+        for name, value in (("zz", -p0), ("xz", -tx0), ("yz", -ty0), ("xx", in_plane),
+                            ("yy", in_plane), ("xy", 0.0 * p0)):
             out[name][zero] = value
     return out
 
 
+def _symmetric_mode_stresses(qx: np.ndarray, qy: np.ndarray, z: float, nu: float, spectra: list[np.ndarray],
+                             periodic: bool, nyquist: float | None) -> dict[str, np.ndarray]:
+    """:func:`_plane_mode_stresses` on the half plane ``qx`` (>= 0) x ``qy`` with each Nyquist wavevector
+    component (+-``nyquist``, one mode of the transform) the average of its two signs: the spectra
+    stay Hermitian, the stresses real and mirror-symmetric with the load."""
+    fields = _plane_mode_stresses(qx[None, :], qy[:, None], z, nu, *spectra, periodic=periodic)
+    if nyquist is None:
+        return fields
+    if qx[-1] == nyquist:
+        other = _plane_mode_stresses(-qx[None, -1:], qy[:, None], z, nu, *(sp[:, -1:] for sp in spectra),
+                                     periodic=periodic)
+        for c in fields:
+            fields[c][:, -1:] = 0.5 * (fields[c][:, -1:] + other[c])
+    row = qy == -nyquist
+    if np.any(row):
+        other = _symmetric_mode_stresses(qx, -qy[row], z, nu, [sp[row] for sp in spectra], periodic, nyquist)
+        for c in fields:
+            fields[c][row] = 0.5 * (fields[c][row] + other[c])
+    return fields
+
+
 def section_stresses(grid: Grid, poisson_ratio: float, depths: np.ndarray | list[float], pressure: np.ndarray,
                      shear_x: np.ndarray | None = None, shear_y: np.ndarray | None = None,
-                     padding: int = 2, workers: int = -1) -> SectionStresses:
+                     padding: int | None = None, workers: int = -1) -> SectionStresses:
     """Stresses [Pa] in the section y = 0 of the half-space at ``depths`` [m] (>= 0).
 
     Parameters
     ----------
     grid
-        The surface grid; ``pressure`` etc. have shape (n, n) indexed [y, x] [Pa].
+        The surface grid; ``pressure`` etc. have shape (n, n) indexed [y, x] [Pa]. On a periodic grid
+        (``grid.periodic``) the tractions are one period of a periodic surface load and the stresses
+        are periodic: unpadded transforms over the period, the mean tractions carried to every depth
+        (at depth the field tends to sigma_zz = -mean p, sigma_xz = -mean q_x, sigma_xx = sigma_yy =
+        -nu/(1 - nu) mean p, with corrections ~exp(-2 pi z / period)).
     poisson_ratio
         nu of the half-space [-].
     pressure, shear_x, shear_y
         Surface tractions on the solid: p into the solid, q_x and q_y along +x, +y [Pa].
     padding
-        Zero-padding factor of the transform (>= 2).
+        Zero-padding factor of the transform of an isolated load (>= 2; default 2); none on a
+        periodic grid (``None`` only).
 
     Examples
     --------
@@ -140,22 +171,40 @@ def section_stresses(grid: Grid, poisson_ratio: float, depths: np.ndarray | list
     depths = np.atleast_1d(np.asarray(depths, dtype=float))
     if np.any(depths < 0) or not np.all(np.isfinite(depths)):
         raise ValueError(f"subsurface depths must be finite and >= 0 m, got {depths}")
-    if padding < 2:
-        raise ValueError(f"padding must be >= 2, got {padding}")
-    m = padding * n
+    if grid.periodic:
+        if padding is not None:
+            raise ValueError(f"padding: a periodic grid's stresses are periodic, its transforms unpadded; got {padding}")
+        m = n
+    else:
+        padding = 2 if padding is None else padding
+        if padding < 2:
+            raise ValueError(f"padding must be >= 2, got {padding}")
+        m = padding * n
     zero = np.zeros((n, n))
-    spectra = [scipy.fft.fft2(t if t is not None else zero, s=(m, m), workers=workers)
+    # real tractions: half spectra along x (the stresses are real, their spectra Hermitian)
+    spectra = [scipy.fft.rfft2(t if t is not None else zero, s=(m, m), workers=workers)
                for t in (pressure, shear_x, shear_y)]
-    q = 2.0 * np.pi * scipy.fft.fftfreq(m, dx)
-    ky, kx = q[:, None], q[None, :]
-    footprint = np.sinc(kx * dx / (2 * np.pi)) * np.sinc(ky * dx / (2 * np.pi))
+    qy = 2.0 * np.pi * scipy.fft.fftfreq(m, dx)
+    qx = 2.0 * np.pi * scipy.fft.rfftfreq(m, dx)
+    footprint = np.sinc(qx[None, :] * dx / (2 * np.pi)) * np.sinc(qy[:, None] * dx / (2 * np.pi))
     spectra = [sp * footprint for sp in spectra]
+    del footprint
     # value at y = 0: the transform's row 0 is y_0 = grid.y[0]
-    phase_y = np.exp(1j * q * (0.0 - grid.y[0]))[:, None] / m
+    phase_y = np.exp(1j * qy * (0.0 - grid.y[0]))[:, None] / m
     out = {c: np.empty((depths.size, n)) for c in STRESS_COMPONENTS}
+    rows = max(1, _CHUNK // qx.size)  # q_y rows at a time: the temporaries stay ~ _CHUNK values each
     for i, z in enumerate(depths):
-        fields = _plane_mode_stresses(kx, ky, float(z), poisson_ratio, *spectra)
+        sums = {c: np.zeros(qx.size, dtype=complex) for c in STRESS_COMPONENTS}
+        for j in range(0, m, rows):
+            part = slice(j, j + rows)
+            fields = _symmetric_mode_stresses(qx, qy[part], float(z), poisson_ratio, [sp[part] for sp in spectra],
+                                              grid.periodic, np.pi / dx if m % 2 == 0 else None)
+            for c in STRESS_COMPONENTS:
+                sums[c] += np.sum(fields[c] * phase_y[part], axis=0)
         for c in STRESS_COMPONENTS:
-            row = np.sum(fields[c] * phase_y, axis=0)
-            out[c][i] = scipy.fft.ifft(row, workers=workers)[:n].real
+            out[c][i] = scipy.fft.irfft(sums[c], m, workers=workers)[:n]
     return SectionStresses(depths, grid.x.copy(), out)
+
+
+#: complex values per temporary array in :func:`section_stresses` (2^18: 4 MiB)
+_CHUNK = 1 << 18

@@ -218,6 +218,25 @@ def test_subsurface_times_pick_the_nearest_recorded_steps():
     assert ds["t"].size == 5 and "pressure" in ds     # the existing variables are untouched
 
 
+def test_subsurface_stresses_of_a_periodic_sliding_contact_tend_to_the_mean_tractions():
+    """A sphere sliding (mu = 0.5) on a periodic 2 mm domain, W = 0.05 N: the stresses are periodic and
+    at depth those of the mean tractions, sigma_zz -> -W/L^2 = -12 500 Pa, sigma_xz -> -mu W/L^2,
+    sigma_xx -> -nu/(1 - nu) W/L^2 (uniaxial strain), with corrections ~exp(-2 pi z/L) (measured at
+    n = 32, z = 2 L: 1e-4 of W/L^2). Before the fix the period was one isolated load: at z = L the
+    section's mean sigma_zz was -5 419 Pa and sigma_xz -1 506 Pa."""
+    period, load = 2e-3, 0.05
+    ds = run({**ELASTIC, "material.shear_modulus": 1e6, "grid.half_width": period / 2, "grid.periodic": True,
+              "normal.value": load, "tangential.mode": "gross_sliding", "tangential.friction_coefficient": 0.5,
+              "tangential.sliding_speed": period / 32 / 1e-3, "output.subsurface_depths": [period, 2 * period]})
+    nominal = load / period**2
+    deep = {c: ds[f"stress_{c}"].values[-1, -1] for c in ("zz", "xz", "xx", "yy")}
+    np.testing.assert_allclose(deep["zz"], -nominal, rtol=1e-3)
+    np.testing.assert_allclose(deep["xz"], -0.5 * nominal, rtol=1e-3)
+    np.testing.assert_allclose(deep["xx"], -0.3 / 0.7 * nominal, rtol=1e-3)
+    np.testing.assert_allclose(deep["yy"], -0.3 / 0.7 * nominal, rtol=1e-3)
+    assert ds["stress_zz"].values[-1, 0].mean() == pytest.approx(-nominal, rel=0.05)
+
+
 def test_prony_material_takes_a_bulk_modulus_but_not_tensile_moduli():
     prony = {"material.type": "prony", "material.shear_modulus_instantaneous": None,
              "material.shear_modulus_long_term": None, "material.retardation_time": None,

@@ -8,6 +8,27 @@
 * Point forces (Boussinesq, Cerruti; Johnson Eqs. 3.20, 3.87): far from a one-cell load
   (rho >= 12 dx) the field is that of a point force to O((dx/rho)^2); tolerance 1.5 % of the local
   magnitude. This pins the signs of the tangential (q_x) part.
+* Periodic grid (the stresses of one period of a periodic traction): the exact plane-strain fields of
+  the Fourier modes p1 cos(kx) and q1 cos(kx) (q along x) from the Airy function
+  phi = (A + B k z) exp(-kz) {cos, sin}(kx) / k^2 (sigma_xx = phi_zz, sigma_zz = phi_xx,
+  sigma_xz = -phi_xz; Johnson sec. 2.6, Barber ch. 5), E = exp(-kz):
+
+      p1 cos(kx): sigma_zz = -p1 (1 + kz) E cos kx,  sigma_xx = -p1 (1 - kz) E cos kx,
+                  sigma_xz = -p1 kz E sin kx
+      q1 cos(kx): sigma_zz = -q1 kz E sin kx,        sigma_xx = -q1 (2 - kz) E sin kx,
+                  sigma_xz = -q1 (1 - kz) E cos kx
+      sigma_yy = nu (sigma_xx + sigma_zz) (plane strain)
+
+  a mode p2 cos(k y) the same rotated (on y = 0: sigma_yy = -p2 (1 - kz) E, sigma_xx = -2 nu p2 E),
+  and the means (periodic displacements, no mean in-plane strain): sigma_zz = -mean p, sigma_xx =
+  sigma_yy = -nu/(1 - nu) mean p (uniaxial strain), sigma_xz = -mean q_x, sigma_yz = -mean q_y (simple
+  shear), at every depth. The tractions are uniform over each cell: a mode sampled at the cell
+  centres has the amplitude sinc(k dx/2) in its fundamental; its harmonics beyond the grid's
+  Nyquist wavenumber decay as exp(-2 pi z/dx) < 4e-6 at z >= 2 dx: tolerance 1e-5 of the largest
+  traction. And the zero-mean part of a random periodic traction against the padded (isolated)
+  formula on a 15 x 15 tiling of the period, central period, z >= 0.1 L: within 1e-3 of the largest
+  stress (the tiling's edges: 9 x 9 tiles leave 3e-3). Before the fix the periodic section was
+  zero-padded: one isolated period (sigma_zz at depth -> 0, not -mean p).
 """
 from __future__ import annotations
 
@@ -98,3 +119,66 @@ def test_point_forces(direction):
 def test_rejects_negative_depth():
     with pytest.raises(ValueError, match="depths"):
         section_stresses(Grid(8, 1e-3), NU, [-1e-4], np.zeros((8, 8)))
+
+
+PERIOD = 2e-3
+
+
+def test_periodic_fourier_modes_and_means_are_exact():
+    n, nu = 64, NU
+    grid = Grid(n, PERIOD / 2, periodic=True)
+    x, y = grid.mesh()
+    dx = grid.spacing
+    k1, k2 = 2 * np.pi * 2 / PERIOD, 2 * np.pi / PERIOD
+    p_mean, p1, p2, qx_mean, q1, qy_mean = 1e4, 4e3, 3e3, 2e3, 1.5e3, -1e3
+    pressure = p_mean + p1 * np.cos(k1 * x) + p2 * np.cos(k2 * y)
+    shear_x = qx_mean + q1 * np.cos(k1 * x)
+    shear_y = np.full((n, n), qy_mean)
+    depths = np.array([2 * dx, 0.05 * PERIOD, 0.2 * PERIOD, 0.5 * PERIOD, PERIOD])
+    st = section_stresses(grid, nu, depths, pressure, shear_x, shear_y)
+    z, xs = depths[:, None], grid.x[None, :]
+    a1, b1, a2 = (np.sinc(k * dx / (2 * np.pi)) * amp for k, amp in ((k1, p1), (k1, q1), (k2, p2)))
+    e1, e2, kz1, kz2 = np.exp(-k1 * z), np.exp(-k2 * z), k1 * z, k2 * z
+    c, s = np.cos(k1 * xs), np.sin(k1 * xs)
+    zz = -a1 * (1 + kz1) * e1 * c - b1 * kz1 * e1 * s - a2 * (1 + kz2) * e2 - p_mean
+    xx_plane = -a1 * (1 - kz1) * e1 * c - b1 * (2 - kz1) * e1 * s        # the x modes' sigma_xx
+    zz_plane = -a1 * (1 + kz1) * e1 * c - b1 * kz1 * e1 * s
+    expected = {
+        "zz": zz,
+        "xx": xx_plane - 2 * nu * a2 * e2 - nu / (1 - nu) * p_mean,
+        "yy": nu * (xx_plane + zz_plane) - a2 * (1 - kz2) * e2 - nu / (1 - nu) * p_mean,
+        "xz": -a1 * kz1 * e1 * s - b1 * (1 - kz1) * e1 * c - qx_mean,
+        "yz": np.full_like(zz, -qy_mean),
+        "xy": np.zeros_like(zz),
+    }
+    for comp, value in expected.items():
+        np.testing.assert_allclose(st.stress[comp], value, atol=1e-5 * p_mean, err_msg=comp)
+
+
+def test_periodic_section_is_that_of_the_tiled_surface():
+    n, nu, tiles = 16, NU, 15
+    grid = Grid(n, PERIOD / 2, periodic=True)
+    x, y = grid.mesh()
+    rng = np.random.default_rng(3)
+    k = 2 * np.pi / PERIOD
+    fields = []
+    for _ in range(3):   # a few low modes, random amplitudes; zero mean, no first moments (even)
+        f = sum(rng.normal() * np.cos(k * (i * x + j * y))
+                for i in range(-2, 3) for j in range(-2, 3) if (i, j) != (0, 0))
+        fields.append(1e4 * f)
+    depths = np.array([0.1, 0.2, 0.5]) * PERIOD
+    periodic = section_stresses(grid, nu, depths, *fields)
+    big = Grid(tiles * n, tiles * PERIOD / 2)
+    tiled = section_stresses(big, nu, depths, *(np.tile(f, (tiles, tiles)) for f in fields), padding=2)
+    middle = slice(tiles // 2 * n, tiles // 2 * n + n)
+    np.testing.assert_allclose(big.x[middle], grid.x, atol=1e-15)
+    for comp in periodic.stress:
+        for i in range(depths.size):
+            scale = max(np.max(np.abs(tiled.stress[c][i][middle])) for c in periodic.stress)
+            np.testing.assert_allclose(periodic.stress[comp][i], tiled.stress[comp][i][middle], atol=1e-3 * scale,
+                                       err_msg=f"{comp} at z = {depths[i]}")
+
+
+def test_periodic_grid_takes_no_padding():
+    with pytest.raises(ValueError, match="padding"):
+        section_stresses(Grid(8, 1e-3, periodic=True), NU, [1e-4], np.zeros((8, 8)), padding=2)
