@@ -182,3 +182,34 @@ def test_periodic_section_is_that_of_the_tiled_surface():
 def test_periodic_grid_takes_no_padding():
     with pytest.raises(ValueError, match="padding"):
         section_stresses(Grid(8, 1e-3, periodic=True), NU, [1e-4], np.zeros((8, 8)), padding=2)
+
+
+def test_default_padding_keeps_the_load_images_out_of_deep_stresses():
+    """Hertz tractions, a = 0.4 half_width, n = 128, on the axis against Johnson Eq. 3.45 (red team):
+    at z = 2 a sigma_xx is +0.0055 p0; padding 2 gave -0.0019 p0 (the wrong sign) and the maximum
+    shear 0.0992 p0 for 0.1027 (-3.4 %). The default padding (the padded period 20 x the deepest depth:
+    8 here) leaves 2e-4 p0 and 0.15 %; tolerances 5e-4 p0 and 0.3 %."""
+    a, n = 1.0, 128
+    grid = Grid(n, 2.5 * a)
+    x, y = grid.mesh()
+    p = np.sqrt(np.clip(1 - (x**2 + y**2) / a**2, 0, None))
+    depths = np.array([0.48, 1.0, 2.0]) * a
+    sr, sz = hertz_axis_stresses(depths, a, 1.0, NU)
+    axis = np.argmin(np.abs(grid.x))
+    st = section_stresses(grid, NU, depths, p)
+    np.testing.assert_allclose(st.stress["xx"][:, axis], sr, atol=5e-4)
+    np.testing.assert_allclose(st.stress["zz"][:, axis], sz, atol=5e-4)
+    np.testing.assert_allclose(st.max_shear[:, axis], 0.5 * np.abs(sz - sr), rtol=3e-3)
+    assert st.stress["xx"][-1, axis] > 0
+    two = section_stresses(grid, NU, depths, p, padding=2)
+    assert two.stress["xx"][-1, axis] < 0 and two.max_shear[-1, axis] < 0.97 * 0.5 * abs(sz[-1] - sr[-1])
+
+
+def test_automatic_padding_is_capped_with_a_warning():
+    from viscontact.errors import ViscontactWarning
+    from viscontact.subsurface import automatic_padding
+
+    grid = Grid(64, 1e-3)
+    assert automatic_padding(grid, 0.0) == 2 and automatic_padding(grid, 0.3e-3) == 3
+    with pytest.warns(ViscontactWarning, match="capped at 64 x the domain"):
+        assert automatic_padding(grid, 0.1) == 64
