@@ -605,16 +605,18 @@ def simulate(problem: Problem, *, progress: Callable[[int, int], None] | None = 
              state: State | None = None, substrate: TermSubstrate | None = None) -> Iterator[StepRecord]:
     """Run the transient and yield the records the output settings keep (every ``output.every``
     steps and the last, with the ``output.fields``), warning about a biasing wake
-    (:class:`~viscontact.observers.WakeWarning`).
+    (:class:`~viscontact.observers.WakeWarning`) and a contact growing under the total slip
+    (:class:`~viscontact.observers.ContactGrowthWarning`).
 
     Parameters are those of :func:`steps`.
     """
-    from .observers import Recorder, WakeWarning
+    from .observers import ContactGrowthWarning, Recorder, WakeWarning
 
-    recorder, wake = Recorder(problem), WakeWarning()
+    recorder, wake, growth = Recorder(problem), WakeWarning(), ContactGrowthWarning(problem)
     current = state
     for current, record in steps(problem, progress=progress, state=state, substrate=substrate):
         wake.on_step(current, record)
+        growth.on_step(current, record)
         kept = recorder.kept(record)
         if kept is not None:
             yield kept
