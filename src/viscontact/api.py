@@ -114,7 +114,7 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
         those steps (attribute ``complete = 0``) as ``exc.partial``.
     """
     from .checkpoint import load_checkpoint
-    from .observers import Checkpointer, Recorder, WakeWarning
+    from .observers import Checkpointer, ContactGrowthWarning, Recorder, WakeWarning
     from .records import records_from_arrays, records_to_arrays
     from .results import to_dataset  # xarray: loaded here, not with the package
 
@@ -126,7 +126,7 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
         start, extra = load_checkpoint(checkpoint, problem)
         kept = records_from_arrays(extra)
     recorder = Recorder(problem, kept)
-    observers = [recorder, WakeWarning()]
+    observers = [recorder, WakeWarning(), ContactGrowthWarning(problem)]
     if checkpoint is not None:
         observers.append(Checkpointer(checkpoint, problem, checkpoint_every,
                                       extra=lambda: records_to_arrays(recorder.records)))
@@ -248,9 +248,9 @@ def _stream_run(problem: Problem, stream: Any, out: Path, checkpoint: Path, *, c
     ``out``, or stopped: :func:`_stopped`) and the removal of the checkpoint once ``out`` is complete."""
     import numpy as np
 
-    from .observers import Checkpointer, StreamWriter, WakeWarning
+    from .observers import Checkpointer, ContactGrowthWarning, StreamWriter, WakeWarning
 
-    observers = [StreamWriter(problem, stream), WakeWarning()]
+    observers = [StreamWriter(problem, stream), WakeWarning(), ContactGrowthWarning(problem)]
     if checkpoint_every or resume:
         observers.append(Checkpointer(checkpoint, problem, checkpoint_every,
                                       extra=lambda: {"records": np.array(stream.drain())}))

@@ -399,6 +399,12 @@ class TangentialSection(_Section):
     sliding_speed: float = _num(0.0, unit="m/s", ge=0, description="speed v once sliding; > 0 in every sliding mode")
     steps_per_cell: int = _int(1, ge=1, description="time steps per grid cell of sliding (the default dt is "
                                "one cell of travel divided by this)")
+    slip: Literal["total", "incremental"] = Field(
+        "total", description="partial slip's stick condition on the slip s_x = u_x - delta_x: total (the "
+        "seed's Eqs. 9, 11: s_x = 0 at every stuck point at every step, without memory; exact under a held "
+        "approach, too stiff where the contact grows: a rising load, creep under a held load) or incremental "
+        "(Mindlin-Deresiewicz: a stuck point keeps its s_x, a point entering the contact sticks where it is, "
+        "the slip condition acts on each step's change of s_x); no effect outside partial_slip")
 
     @model_validator(mode="after")
     def _mode_needs(self) -> TangentialSection:
@@ -407,7 +413,7 @@ class TangentialSection(_Section):
 
     def build(self) -> TangentialLoading:
         return TangentialLoading(self.mode, self.friction_coefficient, self.displacement_rate,
-                                 self.sliding_speed, self.steps_per_cell)
+                                 self.sliding_speed, self.steps_per_cell, self.slip)
 
 
 class TimeSection(_Section):

@@ -37,15 +37,33 @@ _ROOT = "state"
 
 def problem_fingerprint(problem: Problem) -> str:
     """A hash of everything that shapes the result: the solution and the output settings (which
-    steps and fields the records hold)."""
+    steps and fields the records hold). A setting added since checkpoints were first written enters
+    it only away from its default (the body's, ``tangential.slip``), so that the checkpoints of the
+    problems it does not change still resume."""
     h = hashlib.sha256()
-    h.update(repr((problem.material, problem.grid, problem.normal, problem.tangential, problem.time,
-                   problem.solver, problem.radius, problem.output)).encode())
+    h.update(repr((problem.material, problem.grid, problem.normal, _repr_without(problem.tangential, "slip"),
+                   problem.time, problem.solver, problem.radius, problem.output)).encode())
     h.update(np.ascontiguousarray(problem.gap).tobytes())
     body = {"bulk_modulus": problem.bulk_modulus, "layer": problem.layer}
     if any(v is not None for v in body.values()):  # the half-space's fingerprint stays what it was
         h.update(repr(body).encode())
+    if problem.tangential.slip != "total":  # the seed's total slip: the fingerprint stays what it was
+        h.update(repr({"slip": problem.tangential.slip}).encode())
     return h.hexdigest()
+
+
+class _Repr(str):
+    """A string whose repr is itself (:func:`_repr_without`)."""
+
+    def __repr__(self) -> str:
+        return str(self)
+
+
+def _repr_without(value: Any, *names: str) -> _Repr:
+    """The dataclass repr of ``value`` without the fields ``names`` (what it was before they came)."""
+    items = ", ".join(f"{f.name}={getattr(value, f.name)!r}" for f in dataclasses.fields(value)
+                      if f.repr and f.name not in names)
+    return _Repr(f"{type(value).__qualname__}({items})")
 
 
 #: what a state holds on the host: numpy arrays and scalars, Python scalars and strings

@@ -13,6 +13,8 @@ the last step of a run that went to its end.
   (:func:`viscontact.api.run_to_file`: memory does not grow with the number of steps);
 * :class:`WakeWarning`: warns when the dropped wake biases the result by over 1 %, and again at the
   end when the bias has grown well beyond what the first warning said;
+* :class:`ContactGrowthWarning`: warns once when the contact grows during partial slip under the
+  seed's total slip, which has no memory there;
 * :class:`Checkpointer`: saves the solver state (with the record count of a streamed run, or the
   records so far of an in-memory one) every N steps and on a stop;
 * :class:`StopRequest`: asks a callable after each step whether to stop.
@@ -27,13 +29,16 @@ from typing import Callable, Sequence
 import numpy as np
 
 from .errors import ViscontactWarning
-from .problem import Problem
+from .problem import PHASE_PARTIAL_SLIP, Problem
 from .records import StepRecord
 
 #: estimated relative error from the dropped wake above which a warning is issued
 WAKE_WARNING = 0.01
 #: growth of that estimate, over the first warning's, above which the end of the run warns again
 WAKE_GROWTH = 1.5
+#: growth of the contact area during partial slip, relative to its first area, above which the total
+#: slip warns (:class:`ContactGrowthWarning`)
+CONTACT_GROWTH = 0.05
 
 
 class Observer:
@@ -115,6 +120,35 @@ class WakeWarning(Observer):
                 f"history dropped at the trailing edge biased the result by up to about {100 * self.largest:.2g}% "
                 f"(t = {self.largest_t:.4g} s; wake_loss in the result); {self.ADVICE}",
                 ViscontactWarning, stacklevel=4)
+
+
+class ContactGrowthWarning(Observer):
+    """Warns once when, under the seed's total slip (``tangential.slip = "total"``), the contact area
+    of a partial-slip step exceeds the first partial-slip contact's by more than
+    :data:`CONTACT_GROWTH` (a rising load, creep under a held load; the contact of a held approach
+    keeps its area). The total slip forces every point entering the contact to u_x = delta_x, as if
+    it had stuck since the contact began: measured on Mindlin-Deresiewicz loadings (nu = 0.5, no
+    slip in truth), Q 5-11 % high and a stick ratio of 0.75-0.9 for 1. The first area is that of the
+    first step in contact this run saw (a resumed run: after the resume)."""
+
+    def __init__(self, problem: Problem) -> None:
+        tan = problem.tangential
+        self.watching = tan.mode == "partial_slip" and tan.slip == "total"
+        self.first: float | None = None
+
+    def on_step(self, state, record: StepRecord) -> None:
+        if not self.watching or record.phase != PHASE_PARTIAL_SLIP or not record.contact_area > 0:
+            return
+        if self.first is None:
+            self.first = record.contact_area
+        elif record.contact_area > (1.0 + CONTACT_GROWTH) * self.first:
+            self.watching = False
+            warnings.warn(
+                f"the contact grew by {100 * (record.contact_area / self.first - 1):.3g}% during partial slip "
+                f"(t = {record.t:.4g} s): the seed's total slip condition (s_x = u_x - delta_x = 0 on the stuck "
+                "points) has no memory there and sticks each point entering the contact at u_x = delta_x, "
+                "overestimating the friction force and the slip; tangential.slip = \"incremental\" keeps the slip "
+                "of each point (Mindlin-Deresiewicz)", ViscontactWarning, stacklevel=4)
 
 
 class Checkpointer(Observer):

@@ -18,6 +18,7 @@ from .materials import Material
 
 NormalControl = Literal["load", "displacement"]
 TangentialMode = Literal["none", "frictionless_sliding", "gross_sliding", "partial_slip"]
+SlipCondition = Literal["total", "incremental"]
 TimeScheme = Literal["constant", "linear"]
 
 #: phase codes written to ``phase(t)``
@@ -77,6 +78,14 @@ class TangentialLoading:
         Speed v of the indenter in +x once sliding [m/s].
     steps_per_cell
         k >= 1: time steps per grid cell of sliding (v dt = dx / k).
+    slip
+        How partial slip reads the slip s_x = u_x - delta_x of seed Eqs. 9, 11. ``"total"`` (the
+        seed's): a stuck point has s_x = 0 at every step, without memory; exact while the contact
+        does not grow and the loading is monotonic (a held approach), but a point entering a growing
+        contact (a rising load, creep under a held load) is then forced to u_x = delta_x as if it had
+        stuck since the contact began. ``"incremental"`` (Mindlin-Deresiewicz): a stuck point keeps
+        its s_x, the slip condition acts on the step's change of s_x, and a point entering the
+        contact sticks where it is. No effect outside partial slip.
     """
 
     mode: TangentialMode = "none"
@@ -84,6 +93,7 @@ class TangentialLoading:
     displacement_rate: float = 0.0
     sliding_speed: float = 0.0
     steps_per_cell: int = 1
+    slip: SlipCondition = "total"
 
     def __post_init__(self) -> None:
         """What each mode needs; the one place that decides it (the case layer delegates here).
@@ -104,10 +114,17 @@ class TangentialLoading:
             if not self.friction_coefficient > 0:
                 raise ParameterError("tangential.friction_coefficient",
                                      f"must be > 0 with mode = 'partial_slip', got {self.friction_coefficient:g}")
+        if self.slip not in ("total", "incremental"):
+            raise ParameterError("tangential.slip", f"must be 'total' or 'incremental', got {self.slip!r}")
 
     @property
     def slides(self) -> bool:
         return self.mode != "none"
+
+    @property
+    def incremental_slip(self) -> bool:
+        """Whether partial slip keeps the slip of its stuck points (``slip = "incremental"``)."""
+        return self.mode == "partial_slip" and self.slip == "incremental"
 
     @property
     def effective_friction(self) -> float:

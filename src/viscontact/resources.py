@@ -92,7 +92,7 @@ def estimate(problem: Problem) -> Estimate:
     ``solver.mixed_precision``, the complex64 spectra of the self kernels, on top of
     :data:`BASE_MEMORY`. Checkpoint:
     the solver state only (history, the last step's fields and, on a DC-FFT grid, the products and
-    the response history the state carries).
+    the response history the state carries; with ``tangential.slip = "incremental"`` its s_x).
     """
     n = problem.grid.n
     steps = problem.time.n_steps
@@ -111,7 +111,8 @@ def estimate(problem: Problem) -> Estimate:
 
     response = modes + 1 if per_component == 1 and modes <= RESPONSE_MODES else 0
     carried = 0 if problem.grid.periodic else (2 + response) * 8 * n * n
-    solver = (2 * 2 * modes + 16) * 8 * n * n + 2 * carried + kernels * kernel_bytes + 8 * 4 * n * n * 8
+    slip = 8 * n * n if problem.tangential.incremental_slip else 0  # the incremental slip's s_x
+    solver = (2 * 2 * modes + 16) * 8 * n * n + 2 * (carried + slip) + kernels * kernel_bytes + 8 * 4 * n * n * 8
     if not problem.grid.periodic:  # support windows: cropped self kernels of the last sides used
         from .substrate import WINDOWS_KEPT
 
@@ -120,7 +121,7 @@ def estimate(problem: Problem) -> Estimate:
         single_bytes = 2 * n * (n + 1) * 8 if problem.solver.mixed_precision else 0
         solver += (WINDOWS_KEPT + 1) * self_kernels * per_component * single_bytes
         solver += WINDOWS_KEPT * self_kernels * per_component * kernel_bytes
-    state = (2 * modes + 8) * 8 * n * n + carried
+    state = (2 * modes + 8) * 8 * n * n + carried + slip
     seconds = run_seconds(n, steps, problem.tangential.mode)
     return Estimate(int(result), int(3 * per_record + solver + BASE_MEMORY), int(records), int(state), seconds)
 

@@ -6,7 +6,9 @@ known hereditary displacement of all earlier increments (:mod:`viscontact.histor
 * normal (seed Eqs. 7-8, 10): Polonsky-Keer constrained CG under load or displacement control;
 * partial slip (seed Eqs. 9, 11): bounded CG for q_x in [-mu_f p, mu_f p], alternated with the
   normal solve (semi-coupled: IC_zx, IC_xz ~ (1 - 2 nu)) until both change by less than
-  ``coupling_tolerance``;
+  ``coupling_tolerance``; the stick condition on the total slip (the seed's, s_x = 0) or, with
+  ``tangential.slip = "incremental"``, on its change over the step (Mindlin-Deresiewicz: the state
+  carries s_x, :attr:`State.slip_x`);
 * gross sliding (seed Eq. 12): q_x = mu_f p, so u_z = J_inst (IC_zz + mu_f IC_zx) p + history. The
   operator is not symmetric; the coupling term is iterated as a fixed point around symmetric
   Polonsky-Keer solves (contraction factor about mu_f (1 - 2 nu) / (2 (1 - nu)) < 0.1 for the
@@ -76,7 +78,14 @@ class State:
         displacement of the stuck points is measured; None after a step without contact (the
         indenter moves at ``displacement_rate`` without touching, which loads nothing): the next
         step that touches sets it. 0 before the first step (delta_x(0) = 0; also what a checkpoint
-        written without it resumes with).
+        written without it resumes with). Read by the total slip only: the incremental one's
+        ``slip_x`` holds s_x = -delta_x at every point before the first contact, so the points
+        that touch first stick where they are without an origin.
+    slip_x
+        Incremental slip (``tangential.slip = "incremental"``) during partial slip: the slip
+        s_x = u_x - delta_x [m] at the end of the last step at every point of the grid (a frame
+        field; in contact or not: a point entering the contact sticks at its own), which a stuck
+        point keeps; zeros before the first step, None with the total slip and from gross sliding on.
     wake
         History that left the frame (:class:`~viscontact.sliding.Wake`).
     """
@@ -99,6 +108,7 @@ class State:
     pressure_product_previous: np.ndarray | None = None
     response: History | None = None
     slip_origin: float | None = 0.0
+    slip_x: np.ndarray | None = None
 
 
 def init(problem: Problem, substrate: TermSubstrate | None = None) -> State:
@@ -112,7 +122,8 @@ def init(problem: Problem, substrate: TermSubstrate | None = None) -> State:
                  shear_x=xp.zeros((n, n)), histories=substrate.initial_histories(),
                  pressure_previous=xp.zeros((n, n)), shear_previous=xp.zeros((n, n)),
                  t_gross_sliding=0.0 if phase == PHASE_GROSS_SLIDING else None,
-                 response=substrate.initial_response())
+                 response=substrate.initial_response(),
+                 slip_x=xp.zeros((n, n)) if problem.tangential.incremental_slip else None)
 
 
 def validate(problem: Problem) -> None:
@@ -155,14 +166,17 @@ class StepContext:
     known_uz: np.ndarray     # history displacement [m]
     known_ux: np.ndarray | None
     value: float             # normal condition: load [N] or approach [m]
-    delta_x: float           # tangential displacement [m] the contact sees (partial slip: since it began)
+    delta_x: float           # tangential displacement [m] the contact sees (total slip: since it began)
+    slip_x: np.ndarray | None = None  # incremental slip: s_x [m] of the last step, which a stuck point keeps
 
 
 @dataclass(frozen=True)
 class StepSolution:
     """Tractions [Pa], approach delta_z [m], total u_z [m] and the iteration counts of one step;
     ``pressure_product``: the step's normal operator applied to the pressure [m], where the solve
-    computed it in double precision (else None)."""
+    computed it in double precision (else None); ``slip``: partial slip's s_x - ``ctx.slip_x`` [m]
+    at every point (the tangential solve's gradient: the slip, or with the incremental slip its
+    change over the step), else None."""
 
     pressure: np.ndarray
     shear_x: np.ndarray
@@ -171,6 +185,7 @@ class StepSolution:
     iterations: int = 0
     coupling_iterations: int = 1
     pressure_product: np.ndarray | None = None
+    slip: np.ndarray | None = None
 
 
 class PhaseSolver(Protocol):
@@ -185,9 +200,10 @@ class PhaseSolver(Protocol):
     solves_shear: bool
 
     def solve(self, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray, product: np.ndarray | None
-              ) -> tuple[np.ndarray, np.ndarray, float, int, np.ndarray, np.ndarray | None]:
+              ) -> tuple[np.ndarray, np.ndarray, float, int, np.ndarray, np.ndarray | None, np.ndarray | None]:
         """One pass from the iterate (p, q), ``product`` the normal operator applied to p where known:
-        returns (p, q, delta_z, CG iterations, u_z, the normal operator applied to the new p or None)."""
+        returns (p, q, delta_z, CG iterations, u_z, the normal operator applied to the new p or None,
+        the slip :attr:`StepSolution.slip` or None)."""
 
     def finish(self, ctx: StepContext, solution: StepSolution) -> StepSolution:
         """The converged solution, completed (e.g. u_z with the final coupling term)."""
@@ -232,13 +248,13 @@ class NormalContact:
     def solve(self, ctx, pressure, shear, product):
         cross = ctx.substrate.cross_displacement("z", "x", pressure, ctx.first, self.friction) if self.coupled else None
         p, delta_z, its, u_z, product = _solve_normal(ctx, _plus(ctx.known_uz, cross), pressure, product)
-        return p, (self.friction * p if self.friction else np.zeros_like(p)), delta_z, its, u_z, product
+        return p, (self.friction * p if self.friction else np.zeros_like(p)), delta_z, its, u_z, product, None
 
     def solve_direct(self, ctx, pressure):
         """The step's normal problem with the coupling inside the operator, J_inst (K_zz + mu_f K_zx),
         which is not symmetric: the primal-dual active set with GMRES of the steady solver
         (:func:`viscontact.steady.solve_contact_active_set`), from ``pressure``. For a coupling too
-        strong for the fixed point. Returns (p, q, delta_z, Krylov iterations, u_z, K_zz p)."""
+        strong for the fixed point. Returns (p, q, delta_z, Krylov iterations, u_z, K_zz p, None)."""
         from .steady import solve_contact_active_set
 
         problem, s, sub = ctx.problem, ctx.problem.solver, ctx.substrate
@@ -254,7 +270,7 @@ class NormalContact:
             what=f"{self.name} with the coupling in the operator")
         product = op.apply(p)
         u_z = product + sub.cross_displacement("z", "x", p, ctx.first, self.friction) + ctx.known_uz
-        return p, self.friction * p, delta_z, krylov, u_z, product
+        return p, self.friction * p, delta_z, krylov, u_z, product, None
 
     def finish(self, ctx, solution):
         return solution
@@ -264,10 +280,16 @@ class NormalContact:
 class PartialSlip:
     """Partial slip (seed Eqs. 9, 11): bounded CG for q_x in [-mu_f p, mu_f p] with slip
     s = u_x - delta_x, alternated with the normal solve (semi-coupled: IC_zx, IC_xz ~ (1 - 2 nu)).
-    delta_x is measured from the first step of the contact (:attr:`State.slip_origin`): the indenter
-    that moved before it touched has dragged nothing. ``free_mean``: a uniform shear is in the null
-    space of the tangential operator (:meth:`~viscontact.substrate.TermSubstrate.free_mean`), so a
-    contact over every cell is refused (:func:`check_not_full_contact`)."""
+
+    Total slip (the seed's): the CG's gradient is s itself, zero where stuck; delta_x is measured
+    from the first step of the contact (:attr:`State.slip_origin`): the indenter that moved before
+    it touched has dragged nothing. Incremental slip (``ctx.slip_x``, the last step's s): the
+    right-hand side is delta_x + s_prev - u_known, so the gradient is the step's change of s, zero
+    where stuck (a stuck point keeps its slip) and opposed to q where slipping (Mindlin-Deresiewicz);
+    with nothing entering the contact and a monotonic loading both give the same solution.
+    ``free_mean``: a uniform shear is in the null space of the tangential operator
+    (:meth:`~viscontact.substrate.TermSubstrate.free_mean`), so a contact over every cell is refused
+    (:func:`check_not_full_contact`)."""
 
     friction: float
     coupled: bool
@@ -284,10 +306,13 @@ class PartialSlip:
         cross_x = sub.cross_displacement("x", "z", p, ctx.first) if self.coupled else None
         bound = self.friction * p
         op = sub.elastic_operator("x", ctx.first)
-        sol = windowed_bounded_cg(op, ctx.delta_x - _plus(ctx.known_ux, cross_x), np.clip(shear, -bound, bound),
+        target = ctx.delta_x - _plus(ctx.known_ux, cross_x)
+        if ctx.slip_x is not None:
+            target += ctx.slip_x
+        sol = windowed_bounded_cg(op, target, np.clip(shear, -bound, bound),
                                   -bound, bound, tolerance=s.tolerance, max_iterations=s.max_iterations,
                                   what="tangential contact (partial slip)", mixed_precision=s.mixed_precision)
-        return p, sol.x, delta_z, it_n + sol.iterations, u_z, product
+        return p, sol.x, delta_z, it_n + sol.iterations, u_z, product, sol.gradient
 
     def finish(self, ctx, solution):
         if not self.coupled:
@@ -372,18 +397,19 @@ def solve_coupled(solver: PhaseSolver, ctx: StepContext, pressure: np.ndarray, s
     change = previous = np.inf
     weight = 1.0
     for count in range(1, settings.max_coupling_iterations + 1):
-        p, q, delta_z, its, u_z, solved_product = solver.solve(ctx, pressure, shear, product)
+        p, q, delta_z, its, u_z, solved_product, slip = solver.solve(ctx, pressure, shear, product)
         iterations += its
         change = _relative_change(p, pressure)
         if solver.solves_shear:
             change = max(change, _relative_change(q, shear))
         if not solver.coupled or change < settings.coupling_tolerance:
-            return solver.finish(ctx, StepSolution(p, q, float(delta_z), u_z, iterations, count, solved_product))
+            return solver.finish(ctx, StepSolution(p, q, float(delta_z), u_z, iterations, count, solved_product,
+                                                   slip))
         if change >= SLOW_CONTRACTION * previous:
             if hasattr(solver, "solve_direct"):  # the coupling is too strong for the fixed point
-                p, q, delta_z, its, u_z, solved_product = solver.solve_direct(ctx, p)
+                p, q, delta_z, its, u_z, solved_product, slip = solver.solve_direct(ctx, p)
                 return solver.finish(ctx, StepSolution(p, q, float(delta_z), u_z, iterations + its, count + 1,
-                                                       solved_product))
+                                                       solved_product, slip))
             weight = relaxation_weight(weight, change / previous)
         previous = change
         if weight == 1.0:
@@ -468,11 +494,13 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
     else:
         known_uz, known_ux = substrate.known_displacement(state.histories, t, first, need_x=solver.solves_shear)
     gap = problem.frame_gap(offset)
-    # partial slip: the stuck points move with the indenter since the contact began (this step, when
-    # the last one had none)
+    # partial slip, total slip: the stuck points move with the indenter since the contact began (this
+    # step, when the last one had none); incremental slip: they keep the slip of the last step
     origin = state.delta_x if state.slip_origin is None else state.slip_origin
+    incremental = solver.solves_shear and state.slip_x is not None
     ctx = StepContext(problem, substrate, k, t, first, substrate.backend.to_device(gap), known_uz, known_ux,
-                      problem.normal.history(t), state.delta_x - origin)
+                      problem.normal.history(t), state.delta_x if incremental else state.delta_x - origin,
+                      state.slip_x if incremental else None)
     p0, p0_product = _warm_start(substrate, state, k)
     q0 = 2.0 * state.shear_x - state.shear_previous if k > 1 else state.shear_x
     sol = solve_coupled(solver, ctx, p0, q0, p0_product)
@@ -494,8 +522,14 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
     phase, t_gross = state.phase, state.t_gross_sliding
     if phase == PHASE_PARTIAL_SLIP and n_contact and (not stick.any() or mu == 0):
         phase, t_gross = PHASE_GROSS_SLIDING, t
+    slip_x = None
+    if incremental and phase == PHASE_PARTIAL_SLIP:
+        # s_x at the end of the step: a stuck point keeps the last step's exactly (its change is zero
+        # to the solve's tolerance), the others add the change the solve found
+        stuck = (p > 0) & (np.abs(q) < mu * p * (1 - STICK_MARGIN))
+        slip_x = np.where(stuck, state.slip_x, state.slip_x + sol.slip)
     state = replace(state, step=k, t=t, phase=phase, t_gross_sliding=t_gross,
-                    slip_origin=origin if n_contact else None,
+                    slip_origin=origin if n_contact else None, slip_x=slip_x,
                     histories=substrate.advanced(state.histories, {"z": p, "x": q}, t, first),
                     pressure_previous=state.pressure, shear_previous=state.shear_x,
                     pressure=p, shear_x=q, delta_z=sol.delta_z,
@@ -571,16 +605,18 @@ def simulate(problem: Problem, *, progress: Callable[[int, int], None] | None = 
              state: State | None = None, substrate: TermSubstrate | None = None) -> Iterator[StepRecord]:
     """Run the transient and yield the records the output settings keep (every ``output.every``
     steps and the last, with the ``output.fields``), warning about a biasing wake
-    (:class:`~viscontact.observers.WakeWarning`).
+    (:class:`~viscontact.observers.WakeWarning`) and a contact growing under the total slip
+    (:class:`~viscontact.observers.ContactGrowthWarning`).
 
     Parameters are those of :func:`steps`.
     """
-    from .observers import Recorder, WakeWarning
+    from .observers import ContactGrowthWarning, Recorder, WakeWarning
 
-    recorder, wake = Recorder(problem), WakeWarning()
+    recorder, wake, growth = Recorder(problem), WakeWarning(), ContactGrowthWarning(problem)
     current = state
     for current, record in steps(problem, progress=progress, state=state, substrate=substrate):
         wake.on_step(current, record)
+        growth.on_step(current, record)
         kept = recorder.kept(record)
         if kept is not None:
             yield kept

@@ -119,6 +119,9 @@ def test_dcfft_preconditioned_cg_on_the_device_equals_numpy(backend):
 
 def _transient(mode: str):
     """A short run of every transient mode on the seed's material (n = 32)."""
+    if mode.endswith("_incremental"):  # the incremental slip: s_x carried in the state
+        base = _transient(mode[:-len("_incremental")])
+        return dataclasses.replace(base, tangential=dataclasses.replace(base.tangential, slip="incremental"))
     material = seed_material()
     if mode == "creep":
         return sphere_problem(material, 32, 2.5 * SEED_A0, t_end=10 * SEED_TAU / 20)
@@ -152,7 +155,8 @@ def _transient(mode: str):
 
 
 @pytest.mark.parametrize("mode", ["creep", "displacement", "frictionless_sliding", "gross_sliding", "strong_coupling",
-                                  "partial_slip", "rough_periodic", "layer", "layer_on_elastic", "bulk_modulus"])
+                                  "partial_slip", "partial_slip_incremental", "rough_periodic",
+                                  "rough_periodic_incremental", "layer", "layer_on_elastic", "bulk_modulus"])
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_the_transient_on_the_device_equals_numpy(backend, mode, monkeypatch):
     problem = _transient(mode)
@@ -179,8 +183,14 @@ def test_the_transient_on_the_device_equals_numpy(backend, mode, monkeypatch):
     if problem.tangential.slides and not problem.grid.periodic:
         assert final.wake.strips  # the frame moved and history left it (on the host)
     assert bool(direct_solves) == (mode == "strong_coupling")  # its steps ran the direct solve
-    if mode in ("partial_slip", "rough_periodic"):
+    if mode.startswith(("partial_slip", "rough_periodic")):
         assert {r.phase for _, r in ours} == {1, 2} and max(r.stick_ratio for _, r in ours) > 0.5
+        carried = [state.slip_x for state, r in ours if r.phase == 1]
+        if mode.endswith("_incremental"):  # s_x, a field on the device, until gross sliding
+            assert carried and all(not isinstance(s_x, np.ndarray) and s_x is not None for s_x in carried)
+            assert final.slip_x is None
+        else:
+            assert all(s_x is None for s_x in carried)
 
 
 @pytest.mark.parametrize("backend", BACKENDS)

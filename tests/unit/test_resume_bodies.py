@@ -29,6 +29,11 @@ BODIES = {
     "bulk_modulus gross sliding": {**SLIDING, "tangential.mode": "gross_sliding", **BULK},
     "bulk_modulus periodic": {**SLIDING, "tangential.mode": "gross_sliding", "grid.periodic": True, **BULK},
     "layer partial slip": {**SLIDING, "tangential.mode": "partial_slip", "tangential.displacement_rate": 0.01, **LAYER},
+    # partial slip to step 6, then sliding: the checkpoint (step 3) holds s_x
+    "incremental slip": {**SLIDING, "tangential.mode": "partial_slip", "tangential.displacement_rate": 0.004,
+                         "tangential.slip": "incremental"},
+    "layer, incremental slip": {**SLIDING, "tangential.mode": "partial_slip", "tangential.displacement_rate": 0.0025,
+                                "tangential.slip": "incremental", **LAYER},
     "layer periodic": {**SLIDING, "tangential.mode": "frictionless_sliding", "grid.periodic": True, **LAYER},
     "layer on an elastic substrate": {**SLIDING, "tangential.mode": "gross_sliding", **ON_ELASTIC},
     "layer on an elastic substrate, periodic": {**SLIDING, "tangential.mode": "frictionless_sliding",
@@ -79,6 +84,29 @@ def test_resume_refuses_a_checkpoint_of_another_body(tmp_path):
     other = {**BODIES["layer periodic"], "layer.thickness": 0.6e-3}
     with pytest.raises(ParameterError, match="^--resume: checkpoint .* different case"):
         api.run(case(other), checkpoint=ckpt, resume=True)
+
+
+def test_resume_of_the_incremental_slip_carries_its_slip_and_refuses_the_total_one(tmp_path):
+    """The incremental slip's checkpoint holds s_x (State.slip_x, the run still in partial slip at
+    its last save, step 3 of 4 here, gross sliding from step 7); a checkpoint of the total slip is refused by the incremental one
+    and the other way round (tangential.slip enters the fingerprint away from its default, so the
+    total slip's fingerprint, and the checkpoints written before the setting, stay as they were)."""
+    from viscontact.checkpoint import load_checkpoint, problem_fingerprint
+
+    incremental = BODIES["incremental slip"]
+    total = {**incremental, "tangential.slip": "total"}
+    ckpt = tmp_path / "r.nc.checkpoint.npz"
+    stopped(incremental, ckpt)
+    state, _ = load_checkpoint(ckpt, case(incremental).to_problem())
+    assert state.phase == 1 and state.slip_x is not None and np.any(state.slip_x != 0)
+    with pytest.raises(ParameterError, match="^--resume: checkpoint .* different case"):
+        api.run(case(total), checkpoint=ckpt, resume=True)
+    stopped(total, ckpt)
+    assert load_checkpoint(ckpt, case(total).to_problem())[0].slip_x is None
+    with pytest.raises(ParameterError, match="^--resume: checkpoint .* different case"):
+        api.run(case(incremental), checkpoint=ckpt, resume=True)
+    without = {k: v for k, v in total.items() if k != "tangential.slip"}
+    assert problem_fingerprint(case(without).to_problem()) == problem_fingerprint(case(total).to_problem())
 
 
 def test_memory_estimate_counts_the_histories_and_kernels_of_the_body():
