@@ -38,7 +38,7 @@ _ROOT = "state"
 def problem_fingerprint(problem: Problem) -> str:
     """A hash of everything that shapes the result: the solution and the output settings (which
     steps and fields the records hold). A setting added since checkpoints were first written enters
-    it only away from its default (the body's, ``tangential.slip``), so that the checkpoints of the
+    it only away from its default (the body's, ``tangential.slip`` in partial slip), so that the checkpoints of the
     problems it does not change still resume."""
     h = hashlib.sha256()
     h.update(repr((problem.material, problem.grid, problem.normal, _repr_without(problem.tangential, "slip"),
@@ -47,7 +47,7 @@ def problem_fingerprint(problem: Problem) -> str:
     body = {"bulk_modulus": problem.bulk_modulus, "layer": problem.layer}
     if any(v is not None for v in body.values()):  # the half-space's fingerprint stays what it was
         h.update(repr(body).encode())
-    if problem.tangential.slip != "total":  # the seed's total slip: the fingerprint stays what it was
+    if problem.tangential.incremental_slip:  # the seed's total slip, or no partial slip: as it was
         h.update(repr({"slip": problem.tangential.slip}).encode())
     return h.hexdigest()
 

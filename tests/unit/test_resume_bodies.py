@@ -107,6 +107,10 @@ def test_resume_of_the_incremental_slip_carries_its_slip_and_refuses_the_total_o
         api.run(case(incremental), checkpoint=ckpt, resume=True)
     without = {k: v for k, v in total.items() if k != "tangential.slip"}
     assert problem_fingerprint(case(without).to_problem()) == problem_fingerprint(case(total).to_problem())
+    # where there is no partial slip the setting changes nothing: the checkpoints stay each other's
+    sliding = {**without, "tangential.mode": "gross_sliding"}
+    assert (problem_fingerprint(case({**sliding, "tangential.slip": "incremental"}).to_problem())
+            == problem_fingerprint(case(sliding).to_problem()))
 
 
 def test_memory_estimate_counts_the_histories_and_kernels_of_the_body():
