@@ -140,9 +140,10 @@ def _transient(mode: str):
     if mode == "partial_slip":  # 6 steps, then gross sliding (5)
         return sphere_problem(material, 32, 2.5 * SEED_A0, mode="partial_slip", friction=0.5, rate=0.003,
                               speed=0.02, t_end=10 * 2.5 * SEED_A0 / 16 / 0.02, scheme="linear")
-    if mode == "rough_periodic":  # partial slip on a periodic self-affine surface, then sliding
+    if mode == "rough_periodic":  # partial slip on a periodic self-affine surface, then sliding (total slip)
         case = load_case(shipped_case("rough_periodic_sliding")).with_overrides(
-            {"grid.n": 32, "tangential.displacement_rate": 0.004, "time.t_end": 10 * 1e-3 / 32 / 0.02})
+            {"grid.n": 32, "tangential.displacement_rate": 0.004, "time.t_end": 10 * 1e-3 / 32 / 0.02,
+             "tangential.slip": "total"})
         return case.to_problem()
     creep = _transient("creep")
     if mode == "layer":
