@@ -370,13 +370,7 @@ class NormalSection(_Section):
             pts = self.history
             if not pts or any(len(p) != 2 for p in pts):
                 raise ParameterError("normal.history", "must be a non-empty list of [t, value] pairs")
-            arr = np.asarray(pts, dtype=float)
-            if not np.all(np.isfinite(arr)):
-                raise ParameterError("normal.history", "must contain finite numbers only")
-            if arr[0, 0] < 0 or np.any(np.diff(arr[:, 0]) <= 0):
-                raise ParameterError("normal.history", "times must be >= 0 s and strictly increasing")
-            if np.any(arr[:, 1] < 0) or not arr[:, 1].max() > 0:
-                raise ParameterError("normal.history", "values must be >= 0 (N or m) with a positive maximum")
+        self.build()  # finite values, increasing times: decided by NormalLoading
         return self
 
     def build(self) -> NormalLoading:

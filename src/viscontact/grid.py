@@ -31,10 +31,16 @@ class Grid:
     periodic: bool = False
 
     def __post_init__(self) -> None:
-        if self.n < 2:
-            raise ValueError(f"grid.n must be >= 2, got {self.n}")
-        if not self.half_width > 0:
-            raise ValueError(f"grid.half_width must be > 0 m, got {self.half_width}")
+        """``grid.n`` an integer >= 2, ``grid.half_width`` a finite number > 0 m (else
+        :class:`~viscontact.errors.ParameterError`, a ValueError)."""
+        from .errors import ParameterError
+
+        n, half_width = self.n, self.half_width
+        if isinstance(n, (bool, np.bool_)) or not isinstance(n, (int, np.integer)) or n < 2:
+            raise ParameterError("grid.n", f"must be an integer >= 2, got {n!r}")
+        if isinstance(half_width, (bool, np.bool_)) or not isinstance(half_width, (int, float, np.integer, np.floating)) \
+                or not 0 < half_width < float("inf"):
+            raise ParameterError("grid.half_width", f"must be a finite number > 0 m, got {half_width!r}")
 
     @property
     def spacing(self) -> float:

@@ -28,6 +28,25 @@ PHASE_NAMES = {PHASE_INDENTATION: "indentation", PHASE_PARTIAL_SLIP: "partial sl
                PHASE_GROSS_SLIDING: "gross sliding"}
 
 
+def _is_number(value: object) -> bool:
+    """A real number (Python or numpy), not a boolean."""
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
+
+
+def _check_number(key: str, value: object, unit: str, *, low: float = 0.0, strict: bool = True) -> None:
+    """Raise :class:`ParameterError` naming ``key`` unless ``value`` is a finite number > ``low``
+    (``strict``) or >= ``low``."""
+    ok = _is_number(value) and bool(np.isfinite(value)) and (value > low if strict else value >= low)
+    if not ok:
+        raise ParameterError(key, f"must be a finite number {'>' if strict else '>='} {low:g}{unit}, got {value!r}")
+
+
+def _check_integer(key: str, value: object, low: int = 1) -> None:
+    """Raise :class:`ParameterError` naming ``key`` unless ``value`` is an integer >= ``low``."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or value < low:
+        raise ParameterError(key, f"must be an integer >= {low}, got {value!r}")
+
+
 @dataclass(frozen=True)
 class PiecewiseLinear:
     """A piecewise-linear history f(t) through the points (times[i], values[i]).
@@ -57,6 +76,32 @@ class NormalLoading:
 
     control: NormalControl
     history: PiecewiseLinear
+
+    def __post_init__(self) -> None:
+        """The one place that checks a normal loading (the case layer delegates here).
+
+        Raises
+        ------
+        ParameterError
+            ``normal.control`` not ``"load"`` or ``"displacement"``; ``normal.value`` (a held value)
+            or ``normal.history`` (several points) not finite, negative or nowhere > 0, history times
+            not >= 0 s and strictly increasing, or times and values of different lengths.
+        """
+        if self.control not in ("load", "displacement"):
+            raise ParameterError("normal.control", f"must be 'load' or 'displacement', got {self.control!r}")
+        times, values = self.history.times, self.history.values
+        key = "normal.value" if len(times) == 1 and times[0] == 0 else "normal.history"
+        if len(times) != len(values) or not times:
+            raise ParameterError("normal.history", f"must be a non-empty list of [t, value] pairs, got {len(times)} "
+                                 f"times and {len(values)} values")
+        if not all(_is_number(v) and np.isfinite(v) for v in (*times, *values)):
+            raise ParameterError(key, "must contain finite numbers only" if key == "normal.history" else
+                                 f"must be a finite number (N or m), got {values[0]!r}")
+        if times[0] < 0 or np.any(np.diff(times) <= 0):
+            raise ParameterError("normal.history", "times must be >= 0 s and strictly increasing")
+        if min(values) < 0 or not max(values) > 0:
+            raise ParameterError(key, "values must be >= 0 (N or m) with a positive maximum" if key == "normal.history"
+                                 else f"must be > 0 N or m, got {values[0]!r}")
 
 
 @dataclass(frozen=True)
@@ -104,6 +149,12 @@ class TangentialLoading:
             A sliding mode without a speed > 0 m/s, or partial slip without a displacement rate
             > 0 m/s or a friction coefficient > 0 (with mu_f = 0 nothing would ever stick).
         """
+        if self.mode not in ("none", "frictionless_sliding", "gross_sliding", "partial_slip"):
+            raise ParameterError("tangential.mode", "must be one of 'none', 'frictionless_sliding', 'gross_sliding', "
+                                 f"'partial_slip', got {self.mode!r}")
+        for name, unit in (("friction_coefficient", ""), ("displacement_rate", " m/s"), ("sliding_speed", " m/s")):
+            _check_number(f"tangential.{name}", getattr(self, name), unit, strict=False)
+        _check_integer("tangential.steps_per_cell", self.steps_per_cell)
         if self.mode != "none" and not self.sliding_speed > 0:
             raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s with mode = '{self.mode}', "
                                  f"got {self.sliding_speed:g}")
@@ -145,6 +196,11 @@ class TimeStepping:
     t_end: float
     dt: float
     scheme: TimeScheme = "linear"
+
+    def __post_init__(self) -> None:
+        """``time.t_end`` a finite number >= 0 s, ``time.dt`` > 0 s (else :class:`ParameterError`)."""
+        _check_number("time.t_end", self.t_end, " s", strict=False)
+        _check_number("time.dt", self.dt, " s")
 
     @property
     def n_steps(self) -> int:
@@ -211,6 +267,20 @@ class OutputSettings:
     #: times [s] of the subsurface output (the nearest recorded steps); None: the last recorded step
     subsurface_times: tuple[float, ...] | None = None
 
+    def __post_init__(self) -> None:
+        """``output.every`` an integer >= 1, ``output.fields`` a tuple or list of field names, the
+        subsurface depths and times finite numbers >= 0 (else :class:`ParameterError`)."""
+        from .records import StepRecord
+
+        _check_integer("output.every", self.every)
+        fields = self.fields
+        if not isinstance(fields, (tuple, list)) or any(f not in StepRecord.FIELDS for f in fields):
+            raise ParameterError("output.fields", f"must be a list of {', '.join(map(repr, StepRecord.FIELDS))}, "
+                                 f"got {fields!r}")
+        for key, values in (("subsurface_depths", self.subsurface_depths), ("subsurface_times", self.subsurface_times)):
+            for value in values or ():
+                _check_number(f"output.{key}", value, " m" if key == "subsurface_depths" else " s", strict=False)
+
 
 @dataclass(frozen=True)
 class LayerSettings:
@@ -264,6 +334,13 @@ class Problem:
     layer: LayerSettings | None = None
 
     def __post_init__(self) -> None:
+        n = self.grid.n
+        if np.shape(self.gap) != (n, n):
+            raise ParameterError("gap", f"must be an array of the grid's shape ({n}, {n}), got shape {np.shape(self.gap)}")
+        if not (np.isfinite(np.min(self.gap)) and np.isfinite(np.max(self.gap))):  # no n x n temporary
+            raise ParameterError("gap", "must hold finite heights [m] only (NaN or Inf found)")
+        if self.radius is not None:
+            _check_number("indenter.radius", self.radius, " m")
         check_subsurface_body(self.output.subsurface_depths, self.layer is not None, self.bulk_modulus is not None)
 
     @cached_property
