@@ -516,3 +516,41 @@ def test_the_coulomb_bound_is_drawn_over_the_shear_it_bounds(result):
     assert len(solid) == len(dotted) == result.sizes["t"]
     assert min(line.get_zorder() for line in dotted) > max(line.get_zorder() for line in solid)
     assert all(line.get_color() == "k" for line in dotted) and "black dotted: μ_f p" in fig.axes[1].get_title()
+
+
+def _plot_one_line(capsys, path: Path, out: Path) -> str:
+    from viscontact import cli
+
+    assert cli.main(["plot", str(path), "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(f"viscontact: error: {path}: "), err
+    assert not out.exists()  # refused before any figure
+    return err[0]
+
+
+def test_plot_of_a_run_killed_before_its_first_record_is_one_line(tmp_path, capsys):
+    """The streamed file a kill -9 leaves before the first record is a valid result without a
+    record: `plot` says so in one line (it raised ValueError: max() arg is an empty sequence)."""
+    from viscontact.streaming import ResultStream
+
+    partial = tmp_path / "r.nc.partial"
+    ResultStream.create(partial, make_problem(), case_text="title = 'x'", require_space=False).close()
+    assert "holds no record" in _plot_one_line(capsys, partial, tmp_path / "figs")
+
+
+@pytest.mark.parametrize("drop", ["contact_area", "delta_x"])
+def test_plot_of_a_result_without_a_variable_its_figures_draw_is_one_line(tmp_path, capsys, result, drop):
+    """A result rewritten without a history its figures read names it (it raised KeyError)."""
+    from viscontact.results import write_netcdf
+
+    write_netcdf(result.drop_vars(drop), tmp_path / "r.nc")
+    assert f"has no variable '{drop}'" in _plot_one_line(capsys, tmp_path / "r.nc", tmp_path / "figs")
+
+
+def test_plot_of_a_speed_curve_without_mu_app_is_one_line(tmp_path, capsys, result):
+    from viscontact.results import sweep_dataset, write_netcdf
+
+    problem = make_problem("frictionless_sliding")
+    curve = sweep_dataset(fake_records(problem, (0, 1)), [0.01, 0.1], problem)
+    write_netcdf(curve.drop_vars("mu_app"), tmp_path / "c.nc")
+    assert "has no variable 'mu_app'" in _plot_one_line(capsys, tmp_path / "c.nc", tmp_path / "figs")

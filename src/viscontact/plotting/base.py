@@ -5,7 +5,7 @@ Figures are drawn from result Datasets only (never from solver objects). Matplot
 """
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -83,6 +83,29 @@ class FigureFiles:
         FuncAnimation(fig, frame, frames=frames).save(path, writer=PillowWriter(fps=fps), dpi=min(self.dpi or DPI, 100))
         pyplot().close(fig)
         return path
+
+
+def check_drawable(ds: xr.Dataset, dim: str, names: Sequence[str]) -> None:
+    """Refuse, before any figure is written, a result that has nothing to draw along ``dim`` (``t``
+    or ``speed``): no record (a run killed before its first record was written leaves such a
+    ``.partial`` file), or none of the variables ``names`` that its figures read (a file thinned
+    or rewritten by another program).
+
+    Raises
+    ------
+    ParameterError
+        Keyed by the file the Dataset was read from (``result`` when it was not read from one).
+    """
+    from ..errors import ParameterError
+
+    where = str(ds.encoding.get("source") or "result")
+    if not ds.sizes.get(dim, 0):
+        raise ParameterError(where, f"holds no record (dimension {dim!r} is empty, as in the streamed file of "
+                             "a run killed before its first record): nothing to draw")
+    missing = [name for name in names if name not in ds.variables]
+    if missing:
+        raise ParameterError(where, f"has no variable {', '.join(map(repr, missing))}, which the figures of this "
+                             "result draw: plot a result file as viscontact wrote it")
 
 
 def positive_attr(ds: xr.Dataset, name: str) -> float | None:

@@ -13,9 +13,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..problem import PHASE_GROSS_SLIDING
-from .base import (FigureFiles, Scales, cell_limits, check_format, draw_contact_maps, draw_map, fit_title, is_periodic,
-                   is_steady, map_axes, map_image, positive_attr, profile, pyplot, retardation_count, set_title,
-                   time_index)
+from .base import (FigureFiles, Scales, cell_limits, check_drawable, check_format, draw_contact_maps, draw_map,
+                   fit_title, is_periodic, is_steady, map_axes, map_image, positive_attr, profile, pyplot,
+                   retardation_count, set_title, time_index)
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -448,6 +448,19 @@ def subsurface_figure(ds: xr.Dataset) -> Any:
     return fig
 
 
+def _histories_drawn(ds: xr.Dataset, mode: str) -> tuple[str, ...]:
+    """The variables against time that the figures of :func:`plot_result` read (the fields, the
+    rough-contact series and the subsurface stresses are drawn where present)."""
+    if is_steady(ds):
+        return ()
+    names = [] if is_periodic(ds) else ["contact_area", "load", "delta_z"]  # contact_history
+    if mode != "none":
+        names += ["mu_app", "friction_force", "load"]  # friction
+    if mode == "partial_slip":
+        names += ["load", "delta_x", "contact_area", "phase", "friction_force"]  # tangential_loop
+    return tuple(dict.fromkeys(names))
+
+
 def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] | None = None, fmt: str = "png",
                 dpi: int | None = None) -> list[Path]:
     """Figures of a transient (or single steady) result, written into ``out_dir``.
@@ -480,8 +493,9 @@ def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] |
         The files written.
     """
     check_format(fmt, dpi)
-    files = FigureFiles(Path(out_dir), fmt, dpi)
     mode = ds.attrs.get("tangential_mode", "none")
+    check_drawable(ds, "t", _histories_drawn(ds, mode))
+    files = FigureFiles(Path(out_dir), fmt, dpi)
     figures: dict[str, Any] = {}
     if "pressure" in ds:
         figures["pressure_profiles"] = profiles_figure(ds, times)
@@ -540,4 +554,5 @@ def speed_curve_figure(ds: xr.Dataset) -> Any:
 def plot_speed_curve(ds: xr.Dataset, out_dir: str | Path, *, fmt: str = "png", dpi: int | None = None) -> list[Path]:
     """:func:`speed_curve_figure` as ``speed_curve.<fmt>`` in ``out_dir``."""
     check_format(fmt, dpi)
+    check_drawable(ds, "speed", ("mu_app", "peak_pressure", "contact_area", "contact_shift"))
     return [FigureFiles(Path(out_dir), fmt, dpi).save(speed_curve_figure(ds), "speed_curve")]
