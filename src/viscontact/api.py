@@ -352,7 +352,14 @@ def run_steady(case: CaseLike, speeds: Sequence[float] | None = None) -> xr.Data
         length 1 (same layout as :func:`run`). A sequence of speeds [m/s]: a Dataset along
         dimension ``speed`` with ``mu_app``, ``peak_pressure``, ``contact_area``,
         ``contact_shift``, ``delta_z``, ``load`` (see :func:`viscontact.results.sweep_dataset`).
+
+    Raises
+    ------
+    ParameterError
+        Invalid input, before any solve: the case's, or ``speeds`` not a non-empty list of finite
+        numbers > 0 m/s, each given once (key ``speeds``).
     """
+    from .guards import positive_values
     from .results import sweep_dataset, to_dataset
     from .steady import solve_steady, speed_sweep
 
@@ -360,7 +367,7 @@ def run_steady(case: CaseLike, speeds: Sequence[float] | None = None) -> xr.Data
     if speeds is None:
         record = solve_steady(problem)
         return to_dataset([record], problem, case_text=text, attrs={"solver": "steady", "complete": 1})
-    speeds = [float(v) for v in speeds]
+    speeds = positive_values(speeds, "speeds", "m/s")
     return sweep_dataset(speed_sweep(problem, speeds), speeds, problem, case_text=text)
 
 

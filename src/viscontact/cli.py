@@ -380,17 +380,13 @@ def _check_result_name(out: str) -> None:
 
 def _parse_positive(text: str, option: str, unit: str, example: str) -> list[float]:
     """Comma-separated finite numbers > 0, each once (``--speeds``, ``--times``)."""
+    from .guards import positive_values
+
     try:
         values = [float(s) for s in text.split(",") if s.strip()]
     except ValueError:
         raise ParameterError(option, f"expected comma-separated numbers in {unit} (e.g. {example}), got {text!r}") from None
-    if not values or any(not (v > 0 and v < float("inf")) for v in values):
-        raise ParameterError(option, f"every value must be a finite number > 0 {unit}, got {text!r}")
-    twice = sorted({v for v in values if values.count(v) > 1})
-    if twice:  # a result along them would have a coordinate with repeated values
-        raise ParameterError(option, f"{', '.join(f'{v:g}' for v in twice)} {unit} is listed more than once, "
-                             f"got {text!r}")
-    return values
+    return positive_values(values, option, unit, repr(text))
 
 
 def _finish(ds: Any, args: argparse.Namespace, started: float) -> None:
@@ -525,7 +521,7 @@ def _cmd_steady(args: argparse.Namespace) -> int:
     from . import api
 
     started = time.perf_counter()
-    speeds = _parse_positive(args.speeds, "--speeds", "m/s", "0.01,0.1,1") if args.speeds else None
+    speeds = _parse_positive(args.speeds, "--speeds", "m/s", "0.01,0.1,1") if args.speeds is not None else None
     with _writing(args.out):
         case = _prepare(args)
         _finish(api.run_steady(case, speeds), args, started)
@@ -575,7 +571,7 @@ def _cmd_plot(args: argparse.Namespace) -> int:
     from .plotting import plot_any
     from .results import open_result
 
-    times = _parse_positive(args.times, "--times", "s", "0.005,0.02") if args.times else None
+    times = _parse_positive(args.times, "--times", "s", "0.005,0.02") if args.times is not None else None
     _check_figures(args)
     for path in plot_any(open_result(args.result), args.out, times=times, fmt=args.fmt, dpi=args.dpi):
         if not args.quiet:

@@ -67,3 +67,14 @@ def test_steady_layouts(monkeypatch: pytest.MonkeyPatch) -> None:
     for name in ("mu_app", "peak_pressure", "contact_area", "contact_shift", "delta_z", "load"):
         assert sweep[name].dims == ("speed",), name
     assert {"a0", "p0", "retardation_time"} <= set(sweep.attrs)
+
+
+@pytest.mark.parametrize("speeds", [[float("inf")], [0.01, float("nan")], [-0.1], [], [0.1, 0.1], 0.1, "0.1",
+                                    [0.1, True]])
+def test_run_steady_checks_its_speeds_as_the_command_line_does(speeds) -> None:
+    """Before: inf raised OverflowError deep in the kernels, a scalar or a string a TypeError or
+    ValueError of float(), and an empty or repeated list returned a Dataset (no state, or a speed
+    coordinate with a repeated value) that ``steady --speeds`` refuses."""
+    with pytest.raises(vc.ParameterError) as err:
+        vc.run_steady(make_problem("frictionless_sliding"), speeds)
+    assert err.value.key == "speeds"

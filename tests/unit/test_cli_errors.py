@@ -151,6 +151,16 @@ def test_a_speed_or_time_listed_twice_is_refused(tmp_path: Path, command: str) -
     assert "0.01" in proc.stderr and "more than once" in proc.stderr
 
 
+@pytest.mark.parametrize("command", ["steady", "plot"])
+def test_an_empty_list_of_speeds_or_times_is_refused(tmp_path: Path, command: str) -> None:
+    """``steady --speeds ""`` solved the one state at the case's speed as if no --speeds was given."""
+    option = "--speeds" if command == "steady" else "--times"
+    proc = viscontact(command, "case.toml" if command == "steady" else "r.nc", "--out", "r.nc" if command == "steady"
+                      else "figs", option, "", cwd=tmp_path)
+    assert_one_line_error(proc, option)
+    assert "at least one" in proc.stderr
+
+
 def test_plot_refuses_a_file_that_is_not_a_result(tmp_path: Path) -> None:
     (tmp_path / "notes.nc").write_text("not a netCDF file")
     proc = viscontact("plot", "notes.nc", "--out", "figs", cwd=tmp_path)
