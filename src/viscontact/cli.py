@@ -326,16 +326,18 @@ def _overrides(items: Sequence[str]) -> dict[str, Any]:
     return overrides
 
 
-def _check_figures(args: argparse.Namespace) -> None:
-    """Before any computing: the figure options are valid, matplotlib imports and the ``--plots``
-    folder (of the commands that have one) can be made and is not the result file."""
+def _check_figures(args: argparse.Namespace, option: str = "--plots", files: Sequence[str] | None = None) -> None:
+    """Before any computing: the figure options are valid, matplotlib imports and the folder of the
+    figures, given by ``option`` (``--plots`` of the commands that have one, ``--out`` of ``plot``),
+    can be made and is none of ``files`` (default: the result file ``--out``)."""
     from .output_files import check_output_folder
     from .plotting import check_format, pyplot
 
     check_format(args.fmt, args.dpi)
     pyplot()
-    if getattr(args, "plots", None):
-        check_output_folder(args.plots, option="--plots", files=[args.out])
+    folder = getattr(args, option.removeprefix("--"), None)
+    if folder:
+        check_output_folder(folder, option=option, files=[args.out] if files is None else files)
 
 
 def _load(args: argparse.Namespace) -> Any:
@@ -533,10 +535,7 @@ def _cmd_material(args: argparse.Namespace) -> int:
 
     case = _load(args)
     if args.plots:
-        from .plotting import check_format, pyplot
-
-        check_format(args.fmt, args.dpi)
-        pyplot()
+        _check_figures(args, files=[args.case])
     section = case.material
     problem = case.to_problem()
     material = problem.material
@@ -572,7 +571,7 @@ def _cmd_plot(args: argparse.Namespace) -> int:
     from .results import open_result
 
     times = _parse_positive(args.times, "--times", "s", "0.005,0.02") if args.times is not None else None
-    _check_figures(args)
+    _check_figures(args, "--out", [args.result])
     for path in plot_any(open_result(args.result), args.out, times=times, fmt=args.fmt, dpi=args.dpi):
         if not args.quiet:
             print(path)

@@ -302,3 +302,18 @@ def test_option_errors_in_process_return_2(capsys) -> None:
     assert cli.main(["plot", "r.nc", "--out", "figs", "--format", "gif"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("viscontact: error: --format: invalid choice: 'gif'"), err
+
+
+@pytest.mark.parametrize("command", ["plot", "material"])
+def test_a_figure_folder_that_is_a_file_is_refused_before_any_work(tmp_path: Path, command: str) -> None:
+    """``plot R.nc --out FILE`` said only ``FILE: File exists``; ``material CASE --plots FILE`` printed
+    the material and then that line. Both now say what is wanted, as ``run --plots FILE`` does, before
+    anything is read or printed."""
+    (tmp_path / "figs").write_text("a file in the way")
+    case = Path(__file__).resolve().parents[2] / "cases" / "creep_indentation.toml"
+    args = ("plot", "r.nc", "--out") if command == "plot" else ("material", case, "--plots")
+    proc = viscontact(*args, "figs", cwd=tmp_path)
+    assert_one_line_error(proc, "figs")
+    option = "--out" if command == "plot" else "--plots"
+    assert f"give a folder for the figures ({option})" in proc.stderr and not proc.stdout
+    assert (tmp_path / "figs").read_text() == "a file in the way"
