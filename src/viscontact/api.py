@@ -150,13 +150,15 @@ class Written(NamedTuple):
 def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int], None] | None = None,
                 checkpoint_every: int = 0, resume: bool = False,
                 should_stop: Callable[[], str | None] | None = None, history: str = "",
-                require_space: bool = True, finishing: Callable[[], None] | None = None) -> Written:
+                require_space: bool = True, finishing: Callable[[], None] | None = None,
+                force: bool = False) -> Written:
     """Run the transient simulation of ``case``, streaming each record to the result file ``out``.
 
     Memory does not grow with the number of steps. The records go to ``OUT.partial`` as the run
     goes (valid netCDF after a kill at any moment, ``complete = 0``), renamed over ``out`` when the
-    run is complete (:mod:`viscontact.streaming`). Whether ``out`` may be replaced is the caller's
-    check (the command line refuses an existing one without ``--force``).
+    run is complete (:mod:`viscontact.streaming`). An existing ``out`` is replaced only with
+    ``force`` (or ``resume``), and then only when it is a netCDF result, never a file the case reads
+    (:func:`viscontact.output_files.check_output_path`, checked before any step).
 
     Parameters
     ----------
@@ -185,6 +187,9 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
     finishing
         Called once the steps are done (or stopped), before the file is finished and renamed
         (the command line then only records signals, so that the write completes).
+    force
+        Replace an existing result ``out`` (``--force``); it is kept until the new result is
+        complete.
 
     Returns
     -------
@@ -202,6 +207,9 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
     BlockingIOError
         Another process writes ``out`` (:func:`viscontact.output_files.output_lock`, held for the
         whole run).
+    FileExistsError, IsADirectoryError
+        ``out`` exists and neither ``force`` nor ``resume`` is given, or it is a folder, a file that
+        is no netCDF result or a file the case reads (even with ``force``).
     OSError
         The result cannot be written: ``ENOSPC`` naming the file, the size needed and the space
         free (before the first step, or between two records with the steps done kept as below).
@@ -215,13 +223,22 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
         ``out`` holds a complete result (never replaced by an incomplete one).
     """
     from .checkpoint import load_checkpoint
-    from .output_files import link_target, output_lock
+    from .output_files import check_output_path, link_target, output_lock
     from .records import records_from_arrays
     from .streaming import ResultStream, is_complete_result, partial_path
 
+    inputs: list[Path] = []
+    if not isinstance(case, Problem):  # the case file and the files it reads are never replaced
+        from .case import load_case
+
+        if isinstance(case, (str, Path)):
+            inputs.append(Path(case))
+            case = load_case(case)
+        inputs.extend(getattr(case, "input_files", dict)().values())
     problem, text = prepare(case)
     out = Path(out)
     with output_lock(out):
+        check_output_path(out, force=force or resume, inputs=inputs)
         partial, checkpoint = partial_path(out), checkpoint_path(out)
         start, extra = None, {}
         if resume:

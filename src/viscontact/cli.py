@@ -475,7 +475,7 @@ def _run_locked(args: argparse.Namespace, started: float) -> int:
     with _bar(args, "step") as bar, _stop_on_signals() as signals:
         written = api.run_to_file(case, args.out, progress=bar.update, checkpoint_every=args.checkpoint_every,
                                   resume=args.resume, should_stop=signals.should_stop, history=_history_note(args),
-                                  require_space=not args.force, finishing=signals.finish)
+                                  require_space=not args.force, finishing=signals.finish, force=args.force)
     _report(open_result(written.path) if args.plots else None, written.records, args, started)
     if signals.received:
         reason = signals.received[0]

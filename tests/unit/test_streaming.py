@@ -94,7 +94,7 @@ def test_stop_never_replaces_a_complete_result(tmp_path):
     api.run_to_file(problem, out)
     before = out.read_bytes()
     with pytest.raises(RunInterrupted) as info:
-        api.run_to_file(problem, out, should_stop=lambda: "SIGINT")
+        api.run_to_file(problem, out, should_stop=lambda: "SIGINT", force=True)
     assert info.value.saved == (partial_path(out), 1)
     assert out.read_bytes() == before and is_complete_result(out)
     assert not is_complete_result(partial_path(out))
@@ -191,7 +191,7 @@ def test_the_claimed_space_bounds_what_the_file_takes(tmp_path):
     stream = ResultStream.create(out, problem)
     layout = out.stat().st_blocks * 512
     stream.close()
-    written = api.run_to_file(problem, out)
+    written = api.run_to_file(problem, out, force=True)
     grown = written.path.stat().st_blocks * 512 - layout
     assert 0 < grown <= stream_bytes(problem, written.records)
 
@@ -308,11 +308,11 @@ def _small_case(tmp_path: Path, load: float = 0.15) -> Path:
     return case
 
 
-def _stopped_at(case, out: Path, steps: int, *, checkpoint_every: int = 0) -> None:
-    """Run ``case`` into ``out`` and stop it cleanly (SIGINT) after ``steps`` steps."""
+def _stopped_at(case, out: Path, steps: int, *, checkpoint_every: int = 0, force: bool = False) -> None:
+    """Run ``case`` into ``out`` (``force``: replacing it) and stop it cleanly (SIGINT) after ``steps`` steps."""
     done = []
     with pytest.raises(RunInterrupted):
-        api.run_to_file(case, out, checkpoint_every=checkpoint_every,
+        api.run_to_file(case, out, checkpoint_every=checkpoint_every, force=force,
                         should_stop=lambda: "SIGINT" if done.append(1) or len(done) == steps else None)
 
 
@@ -323,7 +323,7 @@ def test_resume_refuses_a_streamed_file_written_for_another_case(tmp_path):
     ckpt = api.checkpoint_path(out)
     _stopped_at(a, out, 6, checkpoint_every=2)
     saved = ckpt.read_bytes()
-    _stopped_at(b, out, 8)
+    _stopped_at(b, out, 8, force=True)
     ckpt.write_bytes(saved)
     before = out.read_bytes()
     with pytest.raises(ParameterError, match="r.nc: was written for another case"):
@@ -339,7 +339,7 @@ def test_a_fresh_run_removes_the_checkpoint_of_an_earlier_run(tmp_path):
     _stopped_at(case, out, 6, checkpoint_every=2)
     assert ckpt.exists()
     seen = []
-    _stopped_at(case, out, 3)  # no checkpointing: an earlier run's checkpoint would stay
+    _stopped_at(case, out, 3, force=True)  # no checkpointing: an earlier run's checkpoint would stay
     with pytest.raises(ParameterError, match="no checkpoint"):
         api.run_to_file(case, out, resume=True, progress=lambda k, n: seen.append(k))
     assert not ckpt.exists() and not seen
@@ -412,3 +412,21 @@ def test_records_flushed_counts_the_whole_records_and_open_result_reads_only_tho
         f["step"][3] = 0
     torn = results.open_result(path)
     assert torn.sizes["t"] == 3 and list(torn["step"].values) == [0, 1, 2]
+
+
+def test_run_to_file_never_replaces_a_result_without_force_nor_an_input_file(tmp_path):
+    """Before, ``run_to_file`` left that check to its caller: run twice into the same file it replaced
+    the finished result without a word, and given the case file's own path as ``out`` it wrote the
+    result over the case file."""
+    case = _small_case(tmp_path)
+    out = tmp_path / "r.nc"
+    api.run_to_file(case, out)
+    before = out.read_bytes()
+    with pytest.raises(FileExistsError, match="without --force"):
+        api.run_to_file(case, out)
+    assert out.read_bytes() == before and not partial_path(out).exists()
+    api.run_to_file(case, out, force=True)  # replaced on request
+    text = case.read_text()
+    with pytest.raises(FileExistsError, match="input file"):
+        api.run_to_file(case, case, force=True)
+    assert case.read_text() == text
