@@ -95,7 +95,8 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
         Called as ``progress(steps_done, steps_total)`` after each time step.
     checkpoint, checkpoint_every
         Write the complete solver state and the records so far to ``checkpoint`` (atomically)
-        every ``checkpoint_every`` steps, and when the run is stopped.
+        every ``checkpoint_every`` steps, and when the run is stopped. An existing file there is
+        replaced only when it is empty or a checkpoint (else an error before any step).
     resume
         Continue from ``checkpoint`` (written for the same case) instead of starting at t = 0; the
         result equals that of an uninterrupted run.
@@ -109,16 +110,20 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
         Invalid input (before any step is computed), or a checkpoint of another case; or input found
         unsolvable at a step (partial slip in full contact on a periodic domain:
         :func:`viscontact.transient.check_not_full_contact`), with the steps done as below.
+    FileExistsError, IsADirectoryError
+        ``checkpoint`` names a folder or a file that is no checkpoint (a result, a case file).
     ConvergenceError, NumericalGuardError, RunInterrupted, KeyboardInterrupt
         The run stopped. When steps were recorded before, the exception carries the Dataset of
         those steps (attribute ``complete = 0``) as ``exc.partial``.
     """
-    from .checkpoint import load_checkpoint
+    from .checkpoint import check_checkpoint_path, load_checkpoint
     from .observers import Checkpointer, ContactGrowthWarning, Recorder, WakeWarning
     from .records import records_from_arrays, records_to_arrays
     from .results import to_dataset  # xarray: loaded here, not with the package
 
     problem, text = prepare(case)
+    if checkpoint is not None and not resume:
+        check_checkpoint_path(checkpoint)
     start, kept = None, []
     if resume:
         if checkpoint is None:

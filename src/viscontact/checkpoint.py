@@ -17,8 +17,10 @@ the state keeps on the host (the wake's columns) stay there.
 from __future__ import annotations
 
 import dataclasses
+import errno
 import hashlib
 import importlib
+import os
 import zipfile
 from pathlib import Path
 from typing import Any, Callable, Mapping
@@ -173,6 +175,34 @@ def save_checkpoint(path: str | Path, problem: Problem, state: State,
     size = sum(np.asarray(a).nbytes + 512 for a in arrays.values())
     write_atomically(path, lambda f: np.savez(f, **arrays), size=size,
                      hint="free some space, checkpoint less often (--checkpoint-every) or write elsewhere (--out)")
+
+
+def check_checkpoint_path(path: str | Path) -> None:
+    """Refuse, before a run, a checkpoint path that names anything a checkpoint may not replace: a
+    folder, or a file that is neither empty nor a viscontact checkpoint (a result, a case file: a
+    checkpoint written there would destroy it).
+
+    Raises
+    ------
+    IsADirectoryError, FileExistsError
+        Naming ``path`` and what to do.
+    """
+    path = Path(path)
+    if not os.path.lexists(path):
+        return
+    if path.is_dir():
+        raise IsADirectoryError(errno.EISDIR, "is a folder; give a checkpoint file name (e.g. run.checkpoint.npz)",
+                                str(path))
+    if path.is_file() and path.stat().st_size == 0:
+        return
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            ours = {"format_version", "fingerprint"} <= set(getattr(data, "files", ()))
+    except (OSError, ValueError, EOFError, zipfile.BadZipFile):
+        ours = False
+    if not ours:
+        raise FileExistsError(errno.EEXIST, "exists and is not a viscontact checkpoint; refusing to replace it "
+                              "with one: choose another checkpoint path", str(path))
 
 
 def load_checkpoint(path: str | Path, problem: Problem,

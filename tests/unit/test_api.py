@@ -78,3 +78,18 @@ def test_run_steady_checks_its_speeds_as_the_command_line_does(speeds) -> None:
     with pytest.raises(vc.ParameterError) as err:
         vc.run_steady(make_problem("frictionless_sliding"), speeds)
     assert err.value.key == "speeds"
+
+
+@pytest.mark.parametrize("victim", ["result.nc", "case.toml"])
+def test_run_never_writes_its_checkpoint_over_a_file_that_is_no_checkpoint(tmp_path, victim) -> None:
+    """``vc.run(case, checkpoint="result.nc")`` (the checkpoint taken for the output) wrote the
+    solver state over the finished result; over the case file too."""
+    path = tmp_path / victim
+    path.write_bytes(b"\x89HDF\r\n\x1a\n a result" if victim.endswith(".nc") else b"title = 'x'\n")
+    before = path.read_bytes()
+    with pytest.raises(FileExistsError, match="not a viscontact checkpoint"):
+        vc.run(make_problem("none"), checkpoint=path, checkpoint_every=1)
+    assert path.read_bytes() == before
+    ckpt = tmp_path / "run.checkpoint.npz"  # a checkpoint of an earlier run is replaced
+    vc.run(make_problem("none"), checkpoint=ckpt, checkpoint_every=1)
+    vc.run(make_problem("none"), checkpoint=ckpt, checkpoint_every=1)
