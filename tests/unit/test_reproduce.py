@@ -202,3 +202,13 @@ def test_reproduce_never_replaces_a_run_of_the_shipped_case_it_did_not_save(tiny
     for path in (first, second, third):
         ds = open_result(path)
         assert "friction_coefficient = 0.4" in ds.attrs["case"] and ds.attrs["written_by"] == "viscontact reproduce"
+
+
+@pytest.mark.parametrize("value", ["abc", 48])
+def test_a_grid_size_set_twice_is_refused(value):
+    """``reproduce --n 32 --set grid.n=abc`` ran at 32 cells, the --set value ignored unchecked."""
+    with pytest.raises(ParameterError, match="contradicts --n 32") as err:
+        load_seed_case("seed_table1_v0.8", find_cases_dir(None), 32, (), {"grid.n": value})
+    assert err.value.key == "--set"
+    case, _ = load_seed_case("seed_table1_v0.8", find_cases_dir(None), 32, (), {"grid.n": 32})  # said twice alike
+    assert case.grid.n == 32

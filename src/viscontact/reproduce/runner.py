@@ -140,6 +140,9 @@ def load_seed_case(name: str, cases_dir: Path, n: int | None, times_tau: Sequenc
     from ..case import load_case
 
     case = load_case(cases_dir / f"{name}.toml")
+    if n is not None and "grid.n" in (overrides or {}) and overrides["grid.n"] != n:  # one would be ignored
+        raise ParameterError("--set", f"grid.n = {overrides['grid.n']!r} contradicts --n {n}: give the grid "
+                             "size once (--n)")
     given = {**(overrides or {}), **({"grid.n": int(n)} if n is not None else {})}
     if given:
         try:
