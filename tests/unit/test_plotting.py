@@ -554,3 +554,21 @@ def test_plot_of_a_speed_curve_without_mu_app_is_one_line(tmp_path, capsys, resu
     curve = sweep_dataset(fake_records(problem, (0, 1)), [0.01, 0.1], problem)
     write_netcdf(curve.drop_vars("mu_app"), tmp_path / "c.nc")
     assert "has no variable 'mu_app'" in _plot_one_line(capsys, tmp_path / "c.nc", tmp_path / "figs")
+
+
+def test_plot_of_an_incomplete_run_warns_that_its_figures_stop_early(tmp_path, capsys, result):
+    """A run stopped half way (complete = 0) was drawn without a word: its friction and contact
+    histories could pass for a whole run's."""
+    from viscontact import cli
+    from viscontact.results import write_netcdf
+
+    stopped = result.copy()
+    stopped.attrs.update(complete=0, stopped_by="SIGINT")
+    write_netcdf(stopped, tmp_path / "r.nc")
+    assert cli.main(["plot", str(tmp_path / "r.nc"), "--out", str(tmp_path / "figs")]) == 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("viscontact: warning: ") and "incomplete run" in err[0]
+    assert "SIGINT" in err[0] and f"t = {float(result['t'][-1]):.4g} s" in err[0]
+    write_netcdf(result, tmp_path / "whole.nc")  # a complete one: no warning
+    assert cli.main(["plot", str(tmp_path / "whole.nc"), "--out", str(tmp_path / "figs2")]) == 0
+    assert not capsys.readouterr().err.strip()

@@ -448,6 +448,27 @@ def subsurface_figure(ds: xr.Dataset) -> Any:
     return fig
 
 
+def _warn_incomplete(ds: xr.Dataset) -> None:
+    """A :class:`~viscontact.errors.ViscontactWarning` when ``ds`` holds a run that did not reach its
+    end (attribute ``complete = 0``): its figures stop at its last record and could pass for a
+    whole run's."""
+    try:
+        complete = int(ds.attrs.get("complete", 1))
+    except (TypeError, ValueError):
+        complete = 1
+    if complete == 0:
+        import warnings
+
+        from ..errors import ViscontactWarning
+
+        stopped = ds.attrs.get("stopped_by")
+        why = f", stopped by {stopped}" if stopped else ""
+        where = ds.encoding.get("source") or "the result"
+        warnings.warn(f"{where} holds an incomplete run (complete = 0{why}): its figures end at its last record, "
+                      f"t = {float(ds['t'].values[-1]):.4g} s, not at the case's time.t_end", ViscontactWarning,
+                      stacklevel=3)
+
+
 def _histories_drawn(ds: xr.Dataset, mode: str) -> tuple[str, ...]:
     """The variables against time that the figures of :func:`plot_result` read (the fields, the
     rough-contact series and the subsurface stresses are drawn where present)."""
@@ -495,6 +516,7 @@ def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] |
     check_format(fmt, dpi)
     mode = ds.attrs.get("tangential_mode", "none")
     check_drawable(ds, "t", _histories_drawn(ds, mode))
+    _warn_incomplete(ds)
     files = FigureFiles(Path(out_dir), fmt, dpi)
     figures: dict[str, Any] = {}
     if "pressure" in ds:
