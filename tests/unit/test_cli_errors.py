@@ -142,23 +142,16 @@ def test_python_dash_m_is_the_command(tmp_path: Path) -> None:
 
 
 @pytest.mark.parametrize("command", ["steady", "plot"])
-def test_a_speed_or_time_listed_twice_is_refused(tmp_path: Path, command: str) -> None:
-    """``steady --speeds 0.01,0.01`` wrote a result whose speed coordinate repeated a value."""
-    option = "--speeds" if command == "steady" else "--times"
+@pytest.mark.parametrize(("values", "said"), [("0.01,0.02,1e-2", "0.01 {unit} is listed more than once"),
+                                              ("", "must list at least one number in {unit}")])
+def test_a_speed_or_time_listed_twice_or_none_is_refused(tmp_path: Path, command: str, values: str, said: str) -> None:
+    """``steady --speeds 0.01,0.01`` wrote a result whose speed coordinate repeated a value;
+    ``steady --speeds ""`` solved the one state at the case's speed as if no --speeds was given."""
+    option, unit = ("--speeds", "m/s") if command == "steady" else ("--times", "s")
     proc = viscontact(command, "case.toml" if command == "steady" else "r.nc", "--out", "r.nc" if command == "steady"
-                      else "figs", option, "0.01,0.02,1e-2", cwd=tmp_path)
+                      else "figs", option, values, cwd=tmp_path)
     assert_one_line_error(proc, option)
-    assert "0.01" in proc.stderr and "more than once" in proc.stderr
-
-
-@pytest.mark.parametrize("command", ["steady", "plot"])
-def test_an_empty_list_of_speeds_or_times_is_refused(tmp_path: Path, command: str) -> None:
-    """``steady --speeds ""`` solved the one state at the case's speed as if no --speeds was given."""
-    option = "--speeds" if command == "steady" else "--times"
-    proc = viscontact(command, "case.toml" if command == "steady" else "r.nc", "--out", "r.nc" if command == "steady"
-                      else "figs", option, "", cwd=tmp_path)
-    assert_one_line_error(proc, option)
-    assert "at least one" in proc.stderr
+    assert said.format(unit=unit) in proc.stderr
 
 
 def test_plot_refuses_a_file_that_is_not_a_result(tmp_path: Path) -> None:
