@@ -182,7 +182,7 @@ def check_resources(problem: Problem, out: str | Path, *, force: bool = False, c
         folder = folder.parent
     free = shutil.disk_usage(folder).free
     needed = max(est.disk_bytes(checkpoints) - written_bytes, 0)
-    what = f"{est.records} records of {', '.join(problem.output.fields)}"
+    what = _records_of(problem, est)
     if checkpoints:
         what += f", and checkpoints of about {format_size(est.checkpoint_bytes)} written beside each other"
     problems = []
@@ -212,13 +212,18 @@ def _duration(seconds: float) -> str:
     return f"{seconds:.2g} s"
 
 
+def _records_of(problem: Problem, est: Estimate) -> str:
+    """``161 records of pressure, shear_x``, or ``of the histories only`` (``output.fields = []``)."""
+    fields = ", ".join(problem.output.fields) or "the histories only (output.fields = [])"
+    return f"{est.records} records of {fields}"
+
+
 def describe(problem: Problem, est: Estimate) -> str:
     """One paragraph for ``viscontact run --dry-run``."""
     g, t = problem.grid, problem.time
     return (f"{problem.title or 'case'}: {g.n} x {g.n} cells of {g.spacing * 1e6:.3g} um, {t.n_steps} steps of "
             f"{t.dt:.4g} s ({problem.tangential.mode}, {problem.normal.control} control, scheme {t.scheme}); "
-            f"result about {format_size(est.result_bytes)} ({est.records} records of "
-            f"{', '.join(problem.output.fields)}), "
+            f"result about {format_size(est.result_bytes)} ({_records_of(problem, est)}), "
             f"peak memory about {format_size(est.peak_memory_bytes)}, run time about {_duration(est.seconds)}")
 
 

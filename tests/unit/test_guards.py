@@ -369,3 +369,12 @@ dt = 1e-3
         said = [str(w.message) for w in caught if issubclass(w.category, ViscontactWarning)]
         assert said == [] if wall == 1e-4 else (len(said) == 1 and "rms slope is" in said[0]), said
         assert guards.contact_estimate(problem) is None
+
+
+def test_the_dry_run_of_a_result_without_fields_says_so(capsys):
+    """``output.fields = []`` was described as ``(161 records of )``."""
+    out = Path(tempfile.gettempdir()) / f"viscontact-dry-run-{os.getpid()}" / "r.nc"
+    assert cli.main(["run", str(CREEP), "--out", str(out), "--dry-run", "--set", "grid.n=32",
+                     "--set", "output.fields=[]"]) == 0
+    said = capsys.readouterr().out
+    assert "records of the histories only (output.fields = [])" in said and "records of )" not in said
