@@ -95,7 +95,8 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
         Called as ``progress(steps_done, steps_total)`` after each time step.
     checkpoint, checkpoint_every
         Write the complete solver state and the records so far to ``checkpoint`` (atomically)
-        every ``checkpoint_every`` steps, and when the run is stopped. An existing file there is
+        every ``checkpoint_every`` steps (an integer >= 0; > 0 needs ``checkpoint``), and when the
+        run is stopped. An existing file there is
         replaced only when it is empty or a checkpoint (else an error before any step).
     resume
         Continue from ``checkpoint`` (written for the same case) instead of starting at t = 0; the
@@ -116,11 +117,15 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
         The run stopped. When steps were recorded before, the exception carries the Dataset of
         those steps (attribute ``complete = 0``) as ``exc.partial``.
     """
-    from .checkpoint import check_checkpoint_path, load_checkpoint
+    from .checkpoint import check_checkpoint_every, check_checkpoint_path, load_checkpoint
     from .observers import Checkpointer, ContactGrowthWarning, Recorder, WakeWarning
     from .records import records_from_arrays, records_to_arrays
     from .results import to_dataset  # xarray: loaded here, not with the package
 
+    check_checkpoint_every(checkpoint_every)
+    if checkpoint_every and checkpoint is None:  # no checkpoint would ever be written
+        raise ParameterError("checkpoint", f"checkpoint_every = {checkpoint_every} needs the checkpoint file to "
+                             "write (checkpoint=PATH)")
     problem, text = prepare(case)
     if checkpoint is not None and not resume:
         check_checkpoint_path(checkpoint)
@@ -227,11 +232,12 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
         ``stopped_by``) named by ``exc.saved = (path, records)``: ``out``, or ``OUT.partial`` when
         ``out`` holds a complete result (never replaced by an incomplete one).
     """
-    from .checkpoint import load_checkpoint
+    from .checkpoint import check_checkpoint_every, load_checkpoint
     from .output_files import check_output_path, link_target, output_lock
     from .records import records_from_arrays
     from .streaming import ResultStream, is_complete_result, partial_path
 
+    check_checkpoint_every(checkpoint_every)
     inputs: list[Path] = []
     if not isinstance(case, Problem):  # the case file and the files it reads are never replaced
         from .case import load_case

@@ -177,6 +177,13 @@ def save_checkpoint(path: str | Path, problem: Problem, state: State,
                      hint="free some space, checkpoint less often (--checkpoint-every) or write elsewhere (--out)")
 
 
+def check_checkpoint_every(every: object, key: str = "checkpoint_every") -> None:
+    """Raise :class:`ParameterError` naming ``key`` unless ``every`` (steps between checkpoints; 0:
+    none) is an integer >= 0."""
+    if isinstance(every, (bool, np.bool_)) or not isinstance(every, (int, np.integer)) or every < 0:
+        raise ParameterError(key, f"must be an integer >= 0 steps (0: no checkpoint), got {every!r}")
+
+
 def check_checkpoint_path(path: str | Path) -> None:
     """Refuse, before a run, a checkpoint path that names anything a checkpoint may not replace: a
     folder, or a file that is neither empty nor a viscontact checkpoint (a result, a case file: a

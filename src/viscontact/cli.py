@@ -432,11 +432,11 @@ def _cmd_run(args: argparse.Namespace) -> int:
     """The records are streamed to RESULT.nc.partial as the run goes and renamed to RESULT.nc at the
     end (:func:`viscontact.api.run_to_file`): memory does not grow with the number of steps."""
     from .api import CHECKPOINT_SUFFIX
+    from .checkpoint import check_checkpoint_every
     from .streaming import PARTIAL_SUFFIX
 
     started = time.perf_counter()
-    if args.checkpoint_every < 0:
-        raise ParameterError("--checkpoint-every", f"must be >= 0 steps, got {args.checkpoint_every}")
+    check_checkpoint_every(args.checkpoint_every, "--checkpoint-every")
     with _writing(args.out, (PARTIAL_SUFFIX, CHECKPOINT_SUFFIX)):
         return _run_locked(args, started)
 

@@ -93,3 +93,22 @@ def test_run_never_writes_its_checkpoint_over_a_file_that_is_no_checkpoint(tmp_p
     ckpt = tmp_path / "run.checkpoint.npz"  # a checkpoint of an earlier run is replaced
     vc.run(make_problem("none"), checkpoint=ckpt, checkpoint_every=1)
     vc.run(make_problem("none"), checkpoint=ckpt, checkpoint_every=1)
+
+
+@pytest.mark.parametrize(("kwargs", "key"), [({"checkpoint_every": 2}, "checkpoint"),
+                                             ({"checkpoint": "c.npz", "checkpoint_every": -1}, "checkpoint_every"),
+                                             ({"checkpoint": "c.npz", "checkpoint_every": 1.5}, "checkpoint_every"),
+                                             ({"checkpoint": "c.npz", "checkpoint_every": "2"}, "checkpoint_every")])
+def test_run_checks_its_checkpoint_settings(tmp_path, monkeypatch, kwargs, key) -> None:
+    """Before: checkpoint_every without a checkpoint file wrote no checkpoint without a word, -1 and
+    1.5 were taken (every step, some steps), "2" raised TypeError at the first step."""
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(vc.ParameterError) as err:
+        vc.run(make_problem("none"), **kwargs)
+    assert err.value.key == key and not (tmp_path / "c.npz").exists()
+
+
+def test_run_to_file_checks_checkpoint_every(tmp_path) -> None:
+    with pytest.raises(vc.ParameterError) as err:
+        vc.run_to_file(make_problem("none"), tmp_path / "r.nc", checkpoint_every=-1)
+    assert err.value.key == "checkpoint_every" and not list(tmp_path.iterdir())
