@@ -83,25 +83,22 @@ class NormalLoading:
         Raises
         ------
         ParameterError
-            ``normal.control`` not ``"load"`` or ``"displacement"``; ``normal.value`` (a held value)
-            or ``normal.history`` (several points) not finite, negative or nowhere > 0, history times
-            not >= 0 s and strictly increasing, or times and values of different lengths.
+            ``normal.control`` not ``"load"`` or ``"displacement"``; ``normal.history`` (a held
+            value too: a history of one point) not finite, negative or nowhere > 0, its times not
+            >= 0 s and strictly increasing, or times and values of different lengths.
         """
         if self.control not in ("load", "displacement"):
             raise ParameterError("normal.control", f"must be 'load' or 'displacement', got {self.control!r}")
-        times, values = self.history.times, self.history.values
-        key = "normal.value" if len(times) == 1 and times[0] == 0 else "normal.history"
+        times, values = self.history.times, self.history.values  # a held value is a history of one point
         if len(times) != len(values) or not times:
             raise ParameterError("normal.history", f"must be a non-empty list of [t, value] pairs, got {len(times)} "
                                  f"times and {len(values)} values")
         if not all(_is_number(v) and np.isfinite(v) for v in (*times, *values)):
-            raise ParameterError(key, "must contain finite numbers only" if key == "normal.history" else
-                                 f"must be a finite number (N or m), got {values[0]!r}")
+            raise ParameterError("normal.history", f"must contain finite numbers only, got values {values!r}")
         if times[0] < 0 or np.any(np.diff(times) <= 0):
             raise ParameterError("normal.history", "times must be >= 0 s and strictly increasing")
         if min(values) < 0 or not max(values) > 0:
-            raise ParameterError(key, "values must be >= 0 (N or m) with a positive maximum" if key == "normal.history"
-                                 else f"must be > 0 N or m, got {values[0]!r}")
+            raise ParameterError("normal.history", f"values must be >= 0 (N or m) with a positive maximum, got {values!r}")
 
 
 @dataclass(frozen=True)

@@ -26,8 +26,8 @@ BAD = [
     ("time.t_end", lambda: TimeStepping(t_end=-5e-4, dt=1e-4)),
     ("time.t_end", lambda: TimeStepping(t_end=float("inf"), dt=1e-4)),
     ("normal.control", lambda: NormalLoading("force", PiecewiseLinear.constant(0.15))),
-    ("normal.value", lambda: NormalLoading("load", PiecewiseLinear.constant(-0.15))),
-    ("normal.value", lambda: NormalLoading("load", PiecewiseLinear.constant(float("nan")))),
+    ("normal.history", lambda: NormalLoading("load", PiecewiseLinear.constant(-0.15))),
+    ("normal.history", lambda: NormalLoading("load", PiecewiseLinear.constant(float("nan")))),
     ("normal.history", lambda: NormalLoading("load", PiecewiseLinear((0.0, 3e-4, 1e-4), (0.1, 0.15, 0.0)))),
     ("normal.history", lambda: NormalLoading("load", PiecewiseLinear((0.0, 3e-4), (0.1,)))),
     ("output.every", lambda: OutputSettings(every=0)),
@@ -66,9 +66,9 @@ def test_numpy_scalars_are_numbers() -> None:
 def test_the_case_file_says_the_same_as_the_problem() -> None:
     """The case layer's history check is the problem layer's, word for word."""
     case = vc.load_case(vc.shipped_case("creep_indentation"))
-    history = [[0.0, 0.1], [3e-4, 0.15], [1e-4, 0.0]]
-    with pytest.raises(vc.ParameterError) as from_case:
-        case.with_overrides({"normal.history": history})
-    with pytest.raises(vc.ParameterError) as direct:
-        NormalLoading("load", PiecewiseLinear(*map(tuple, zip(*history))))
-    assert str(from_case.value) == str(direct.value)
+    for history in ([[0.0, 0.1], [3e-4, 0.15], [1e-4, 0.0]], [[0.0, -0.1]]):
+        with pytest.raises(vc.ParameterError) as from_case:
+            case.with_overrides({"normal.history": history})
+        with pytest.raises(vc.ParameterError) as direct:
+            NormalLoading("load", PiecewiseLinear(*map(tuple, zip(*history))))
+        assert str(from_case.value) == str(direct.value) and direct.value.key == "normal.history"
