@@ -232,7 +232,7 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
         ``stopped_by``) named by ``exc.saved = (path, records)``: ``out``, or ``OUT.partial`` when
         ``out`` holds a complete result (never replaced by an incomplete one).
     """
-    from .checkpoint import check_checkpoint_every, load_checkpoint
+    from .checkpoint import check_checkpoint_every, check_checkpoint_path, load_checkpoint
     from .output_files import check_output_path, link_target, output_lock
     from .records import records_from_arrays
     from .streaming import ResultStream, is_complete_result, partial_path
@@ -251,6 +251,8 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
     with output_lock(out):
         check_output_path(out, force=force or resume, inputs=inputs)
         partial, checkpoint = partial_path(out), checkpoint_path(out)
+        if not resume:  # removed once the streamed file is created: only an earlier run's checkpoint
+            check_checkpoint_path(checkpoint)
         start, extra = None, {}
         if resume:
             start, extra = load_checkpoint(checkpoint, problem)

@@ -430,3 +430,20 @@ def test_run_to_file_never_replaces_a_result_without_force_nor_an_input_file(tmp
     with pytest.raises(FileExistsError, match="input file"):
         api.run_to_file(case, case, force=True)
     assert case.read_text() == text
+
+
+@pytest.mark.parametrize("kind", ["folder", "file"])
+def test_a_checkpoint_name_taken_by_something_else_is_refused_before_the_run(tmp_path, kind):
+    """OUT.checkpoint.npz as a folder failed after the streamed file was made (left behind as
+    OUT.partial, 'Is a directory'); as a file that is no checkpoint it was deleted without a word
+    (a fresh run removes an earlier run's checkpoint)."""
+    case, out = _small_case(tmp_path), tmp_path / "r.nc"
+    ckpt = api.checkpoint_path(out)
+    if kind == "folder":
+        ckpt.mkdir()
+    else:
+        ckpt.write_text("my notes")
+    with pytest.raises(OSError, match="folder" if kind == "folder" else "not a viscontact checkpoint"):
+        api.run_to_file(case, out, checkpoint_every=2)
+    assert not out.exists() and not partial_path(out).exists()
+    assert ckpt.is_dir() if kind == "folder" else ckpt.read_text() == "my notes"
