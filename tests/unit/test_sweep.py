@@ -239,6 +239,14 @@ def test_cli_sweep_resumes_and_plots(tmp_path, transient_sweep, client, monkeypa
     ('"normal.value" = [0.148, 1.0]\n', "steady", "grid.half_width", "(in the run normal.value=1)"),
     ('"tangential.sliding_speed" = [0.0471, 0]\n[overrides]\n"tangential.mode" = "none"\n"time.dt" = 0.001\n',
      "steady", "tangential.sliding_speed", "steady state, got 0.0 (in the run tangential.sliding_speed=0)"),
+    # an axis the steady solver ignores (viscontact.steady.ignored_keys): every run would be the same
+    ('"tangential.slip" = ["total", "incremental"]\n[overrides]\n"tangential.mode" = "partial_slip"\n'
+     '"tangential.displacement_rate" = 0.01\n"tangential.friction_coefficient" = 0.3\n',
+     "steady", "tangential.slip", "the steady solver ignores it (it is partial slip's stick condition"),
+    ('"time.dt" = [0.001, 0.002]\n', "steady", "time.dt", "a steady state has no time steps"),
+    ('"time.t_end" = [0.012, 0.02]\n', "steady", "time.t_end", "and it is held"),
+    ('"tangential.friction_coefficient" = [0.1, 0.3]\n', "steady", "tangential.friction_coefficient",
+     "'frictionless_sliding' has no friction"),
 ])
 def test_bad_sweep_file_fails_before_any_run(tmp_path, monkeypatch, capsys, parameters, solver, key, words):
     import viscontact.sweep.execute as execute
@@ -254,6 +262,39 @@ def test_bad_sweep_file_fails_before_any_run(tmp_path, monkeypatch, capsys, para
     assert err.count("\n") == 1 and err.startswith(f"viscontact: error: {key}: ") and "Traceback" not in err
     assert time.perf_counter() - started < 5
     assert not (tmp_path / "sweep.nc").exists() and not runs_dir(tmp_path / "sweep.nc").exists()
+
+
+@pytest.mark.parametrize("parameters, overrides", [
+    ('"time.t_end" = [0.01, 0.02]\n', '"normal.history" = [[0.0, 0.1], [0.02, 0.148]]\n'),  # the load at t_end
+    ('"tangential.friction_coefficient" = [0.1, 0.3]\n', '"tangential.mode" = "gross_sliding"\n'),
+    # frictionless in one run only: the coefficient acts in the other
+    ('"tangential.mode" = ["frictionless_sliding", "gross_sliding"]\n"tangential.friction_coefficient" = [0.1, 0.3]\n',
+     ""),
+])
+def test_steady_sweep_keeps_the_keys_that_matter(tmp_path, parameters, overrides):
+    the_plan = plan(write_sweep(tmp_path, solver="steady", parameters=parameters,
+                                extra=f"[overrides]\n{overrides}" if overrides else ""))
+    assert len(the_plan.runs) in (2, 4)
+
+
+def test_steady_state_ignores_the_keys_it_says_it_ignores(tmp_path):
+    """Every key of viscontact.steady.IGNORED_KEYS, changed, leaves every variable of a steady result
+    (partial slip with friction and the subsurface stresses) bit for bit the same."""
+    from viscontact.steady import IGNORED_KEYS
+
+    changed = {"time.dt": 1e-3, "time.scheme": "constant", "tangential.steps_per_cell": 3,
+               "tangential.displacement_rate": 0.05, "tangential.slip": "incremental", "output.every": 5,
+               "output.subsurface_times": [0.001], "solver.coupling_tolerance": 1e-3,
+               "solver.max_coupling_iterations": 3, "solver.mixed_precision": False, "solver.history": "direct"}
+    assert set(changed) == set(IGNORED_KEYS)
+    (tmp_path / "base.toml").write_text(BASE)
+    case = load_case(tmp_path / "base.toml").with_overrides({
+        "tangential.mode": "partial_slip", "tangential.friction_coefficient": 0.3,
+        "tangential.displacement_rate": 0.01, "output.subsurface_depths": [1e-4, 3e-4]})
+    reference = api.run_steady(case)
+    for key, value in changed.items():
+        other = api.run_steady(case.with_overrides({key: value}))
+        xr.testing.assert_identical(other.drop_attrs(), reference.drop_attrs())
 
 
 def test_plan_leaves_the_warnings_of_the_guards_to_the_runs(tmp_path):
