@@ -222,7 +222,8 @@ def section_stresses(grid: Grid, poisson_ratio: float, depths: np.ndarray | list
     qy = 2.0 * np.pi * scipy.fft.fftfreq(m, dx)
     qx = 2.0 * np.pi * scipy.fft.rfftfreq(m, dx)
     footprint = np.sinc(qx[None, :] * dx / (2 * np.pi)) * np.sinc(qy[:, None] * dx / (2 * np.pi))
-    spectra = [sp * footprint for sp in spectra]
+    for sp in spectra:  # in place: a product would hold six spectra at once
+        sp *= footprint
     del footprint
     # value at y = 0: the transform's row 0 is y_0 = grid.y[0]
     phase_y = np.exp(1j * qy * (0.0 - grid.y[0]))[:, None] / m
