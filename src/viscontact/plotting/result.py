@@ -395,10 +395,21 @@ MAX_SUBSURFACE_TIMES = 6
 _SUBSURFACE = (("von_mises_stress", "von Mises"), ("max_shear_stress", "maximum shear"))
 
 
+def _cell_edges(centres: np.ndarray, *, clipped: bool = False) -> np.ndarray:
+    """The edges of the cells around ``centres`` (increasing, two at least): half-way between two
+    centres, and half a gap beyond the outer ones; ``clipped``: the outer edges at the first and last
+    centres instead (nothing drawn beyond the values computed)."""
+    middle = 0.5 * (centres[1:] + centres[:-1])
+    if clipped:
+        return np.concatenate([centres[:1], middle, centres[-1:]])
+    return np.concatenate([[2 * centres[0] - middle[0]], middle, [2 * centres[-1] - middle[-1]]])
+
+
 def subsurface_figure(ds: xr.Dataset) -> Any:
     """Von Mises and maximum shear stress in the section y = 0, one row per recorded subsurface time
     (``t_sub``; at most :data:`MAX_SUBSURFACE_TIMES`, evenly spread, the title saying how many of how
-    many): maps in x-z with the depth z downwards (the surface on top), each with its own colour
+    many): maps in x-z with the depth z downwards (the surface on top), from the first depth computed
+    to the last (each depth's band reaching half-way to its neighbours'), each with its own colour
     scale and its largest value marked (+), scaled by p0 (else MPa) and x, z by a0 (else mm). A single
     depth: the stresses against x, one line per time. Returns the Figure."""
     plt = pyplot()
@@ -418,12 +429,15 @@ def subsurface_figure(ds: xr.Dataset) -> Any:
     stress_of = " p0" if p_label.startswith("p /") else " MPa"  # after a scaled stress
 
     if z.size > 1:
+        order = np.argsort(z, kind="stable")  # the depths as the case listed them: drawn downwards
+        z = z[order]
+        x_edges, z_edges = _cell_edges(x), _cell_edges(z, clipped=True)
         fig, axes = plt.subplots(picks.size, 2, figsize=(10, 0.7 + 3.3 * picks.size), squeeze=False, sharex=True,
                                  sharey=True, constrained_layout=True)
         for row, k in zip(axes, picks):
             for ax, (name, title) in zip(row, _SUBSURFACE):
-                data = ds[name].values[k] / p_scale
-                mesh = ax.pcolormesh(x, z, data, shading="nearest", cmap="viridis")
+                data = ds[name].values[k][order] / p_scale
+                mesh = ax.pcolormesh(x_edges, z_edges, data, shading="flat", cmap="viridis")
                 fig.colorbar(mesh, ax=ax, label=stress_unit)
                 iz, ix = np.unravel_index(int(np.argmax(data)), data.shape)
                 ax.plot(x[ix], z[iz], "w+", ms=9, mew=1.5)
