@@ -71,8 +71,13 @@ def transient_sweep(tmp_path_factory, client):
     folder = tmp_path_factory.mktemp("transient")
     spec = write_sweep(folder)
     out = folder / "sweep.nc"
-    ds = sweep(spec, client=client, out=out)
+    with pytest.warns(ViscontactWarning, match="2 of 4 runs recorded other times"):  # the slow runs' dt
+        ds = sweep(spec, client=client, out=out)
     return folder, spec, out, ds
+
+
+def point_label(speed: float, modulus: float) -> str:
+    return f"tangential.sliding_speed={speed!r}, material.shear_modulus_long_term={modulus:g}"
 
 
 # --- distributed == one by one ---------------------------------------------------------------------
@@ -98,6 +103,9 @@ def test_transient_sweep_matches_runs_one_by_one(transient_sweep):
             # the time series, on the union time axis, holds the run's own records exactly
             series = point["mu_app_t"].sel(t=ref["t"].values, method="nearest")
             np.testing.assert_array_equal(series.values, ref["mu_app"].values)
+            # the slow runs recorded every other time of the axis: interpolated there, and listed
+            interpolated = json.loads(ds.attrs["interpolated_runs"])
+            assert (point["tangential__sliding_speed"].item() == SPEEDS[0]) == (point_label(v, g) in interpolated)
             # the kept result file is the full run
             name = run_file_name({"tangential.sliding_speed": v, "material.shear_modulus_long_term": g})
             with xr.open_dataset(runs_dir(out) / name, engine="h5netcdf") as kept:
@@ -220,6 +228,37 @@ def test_cli_sweep_resumes_and_plots(tmp_path, transient_sweep, client, monkeypa
     assert cli.main(["sweep", str(spec), "--out", str(out), "--plots", str(tmp_path / "fig")]) == 0
     assert "0 computed, 4 reused, 0 failed" in capsys.readouterr().out
     assert (tmp_path / "fig" / "sweep_mu_app.png").stat().st_size > 0
+
+
+# --- the union time axis -------------------------------------------------------------------------------
+def _fake_result(t):
+    """What a transient run hands to assemble (viscontact.sweep.summarize): mu_app_t = 10 t."""
+    from viscontact.sweep import SERIES, SUMMARIES
+
+    t = np.asarray(t, dtype=float)
+    return {"error": "", "warnings": [], "run_time": 1.0, "t_gross_sliding": 0.0, "complete": 1,
+            **{n: 1.0 for n in SUMMARIES}, "t": t, **{f"{n}_t": 10 * t for n in SERIES}}
+
+
+@pytest.mark.parametrize("slow, warned", [([0.0, 2.0, 4.0], True),   # every other time of the axis
+                                          ([0.0, 1.0, 2.0], False)])  # shorter: NaN beyond, none interpolated
+def test_runs_interpolated_onto_the_union_time_axis_are_listed_and_warned_once(tmp_path, slow, warned):
+    import warnings
+
+    from viscontact.sweep.assemble import assemble
+
+    the_plan = plan(write_sweep(tmp_path, parameters=f'"tangential.sliding_speed" = {SPEEDS}\n'))
+    results = {0: _fake_result(slow), 1: _fake_result([0.0, 1.0, 2.0, 3.0, 4.0])}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ds = assemble(the_plan, results, transient=True)
+    ours = [w for w in caught if issubclass(w.category, ViscontactWarning)]
+    assert ds["t"].values.tolist() == [0.0, 1.0, 2.0, 3.0, 4.0] and "union" in ds.attrs["time_axis"]
+    assert json.loads(ds.attrs["interpolated_runs"]) == ([f"tangential.sliding_speed={SPEEDS[0]}"] if warned else [])
+    assert len(ours) == int(warned) and all(w.filename == __file__ for w in ours)
+    if warned:
+        assert "1 of 2 runs" in str(ours[0].message) and "interpolated linearly" in str(ours[0].message)
+    np.testing.assert_allclose(ds["mu_app_t"].values[0], 10 * ds["t"].values if warned else [0, 10, 20, np.nan, np.nan])
 
 
 # --- validation before any run -----------------------------------------------------------------------

@@ -139,7 +139,9 @@ def sweep(spec: SweepSpec | Plan | str | Path, client: Any = None, out: str | Pa
     xarray.Dataset
         One dimension per swept key; attributes ``kind = "sweep"``, ``solver``, ``swept_keys``
         (JSON), ``runs_computed``, ``runs_reused``, ``runs_failed``, ``complete`` (1 when no run
-        failed), the base case's ``a0``, ``p0``, ``retardation_time``, ``case`` and ``sweep``
+        failed), for a transient sweep ``time_axis`` and ``interpolated_runs`` (JSON: the runs whose
+        series are interpolated onto the union time axis, :mod:`viscontact.sweep.assemble`; warned
+        once), the base case's ``a0``, ``p0``, ``retardation_time``, ``case`` and ``sweep``
         (the sweep file's text).
 
     A failed run is NaN in the Dataset, its message is in ``error`` and it is reported with a
