@@ -11,11 +11,10 @@ from __future__ import annotations
 import math
 import os
 import shutil
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
-from .errors import ParameterError, ViscontactWarning
+from .errors import ParameterError, warn_caller
 from .problem import Problem
 
 _FIELD_BYTES = {"pressure": 8, "shear_x": 8, "stick": 1, "displacement_z": 8}
@@ -209,7 +208,7 @@ def check_resources(problem: Problem, out: str | Path, *, force: bool = False, c
     for key, message in problems:
         if not force:
             raise ParameterError(key, f"{message} (--force runs it anyway)")
-        warnings.warn(f"{key}: {message}", ViscontactWarning, stacklevel=2)
+        warn_caller(f"{key}: {message}")
     return est
 
 

@@ -156,15 +156,12 @@ def automatic_padding(grid: Grid, deepest: float, *, warn: bool = True) -> int:
     padding = max(2, int(np.ceil(IMAGE_DISTANCE * deepest / width - 1e-9)))
     cap = max(2, MAX_PADDED // grid.n)
     if padding > cap and warn:
-        import warnings
+        from .errors import warn_caller
 
-        from .errors import ViscontactWarning
-
-        warnings.warn(f"subsurface stresses down to {deepest:.3g} m: the zero-padding is capped at {cap} x the "
-                      f"domain ({cap * grid.n} points per side); the periodic images of the load bias the stresses "
-                      f"below about {cap * width / IMAGE_DISTANCE:.3g} m by more than 0.1 % (about "
-                      f"{40 * (deepest / (cap * width)) ** 2:.1%} at {deepest:.3g} m): widen grid.half_width",
-                      ViscontactWarning, stacklevel=3)
+        warn_caller(f"subsurface stresses down to {deepest:.3g} m: the zero-padding is capped at {cap} x the "
+                    f"domain ({cap * grid.n} points per side); the periodic images of the load bias the stresses "
+                    f"below about {cap * width / IMAGE_DISTANCE:.3g} m by more than 0.1 % (about "
+                    f"{40 * (deepest / (cap * width)) ** 2:.1%} at {deepest:.3g} m): widen grid.half_width")
     return min(padding, cap)
 
 

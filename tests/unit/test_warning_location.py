@@ -1,7 +1,8 @@
 """The run's warnings point at the user's line that called the API, not into the package: the
-observers (:mod:`viscontact.observers`) warn several calls deep, at a depth that differs between
-:func:`viscontact.api.run`, :func:`viscontact.api.run_to_file` and the generator
-:func:`viscontact.transient.simulate` (:func:`viscontact.errors.warn_caller`)."""
+observers (:mod:`viscontact.observers`) and the checks before the run (:mod:`viscontact.guards`)
+warn several calls deep, at a depth that differs between :func:`viscontact.api.run`,
+:func:`viscontact.api.run_to_file` and the generator :func:`viscontact.transient.simulate`
+(:func:`viscontact.errors.warn_caller`)."""
 from __future__ import annotations
 
 import sys
@@ -64,3 +65,17 @@ def test_run_warnings_point_at_the_callers_line(entry: str, problem, match: str,
     ours = [w for w in caught if issubclass(w.category, ViscontactWarning) and match in str(w.message)]
     assert ours, [str(w.message) for w in caught]
     assert [(w.filename, w.lineno) for w in ours] == [(__file__, line)] * len(ours)
+
+
+def _uneven_end():
+    """time.t_end = 2.5 dt: the guard before the run warns that it ends a step short."""
+    return sphere_problem(seed_material(), 16, 2.6 * SEED_A0, t_end=2.5 * SEED_TAU / 20)
+
+
+@pytest.mark.parametrize("entry", ["run", "run_to_file"])
+def test_guard_warnings_point_at_the_callers_line(entry: str, tmp_path: Path) -> None:
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        line = ENTRY_POINTS[entry](_uneven_end(), tmp_path)
+    ours = [w for w in caught if "is not a multiple of time.dt" in str(w.message)]
+    assert [(w.filename, w.lineno) for w in ours] == [(__file__, line)]

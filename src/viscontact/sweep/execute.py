@@ -17,7 +17,7 @@ import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable
 
-from ..errors import ParameterError, ViscontactWarning
+from ..errors import ParameterError, ViscontactWarning, warn_caller
 from ..output_files import check_output_path, remove_temporaries
 from .assemble import assemble, summarize
 from .spec import Plan, Run, SweepSpec, load_sweep, plan
@@ -175,8 +175,7 @@ def _sweep(the_plan: Plan, client: Any, out: str | Path | None,
         results[k] = result
         if result["error"]:
             failed += 1
-            warnings.warn(f"run failed ({the_plan.runs[k].label}): {result['error']}", ViscontactWarning,
-                          stacklevel=3)
+            warn_caller(f"run failed ({the_plan.runs[k].label}): {result['error']}")
         else:
             done += 1
         if progress is not None:
