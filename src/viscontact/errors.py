@@ -63,19 +63,19 @@ class ViscontactWarning(UserWarning):
 _PACKAGE_PREFIX = os.path.dirname(os.path.abspath(__file__)) + os.sep
 
 
-def warn_caller(message: str, category: type[Warning] = ViscontactWarning) -> None:
-    """``warnings.warn(message, category)`` attributed to the first frame outside the package: the
+def warn_caller(message: str) -> None:
+    """``warnings.warn(message, ViscontactWarning)`` attributed to the first frame outside the package: the
     user's line that called the API (:func:`viscontact.api.run`, :func:`~viscontact.api.run_to_file`, a
     generator such as :func:`viscontact.transient.simulate` where it is iterated), however deep in the
     package the warning is raised. A fixed ``stacklevel`` is right for one call path only. Python
     >= 3.12 skips the package's frames itself (``skip_file_prefixes``); before, they are counted here."""
     if sys.version_info >= (3, 12):
-        warnings.warn(message, category, skip_file_prefixes=(_PACKAGE_PREFIX,))
+        warnings.warn(message, ViscontactWarning, skip_file_prefixes=(_PACKAGE_PREFIX,))
         return
     frame, level = sys._getframe(1), 2  # level 2: this function's caller
     while frame.f_back is not None and os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE_PREFIX):
         frame, level = frame.f_back, level + 1
-    warnings.warn(message, category, stacklevel=level)
+    warnings.warn(message, ViscontactWarning, stacklevel=level)
 
 
 #: the exit status of a command stopped by SIGINT (128 + 2)
