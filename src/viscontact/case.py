@@ -367,8 +367,8 @@ class NormalSection(_Section):
                                  "give exactly one of 'value' (held from t = 0) or 'history' "
                                  "([[t, value], ...], piecewise linear)")
         if self.history is not None:
-            arr = piecewise_linear(self.history, "normal.history").values
-            if np.any(np.asarray(arr) < 0) or not max(arr) > 0:
+            values = piecewise_linear(self.history, "normal.history").values
+            if min(values) < 0 or not max(values) > 0:
                 raise ParameterError("normal.history", "values must be >= 0 (N or m) with a positive maximum")
         return self
 

@@ -42,7 +42,8 @@ def problem_fingerprint(problem: Problem) -> str:
     ``tangential.displacement_history``), so that the checkpoints of the problems it does not change
     still resume."""
     h = hashlib.sha256()
-    h.update(repr((problem.material, problem.grid, problem.normal, _repr_without(problem.tangential, "slip", "displacement_history"),
+    tangential = _repr_without(problem.tangential, "slip", "displacement_history")
+    h.update(repr((problem.material, problem.grid, problem.normal, tangential,
                    problem.time, problem.solver, problem.radius, problem.output)).encode())
     h.update(np.ascontiguousarray(problem.gap).tobytes())
     body = {"bulk_modulus": problem.bulk_modulus, "layer": problem.layer}
