@@ -314,7 +314,7 @@ def _check_time(problem: Problem) -> None:
     err = time_step_error(problem)
     what = "relaxation" if problem.normal.control == "displacement" else "creep"
     if err > TIME_ERROR_LIMIT:
-        key = "time.dt" if not problem.tangential.slides else \
+        key = "time.dt" if not problem.tangential.frame_moves else \
             ("grid.n" if problem.radius is None else "tangential.steps_per_cell")  # dt = dx / (v k) when sliding
         raise ParameterError(key, f"time.dt = {dt:.4g} s with the {problem.time.scheme} scheme misses the {what} of "
                              f"this material and loading by about {100 * err:.0f} % (one-point estimate against the "
@@ -344,9 +344,9 @@ def _time_step_suggestion(problem: Problem) -> str:
         factor = 2**halvings
         trial = replace(problem, time=replace(problem.time, dt=problem.time.dt / factor))
         if time_step_error(trial) <= TIME_WARNING_LIMIT:
-            if problem.tangential.slides and problem.radius is None:  # dt = dx / v: a finer height file
+            if problem.tangential.frame_moves and problem.radius is None:  # dt = dx / v: a finer height file
                 return f"use grid.n = {problem.grid.n * factor} (time.dt = {trial.time.dt:.3g} s){linear}"
-            if problem.tangential.slides:
+            if problem.tangential.frame_moves:
                 return (f"use tangential.steps_per_cell = {problem.tangential.steps_per_cell * factor} "
                         f"(time.dt = {trial.time.dt:.3g} s){linear}")
             return f"use time.dt = {trial.time.dt:.3g} s{linear}"

@@ -69,11 +69,19 @@ class TangentialLoading:
         ``none`` (pure indentation), ``frictionless_sliding`` (seed case 1),
         ``gross_sliding`` (q_x = mu_f p from t = 0, seed case 2) or ``partial_slip``
         (delta_x ramped at ``displacement_rate`` until the stick zone of a contact vanishes, then
-        sliding; the stuck points move with delta_x since the contact began).
+        sliding; the stuck points move with delta_x since the contact began; or delta_x following
+        ``displacement_history``, which may reverse: fretting, stopped if the stick zone vanishes).
     friction_coefficient
         Coulomb coefficient mu_f [-].
     displacement_rate
         d(delta_x)/dt during partial slip [m/s].
+    displacement_history
+        delta_x(t) [m] of partial slip instead of ``displacement_rate``: piecewise linear from
+        delta_x(0) = 0, of either sign and reversing (fretting). It needs ``slip = "incremental"``
+        (a reversal unloads the stuck points from where they are; the total slip has no memory of
+        that). The indenter never slides under it: a step whose contact has no stuck point left (an
+        amplitude beyond gross slip) stops the run (:class:`~viscontact.errors.ParameterError`
+        naming the time), and ``sliding_speed`` is not needed (``time.dt`` is free).
     sliding_speed
         Speed v of the indenter in +x once sliding [m/s].
     steps_per_cell
@@ -94,6 +102,7 @@ class TangentialLoading:
     sliding_speed: float = 0.0
     steps_per_cell: int = 1
     slip: SlipCondition = "total"
+    displacement_history: PiecewiseLinear | None = None
 
     def __post_init__(self) -> None:
         """What each mode needs; the one place that decides it (the case layer delegates here).
@@ -101,21 +110,57 @@ class TangentialLoading:
         Raises
         ------
         ParameterError
-            A sliding mode without a speed > 0 m/s, or partial slip without a displacement rate
-            > 0 m/s or a friction coefficient > 0 (with mu_f = 0 nothing would ever stick).
+            A sliding mode without a speed > 0 m/s (partial slip under a displacement history
+            needs none), partial slip without exactly one of a displacement rate > 0 m/s and a
+            displacement history, or without a friction coefficient > 0 (with mu_f = 0 nothing would
+            ever stick); a displacement history outside partial slip, not starting at 0 m, or with
+            the total slip.
         """
-        if self.mode != "none" and not self.sliding_speed > 0:
+        history = self.displacement_history
+        if history is not None:
+            self._check_history(history)
+        if self.frame_moves and not self.sliding_speed > 0:
             raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s with mode = '{self.mode}', "
                                  f"got {self.sliding_speed:g}")
         if self.mode == "partial_slip":
-            if not self.displacement_rate > 0:
+            if history is None and not self.displacement_rate > 0:
                 raise ParameterError("tangential.displacement_rate",
-                                     f"must be > 0 m/s with mode = 'partial_slip', got {self.displacement_rate:g}")
+                                     f"must be > 0 m/s with mode = 'partial_slip' (or give "
+                                     f"tangential.displacement_history instead), got {self.displacement_rate:g}")
             if not self.friction_coefficient > 0:
                 raise ParameterError("tangential.friction_coefficient",
                                      f"must be > 0 with mode = 'partial_slip', got {self.friction_coefficient:g}")
         if self.slip not in ("total", "incremental"):
             raise ParameterError("tangential.slip", f"must be 'total' or 'incremental', got {self.slip!r}")
+
+    def _check_history(self, history: PiecewiseLinear) -> None:
+        key = "tangential.displacement_history"
+        if self.mode != "partial_slip":
+            raise ParameterError(key, f"only with mode = 'partial_slip', got mode = '{self.mode}'")
+        if self.displacement_rate != 0:
+            raise ParameterError(key, "give exactly one of tangential.displacement_rate (a ramp until gross sliding) "
+                                 f"and tangential.displacement_history, got both (displacement_rate = "
+                                 f"{self.displacement_rate:g} m/s)")
+        if history(0.0) != 0.0:
+            raise ParameterError(key, f"must start at delta_x = 0 m at t = 0 s (the indenter's position at t = 0), "
+                                 f"got {history(0.0):g} m")
+        if self.slip != "incremental":
+            raise ParameterError("tangential.slip", "must be 'incremental' with tangential.displacement_history: the "
+                                 "total slip has no memory of the load path, so on a reversal of delta_x it would "
+                                 "force every stuck point back to u_x = delta_x instead of unloading it from where "
+                                 "it is (Mindlin-Deresiewicz)")
+
+    def delta_x(self, t: float) -> float:
+        """The tangential displacement of partial slip at time ``t`` [s] (m): the history, or the ramp."""
+        if self.displacement_history is not None:
+            return self.displacement_history(t)
+        return self.displacement_rate * t
+
+    @property
+    def frame_moves(self) -> bool:
+        """Whether the indenter may slide, ``time.dt`` then tied to ``sliding_speed`` (v dt = dx / k):
+        every sliding mode but partial slip under a displacement history, which stops instead."""
+        return self.slides and self.displacement_history is None
 
     @property
     def slides(self) -> bool:

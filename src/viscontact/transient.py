@@ -129,7 +129,7 @@ def init(problem: Problem, substrate: TermSubstrate | None = None) -> State:
 def validate(problem: Problem) -> None:
     """Checks that involve several parts of the problem (each part validated itself)."""
     tan = problem.tangential
-    if tan.slides:
+    if tan.frame_moves:
         if not tan.sliding_speed > 0:
             raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s when sliding, got {tan.sliding_speed}")
         cell_dt = problem.grid.spacing / (tan.sliding_speed * tan.steps_per_cell)
@@ -140,7 +140,7 @@ def validate(problem: Problem) -> None:
     if problem.grid.periodic and problem.normal.control == "displacement":
         check_approach(problem.normal.history.reference, problem.gap,
                        "normal.value" if len(problem.normal.history.values) == 1 else "normal.history")
-    if tan.mode == "partial_slip" and not tan.displacement_rate > 0:
+    if tan.mode == "partial_slip" and tan.displacement_history is None and not tan.displacement_rate > 0:
         raise ParameterError("tangential.displacement_rate", f"must be > 0 m/s for partial_slip, got {tan.displacement_rate}")
     limit = min(stable_step_limit(r, problem.time.scheme) for r in stability_responses(problem))
     if problem.time.dt > limit:
@@ -322,6 +322,18 @@ class PartialSlip:
         return replace(solution, displacement_z=u_z + ctx.known_uz)
 
 
+def gross_slip_under_history(t: float, delta_x: float, force: float, load: float, mu: float) -> ParameterError:
+    """The error that stops partial slip under ``tangential.displacement_history`` at the step ``t`` [s]
+    whose contact has no stuck point left: the amplitude of delta_x [m] exceeds gross slip (the
+    friction force ``force`` [N] has reached mu_f times the ``load`` [N]). The indenter does not slide
+    on (nor back): the steps before are kept."""
+    return ParameterError(
+        "tangential.displacement_history", f"the stick zone vanished at t = {t:.6g} s (delta_x = {delta_x:.6g} m, "
+        f"Q / (mu_f W) = {force / (mu * load) if load > 0 else float('nan'):.3g}): the amplitude exceeds gross slip, "
+        "and a displacement history does not slide on; lower its amplitude, or use tangential.displacement_rate "
+        "(a ramp into gross sliding)")
+
+
 def check_not_full_contact(pressure: np.ndarray, t: float) -> None:
     """Raise :class:`~viscontact.errors.ParameterError` when the contact covers every cell of a
     periodic partial-slip problem whose tangential operator has a free mean: a uniform shear then
@@ -454,7 +466,8 @@ def _warm_start(substrate: TermSubstrate, state: State, k: int) -> tuple[np.ndar
 
 def _advance_frame(problem: Problem, substrate: TermSubstrate, state: State, k: int, t: float) -> State:
     """The state with the frame moved (gross sliding after the step at which it began: v dt per
-    step, the history shifted by a cell every steps_per_cell steps) or delta_x ramped (partial slip)."""
+    step, the history shifted by a cell every steps_per_cell steps) or delta_x ramped or following its
+    history (partial slip)."""
     tan, dt = problem.tangential, problem.time.dt
     if state.phase == PHASE_GROSS_SLIDING and k > 0 and state.t_gross_sliding is not None \
             and t > state.t_gross_sliding + 0.5 * dt:
@@ -469,7 +482,7 @@ def _advance_frame(problem: Problem, substrate: TermSubstrate, state: State, k: 
                        delta_x=state.delta_x + tan.sliding_speed * dt, substep=substep, histories=histories,
                        wake=wake, response=state.response if histories is state.histories else None)
     if state.phase == PHASE_PARTIAL_SLIP:
-        return replace(state, delta_x=tan.displacement_rate * t)
+        return replace(state, delta_x=tan.delta_x(t))
     return state
 
 
@@ -521,6 +534,9 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
     # stays; once sliding, it stays)
     phase, t_gross = state.phase, state.t_gross_sliding
     if phase == PHASE_PARTIAL_SLIP and n_contact and (not stick.any() or mu == 0):
+        if tan.displacement_history is not None:
+            raise gross_slip_under_history(t, state.delta_x, float(q_host.sum() * grid.cell_area),
+                                           float(p_host.sum() * grid.cell_area), mu)
         phase, t_gross = PHASE_GROSS_SLIDING, t
     slip_x = None
     if incremental and phase == PHASE_PARTIAL_SLIP:

@@ -534,3 +534,29 @@ def test_the_coulomb_bound_is_drawn_over_the_shear_it_bounds(result):
     assert len(solid) == len(dotted) == result.sizes["t"]
     assert min(line.get_zorder() for line in dotted) > max(line.get_zorder() for line in solid)
     assert all(line.get_color() == "k" for line in dotted) and "black dotted: μ_f p" in fig.axes[1].get_title()
+
+
+def test_the_tangential_loop_of_a_reversing_history_draws_the_whole_path():
+    """Fretting (a displacement history that reverses, the shipped case at 16^2 and one cycle): Q /
+    (mu_f W) against the indenter's delta_x at every record, both signs (not clipped at delta_x >= 0
+    nor at Q >= 0 as for a ramp), with the elastic Mindlin-Deresiewicz loops of G(0) and G(inf) at
+    the run's amplitude, each closing at (+-delta_a, +-Q_a / (mu_f W))."""
+    from viscontact.api import run
+    from viscontact.case import load_case
+    from viscontact.plotting.result import tangential_loop_figure
+    from viscontact.reference import cattaneo_mindlin
+
+    ds = run(load_case(ROOT / "cases" / "fretting_zener.toml").with_overrides({"grid.n": 16, "time.t_end": 0.0125}))
+    ax = tangential_loop_figure(ds).axes[0]
+    x, y = ax.lines[0].get_data()
+    np.testing.assert_allclose(x, ds["delta_x"].values * 1e6)
+    np.testing.assert_allclose(y, ds["friction_force"].values / (0.3 * ds["load"].values))
+    assert y.min() < -0.4 and y.max() > 0.4 and ax.get_ylim() == (-1.1, 1.1)
+    references = [line for line in ax.lines if "Mindlin-Deresiewicz" in str(line.get_label())]
+    assert [line.get_label() for line in references] == ["Mindlin-Deresiewicz, elastic G(0)",
+                                                         "Mindlin-Deresiewicz, elastic G(∞)"]
+    for line, g in zip(references, (1.93e6, 0.193e6)):
+        q_a = float(cattaneo_mindlin(0.15, 0.01, 0.3, g, 0.5).force(8e-6)) / (0.3 * 0.15)
+        rx, ry = line.get_data()
+        assert rx[0] == pytest.approx(8.0) and rx[-1] == pytest.approx(8.0) and rx.min() == pytest.approx(-8.0)
+        assert ry[0] == pytest.approx(q_a) and ry[-1] == pytest.approx(q_a) and ry.min() == pytest.approx(-q_a)

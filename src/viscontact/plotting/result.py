@@ -285,10 +285,14 @@ def tangential_loop_figure(ds: xr.Dataset) -> Any:
     relaxing) against the tangential displacement δ_x of partial slip since the first contact (a
     normal history that starts at zero touches after the indenter has moved), 1 at the onset of gross
     sliding, with the elastic Cattaneo-Mindlin curves of :func:`_cattaneo_mindlin_references`
-    (exact for ν = 0.5, where the normal and tangential problems do not couple); returns the Figure."""
+    (exact for ν = 0.5, where the normal and tangential problems do not couple); a δ_x that reverses
+    (``tangential.displacement_history``) is drawn whole, loops of both signs
+    (:func:`_fretting_loop_figure`); returns the Figure."""
     mu = float(ds.attrs.get("friction_coefficient", 0.0) or 0.0)
     load = ds["load"].values
     delta_x = ds["delta_x"].values
+    if np.any(np.diff(delta_x) < 0):  # a displacement history that reverses: fretting loops
+        return _fretting_loop_figure(ds, mu)
     touched = np.flatnonzero(ds["contact_area"].values > 0)
     delta_x = delta_x - (delta_x[touched[0]] if touched.size else 0.0)
     references = _cattaneo_mindlin_references(ds)
@@ -313,6 +317,36 @@ def tangential_loop_figure(ds: xr.Dataset) -> Any:
     ax.legend(fontsize=8, title_fontsize=8, loc="lower right",
               title=f"Cattaneo-Mindlin exact for ν = 0.5 (here {nu:g})" if references and nu != 0.5 else None)
     set_title(fig, ds, "tangential force against displacement" + _held_note(ds))
+    fig.tight_layout()
+    return fig
+
+
+def _fretting_loop_figure(ds: xr.Dataset, mu: float) -> Any:
+    """:func:`tangential_loop_figure` of a displacement history that reverses: Q / (μ_f W(t)) against
+    the indenter's δ_x along the whole path (both signs: the hysteresis loops), with the elastic
+    Mindlin-Deresiewicz loops between ±max |δ_x| of :func:`_cattaneo_mindlin_references` (exact for
+    ν = 0.5) where that amplitude is below their gross slip."""
+    load, delta_x = ds["load"].values, ds["delta_x"].values
+    with np.errstate(divide="ignore", invalid="ignore"):  # no load (no contact): no ratio
+        ratio = np.where(load > 0, ds["friction_force"].values / (mu * load), np.nan)
+    fig, ax = pyplot().subplots(figsize=(6.4, 4.6))
+    ax.plot(delta_x * 1e6, ratio, "o-", ms=2.0, lw=1.0, label="viscontact")
+    amplitude = float(np.max(np.abs(delta_x)))
+    up = np.linspace(-amplitude, amplitude, 200)
+    for cm, name, style in _cattaneo_mindlin_references(ds):
+        if amplitude < cm.sliding_displacement:
+            loop = np.concatenate([cm.unloading_force(up[::-1], amplitude), cm.reloading_force(up, amplitude)])
+            ax.plot(np.concatenate([up[::-1], up]) * 1e6, loop / (mu * cm.load), style, lw=1.0,
+                    label=name.replace("Cattaneo-Mindlin", "Mindlin-Deresiewicz"))
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.axvline(0.0, color="0.6", lw=0.6)
+    ax.set(xlabel="tangential displacement δ_x [µm]", ylim=(-1.1, 1.1),
+           ylabel="Q / (μ_f W)" if _held(load) else "Q(t) / (μ_f W(t))")
+    ax.grid(alpha=0.3)
+    nu = float(ds.attrs.get("poisson_ratio", 0.5))
+    ax.legend(fontsize=8, title_fontsize=8, loc="lower right",
+              title=f"Mindlin-Deresiewicz exact for ν = 0.5 (here {nu:g})" if nu != 0.5 else None)
+    set_title(fig, ds, "fretting loops: tangential force against displacement" + _held_note(ds))
     fig.tight_layout()
     return fig
 
