@@ -18,8 +18,10 @@ into the device path, or any of the calls above, raises TypeError.
 """
 from __future__ import annotations
 
+import contextlib
 import types
-from typing import Any
+from dataclasses import dataclass
+from typing import Any, Iterator
 
 import numpy as np
 import scipy.fft
@@ -29,6 +31,35 @@ from viscontact.arrays import ArrayBackend
 
 #: functions that take a ``where`` keyword on the device (the reductions do not)
 _WHERE_ALLOWED = {"copyto", "where"}
+
+
+@dataclass(frozen=True)
+class Transfer:
+    """One explicit copy: ``"to_device"`` (``xp.asarray`` of a host value) or ``"to_host"``."""
+
+    direction: str
+    shape: tuple[int, ...]
+    nbytes: int
+
+
+#: the open :func:`transfers` logs (each copy is appended to every one)
+_LOGS: list[list[Transfer]] = []
+
+
+@contextlib.contextmanager
+def transfers() -> Iterator[list[Transfer]]:
+    """The host-device copies made while the block runs, in order (nested blocks each see theirs)."""
+    log: list[Transfer] = []
+    _LOGS.append(log)
+    try:
+        yield log
+    finally:
+        _LOGS.remove(log)
+
+
+def _logged(direction: str, data: np.ndarray) -> None:
+    for log in _LOGS:
+        log.append(Transfer(direction, data.shape, data.nbytes))
 
 
 class HostArrayError(TypeError):
@@ -151,7 +182,9 @@ def _to_device(value: Any, dtype: Any = None, copy: Any = None, **kwargs: Any) -
         elif copy:
             data = data.copy()
         return DeviceArray(data)
-    return DeviceArray(np.array(value, dtype=dtype, **kwargs))
+    data = np.array(value, dtype=dtype, **kwargs)
+    _logged("to_device", data)
+    return DeviceArray(data)
 
 
 class _Namespace(types.ModuleType):
@@ -196,6 +229,7 @@ def to_host(array: Any) -> np.ndarray:
     """The explicit device-to-host copy (``cupy.asnumpy``)."""
     if not isinstance(array, DeviceArray):
         raise HostArrayError(f"to_host of a {type(array).__name__}, not a device array")
+    _logged("to_host", array._data)
     return array._data.copy()
 
 

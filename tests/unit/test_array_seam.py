@@ -29,7 +29,7 @@ from viscontact.shipped import shipped_case
 from viscontact.substrate import substrate_for
 from viscontact import transient
 from viscontact.transient import steps
-from vc_testing import SEED_A0, SEED_TAU, seed_material, sphere_problem
+from vc_testing import SEED_A0, SEED_RADIUS, SEED_TAU, seed_material, sphere_problem
 
 
 def _backends() -> list:
@@ -122,6 +122,14 @@ def _transient(mode: str):
     if mode.endswith("_incremental"):  # the incremental slip: s_x carried in the state
         base = _transient(mode[:-len("_incremental")])
         return dataclasses.replace(base, tangential=dataclasses.replace(base.tangential, slip="incremental"))
+    if mode.startswith("sub_cell_"):  # two steps per cell: the indenter moves within a cell (frame_gap)
+        base = _transient({"sub_cell_periodic": "rough_periodic"}.get(mode, "frictionless_sliding"))
+        tangential = dataclasses.replace(base.tangential, steps_per_cell=2)
+        time = dataclasses.replace(base.time, dt=base.time.dt / 2)
+        if mode == "sub_cell_surface":  # a gap given as a surface on a DC-FFT grid: interpolated
+            x, y = base.grid.mesh()
+            base = dataclasses.replace(base, gap=(x**2 + y**2) / (2 * SEED_RADIUS), radius=None)
+        return dataclasses.replace(base, tangential=tangential, time=time)
     material = seed_material()
     if mode == "creep":
         return sphere_problem(material, 32, 2.5 * SEED_A0, t_end=10 * SEED_TAU / 20)
@@ -157,7 +165,8 @@ def _transient(mode: str):
 
 @pytest.mark.parametrize("mode", ["creep", "displacement", "frictionless_sliding", "gross_sliding", "strong_coupling",
                                   "partial_slip", "partial_slip_incremental", "rough_periodic",
-                                  "rough_periodic_incremental", "layer", "layer_on_elastic", "bulk_modulus"])
+                                  "rough_periodic_incremental", "layer", "layer_on_elastic", "bulk_modulus",
+                                  "sub_cell_sphere", "sub_cell_surface", "sub_cell_periodic"])
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_the_transient_on_the_device_equals_numpy(backend, mode, monkeypatch):
     problem = _transient(mode)
@@ -192,6 +201,56 @@ def test_the_transient_on_the_device_equals_numpy(backend, mode, monkeypatch):
             assert final.slip_x is None
         else:
             assert all(s_x is None for s_x in carried)
+
+
+@pytest.mark.parametrize("mode", ["creep", "frictionless_sliding", "gross_sliding", "strong_coupling",
+                                  "partial_slip_incremental", "rough_periodic", "sub_cell_sphere", "sub_cell_surface",
+                                  "sub_cell_periodic"])
+def test_a_step_after_the_first_moves_no_field_to_the_device(mode):
+    """The fields a step needs from the host (kernels, spectra, the gap at every frame offset) move to
+    the device before the run or in its first step; a later step copies nothing as large as a grid
+    row to it (the GMRES's small least-squares solution of the direct solve apart), only the record
+    back (p, q, u_z). The emulation's copies are free, a GPU's are not (an n x n field crosses the bus)."""
+    problem = _transient(mode)
+    n = problem.grid.n
+    run = steps(problem, substrate=substrate_for(problem, backend=emulated_device.BACKEND))
+    next(run)
+    offsets = set()
+    while True:
+        with emulated_device.transfers() as moved:
+            try:
+                _, record = next(run)
+            except StopIteration:
+                break
+        offsets.add(record.frame_offset)
+        fields = [t for t in moved if t.direction == "to_device" and np.prod(t.shape) >= n]
+        assert not fields, f"step {record.step} copied {fields} to the device"
+        assert sum(t.direction == "to_host" and t.shape == (n, n) for t in moved) >= 3  # the record
+    assert len(offsets) == (2 if mode.startswith("sub_cell_") else 1)  # every frame offset was met
+
+
+@pytest.mark.parametrize("body", ["half_space", "gross_sliding", "rough_periodic", "layer"])
+def test_the_steady_active_set_moves_no_field_to_the_device(body, monkeypatch):
+    """The steady solver moves its kernels and the gap once; its active set and Krylov iterations copy
+    nothing as large as a grid row to the device."""
+    from viscontact import steady, steady_periodic, substrate
+    from viscontact.steady import solve_steady
+
+    problem = _steady(body)
+    monkeypatch.setattr(substrate, "array_backend", lambda device: emulated_device.BACKEND)
+    solves = []
+    for module in (steady, steady_periodic):
+        def counted(apply_k, gap, _solve=module.solve_contact_active_set, **kw):
+            with emulated_device.transfers() as moved:
+                out = _solve(apply_k, gap, **kw)
+            solves.append(moved)
+            return out
+        monkeypatch.setattr(module, "solve_contact_active_set", counted)
+    solve_steady(problem)
+    assert solves
+    n = problem.grid.n
+    for moved in solves:
+        assert not [t for t in moved if t.direction == "to_device" and np.prod(t.shape) >= n]
 
 
 @pytest.mark.parametrize("backend", BACKENDS)
