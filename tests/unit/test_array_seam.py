@@ -4,11 +4,15 @@ Every transient mode and body (half-space on DC-FFT and periodic grids, layers, 
 emulated device (tests/emulated_device.py: numpy behind CuPy's rules, so a host array leaking into
 the device path raises) and must equal the numpy run bit for bit, its state held in device arrays.
 Where CuPy finds a CUDA device, the same runs go on the GPU (equal to round-off: cuFFT's arithmetic
-is not pocketfft's).
+is not pocketfft's); VISCONTACT_TEST_DEVICE=gpu runs them there alone, each skipped with its reason
+where there is none (benchmarks/device/check.sh), VISCONTACT_TEST_DEVICE=emulated on the emulation alone.
 """
 from __future__ import annotations
 
 import dataclasses
+import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -32,12 +36,24 @@ from viscontact.transient import steps
 from vc_testing import SEED_A0, SEED_RADIUS, SEED_TAU, seed_material, sphere_problem
 
 
+#: which backends the device tests run on: unset, the emulation and CuPy where it finds a CUDA device;
+#: "gpu": CuPy alone (each test skipped with the reason where it finds none: benchmarks/device/check.sh);
+#: "emulated": the emulation alone
+DEVICE_VARIABLE = "VISCONTACT_TEST_DEVICE"
+
+
 def _backends() -> list:
-    out = [pytest.param(emulated_device.BACKEND, id="emulated")]
+    chosen = os.environ.get(DEVICE_VARIABLE, "")
+    if chosen not in ("", "gpu", "emulated"):
+        raise ValueError(f"{DEVICE_VARIABLE} must be 'gpu' or 'emulated' (or unset), got {chosen!r}")
+    out = [] if chosen == "gpu" else [pytest.param(emulated_device.BACKEND, id="emulated")]
+    if chosen == "emulated":
+        return out
     try:
         out.append(pytest.param(cupy_backend(), id="cupy"))
-    except ImportError:
-        pass
+    except ImportError as exc:
+        if chosen == "gpu":
+            out.append(pytest.param(None, id="cupy", marks=pytest.mark.skip(reason=f"no CuPy GPU backend: {exc}")))
     return out
 
 
@@ -81,6 +97,22 @@ def test_the_emulated_device_refuses_host_arrays_and_cpu_only_keywords():
     assert isinstance(emulated_device.to_host(out), np.ndarray)
     with pytest.raises(HostArrayError):
         emulated_device.to_host(np.ones(3))
+
+
+def test_the_gpu_selection_skips_each_device_test_with_its_reason_where_cupy_finds_no_device(tmp_path):
+    """VISCONTACT_TEST_DEVICE=gpu (benchmarks/device/check.sh) without a CUDA device: the device tests
+    are skipped, saying why, and the run succeeds; the emulated ones are left out."""
+    try:
+        cupy_backend()
+        pytest.skip("CuPy finds a CUDA device here")
+    except ImportError:
+        pass
+    out = subprocess.run([sys.executable, "-m", "pytest", "-q", "-rs", "-p", "no:cacheprovider", "-p", "no:xdist",
+                          __file__, "-k", "dcfft or refuses_a_device"],
+                         env={**os.environ, DEVICE_VARIABLE: "gpu"}, capture_output=True, text=True, timeout=120,
+                         cwd=tmp_path)
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert "2 skipped" in out.stdout and "no CuPy GPU backend" in out.stdout and "emulated" not in out.stdout
 
 
 def test_the_cpu_backend_moves_nothing():
