@@ -6,7 +6,8 @@ where it
 
 * converts a device array to a numpy array implicitly (``np.asarray(a)``, ``np.array(a)``: TypeError;
   the host copy is explicit, ``cupy.asnumpy``);
-* mixes a numpy array of one or more dimensions with device arrays in one operation (TypeError);
+* mixes a numpy array with device arrays in one operation (TypeError; scalars mix: Python's and numpy's,
+  ``np.float64``; the emulation refuses 0-d numpy arrays too, the safe side of CuPy's scalar rules);
 * creates a field with numpy from a shape (``np.zeros((n, n))``): a host array, which then mixes;
 * passes ``workers`` to an FFT (``cupyx.scipy.fft`` has none) or ``where`` to a reduction.
 
@@ -150,10 +151,10 @@ class DeviceArray(NDArrayOperatorsMixin):
 
 
 def _unwrap(value: Any) -> Any:
-    """numpy's view of ``value`` (containers walked); a host array of one or more dimensions raises."""
+    """numpy's view of ``value`` (containers walked); a host array (0-d too) raises."""
     if isinstance(value, DeviceArray):
         return value._data
-    if isinstance(value, np.ndarray) and value.ndim > 0:
+    if isinstance(value, np.ndarray):
         raise HostArrayError(f"a numpy array of shape {value.shape} mixed with device arrays")
     if isinstance(value, (list, tuple)):
         return type(value)(_unwrap(v) for v in value)

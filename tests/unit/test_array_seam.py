@@ -80,6 +80,8 @@ def test_the_emulated_device_refuses_host_arrays_and_cpu_only_keywords():
         np.asarray(dev)
     with pytest.raises(HostArrayError):
         dev + np.ones((4, 4))
+    with pytest.raises(HostArrayError):  # 0-d arrays too (scalars mix: np.float64(1.0) below)
+        dev + np.array(1.0)
     with pytest.raises(HostArrayError):
         dev[np.zeros((4, 4), dtype=bool)] = 1.0
     with pytest.raises(HostArrayError):
@@ -91,7 +93,7 @@ def test_the_emulated_device_refuses_host_arrays_and_cpu_only_keywords():
     with pytest.raises(AttributeError):
         dev.flat  # noqa: B018
     # what is allowed: numpy's functions dispatched, scalars, explicit transfers
-    out = np.maximum(dev + 1.0, 0.5)
+    out = np.maximum(dev + np.float64(1.0), 0.5)
     assert isinstance(out, DeviceArray) and float(out.sum()) == 16.0
     assert isinstance(np.zeros_like(dev), DeviceArray)
     assert isinstance(emulated_device.to_host(out), np.ndarray)
