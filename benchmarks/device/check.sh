@@ -65,19 +65,9 @@ install_wheels() {
         "$PYTHON" -m pip install -q --disable-pip-version-check --no-index --no-deps --no-compile --no-cache-dir \
             --target "$SITE" $wheels || return 1
     fi
-    # viscontact runs from src/, not installed: its version (result files record it) from a
-    # metadata folder, as an installation would leave it
-    "$PYTHON" - "$SITE" <<'PY'
-import importlib.metadata as md, pathlib, sys, tomllib
-try:
-    print("viscontact", md.version("viscontact"), "installed")
-except md.PackageNotFoundError:
-    version = tomllib.loads(pathlib.Path("pyproject.toml").read_text())["project"]["version"]
-    info = pathlib.Path(sys.argv[1]) / f"viscontact-{version}.dist-info"
-    info.mkdir(parents=True, exist_ok=True)
-    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: viscontact\nVersion: {version}\n")
-    print(f"viscontact {version} from src/ (metadata in {info})")
-PY
+    # viscontact runs from src/, not installed: its version (result files record it) where metadata
+    # looks for it
+    "$PYTHON" benchmarks/device/wheels.py source-metadata "$SITE"
 }
 
 environment() {

@@ -5,6 +5,7 @@ that the lent GPU machine's image lacks, for its Python 3.12 (see docs/gpu.md).
     python3 benchmarks/device/wheels.py prune .whl      # delete wheels that are not one of the pins
     python3 benchmarks/device/wheels.py verify .whl     # one wheel per pin; every Requires-Dist met
     python3 benchmarks/device/wheels.py missing .whl    # the wheels whose package this Python lacks (check.sh)
+    python3 benchmarks/device/wheels.py source-metadata /tmp/site   # viscontact's version for src/ (check.sh)
 
 The image (no network there) has Python 3.12 with numpy 2.5, scipy, xarray, h5py, matplotlib, tqdm,
 pytest, pytest-xdist, hypothesis and cupy-cuda13x, and what pip installed with them (:data:`IMAGE`).
@@ -23,6 +24,7 @@ from __future__ import annotations
 
 import re
 import sys
+import tomllib
 import zipfile
 from importlib import metadata
 from pathlib import Path
@@ -143,11 +145,30 @@ def missing(folder: Path) -> None:
             print(path)
 
 
+def source_metadata(site: Path, root: Path = Path(__file__).resolve().parents[2]) -> Path | None:
+    """Where viscontact runs from its source tree without being installed (``PYTHONPATH=src``), a
+    metadata folder in ``site`` giving its version (``viscontact.__version__``, which result files
+    record, reads it), as an installation leaves one; None where this Python has it already."""
+    try:
+        print("viscontact", metadata.version("viscontact"), "installed")
+        return None
+    except metadata.PackageNotFoundError:
+        pass
+    version = tomllib.loads((root / "pyproject.toml").read_text())["project"]["version"]
+    info = site / f"viscontact-{version}.dist-info"
+    info.mkdir(parents=True, exist_ok=True)
+    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: viscontact\nVersion: {version}\n")
+    print(f"viscontact {version} from {root / 'src'} (its metadata in {info})")
+    return info
+
+
 if __name__ == "__main__":
     command = sys.argv[1] if len(sys.argv) > 1 else ""
     if command == "pins":
         print("\n".join(PINS))
-    elif command in ("prune", "verify", "missing") and len(sys.argv) == 3:
-        sys.exit({"prune": prune, "verify": verify, "missing": missing}[command](Path(sys.argv[2])))
+    elif command in ("prune", "verify", "missing", "source-metadata") and len(sys.argv) == 3:
+        run = {"prune": prune, "verify": verify, "missing": missing, "source-metadata": source_metadata}[command]
+        result = run(Path(sys.argv[2]))
+        sys.exit(result if isinstance(result, int) else 0)
     else:
         sys.exit(__doc__)

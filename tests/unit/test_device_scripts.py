@@ -79,6 +79,26 @@ def test_the_pins_are_the_versions_the_tests_run_with_where_installed():
     assert not differing
 
 
+def test_an_uninstalled_source_tree_gets_its_version_from_a_metadata_folder(tmp_path, monkeypatch):
+    """check.sh runs viscontact from src/ on the GPU machine: without metadata ``__version__``, which
+    every result file records, raised PackageNotFoundError (the seam's streamed run failed so)."""
+    from importlib import metadata
+
+    module = _wheels()
+    installed = module.source_metadata(tmp_path / "a")
+    assert installed is None and not (tmp_path / "a").exists()  # this environment has viscontact installed
+    real = metadata.version
+
+    def uninstalled(name):
+        if name == "viscontact":
+            raise metadata.PackageNotFoundError(name)
+        return real(name)
+    monkeypatch.setattr(metadata, "version", uninstalled)
+    info = module.source_metadata(tmp_path / "site")
+    dist = next(metadata.distributions(name="viscontact", path=[str(tmp_path / "site")]))
+    assert info.parent == tmp_path / "site" and dist.version == real("viscontact")
+
+
 def test_the_device_scripts_are_valid_bash():
     for script in ("prepare.sh", "check.sh"):
         subprocess.run(["bash", "-n", str(DEVICE / script)], check=True)
