@@ -12,7 +12,8 @@
 #
 # Every stage runs under `timeout` within CHECK_BUDGET seconds in all; logs go to $OUT/ (or
 # out/device/ where $OUT is unset): env.txt, install.log, seam.log, seam.xml, bench_<n>.md,
-# summary.txt. Exit status: the first failing stage's (a stage timed out: 124), else 0 (no CUDA
+# summary.txt. CHECK_STAGES="seam" or "bench" reruns one of the two (install and environment, a few
+# seconds, always run). Exit status: the first failing stage's (a stage timed out: 124), else 0 (no CUDA
 # device: the tests skipped, the status 0).
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -20,6 +21,7 @@ OUT=${OUT:-$PWD/out/device}
 mkdir -p "$OUT"
 BUDGET=${CHECK_BUDGET:-480}
 BENCH_STEPS=${BENCH_STEPS:-6}
+STAGES=${CHECK_STAGES:-seam bench}  # a rerun of one: CHECK_STAGES=seam or =bench (install and environment always run)
 if [ -z "${PYTHON:-}" ]; then
     if [ -x /opt/torch/.venv/bin/python3 ]; then PYTHON=/opt/torch/.venv/bin/python3; else PYTHON=python3; fi
 fi
@@ -106,11 +108,14 @@ has_device() {
 
 export PYTHON SITE
 export -f install_wheels environment  # for the bash that timeout starts
+wanted() { [[ " $STAGES " == *" $1 "* ]]; }
 stage install 90 "$OUT/install.log" bash -c install_wheels
 stage environment 60 "$OUT/env.txt" bash -c environment
-stage seam 240 "$OUT/seam.log" env VISCONTACT_TEST_DEVICE=gpu "$PYTHON" -m pytest -q -rs -p no:cacheprovider \
+wanted seam && stage seam 240 "$OUT/seam.log" env VISCONTACT_TEST_DEVICE=gpu "$PYTHON" -m pytest -q -rs -p no:cacheprovider \
     -n "${SEAM_WORKERS:-4}" --durations=10 --junitxml="$OUT/seam.xml" tests/unit/test_array_seam.py
-if has_device; then
+if ! wanted bench; then
+    :
+elif has_device; then
     stage bench_1024 120 "$OUT/bench_1024.md" "$PYTHON" -u benchmarks/bench_device.py --n 1024 --steps "$BENCH_STEPS"
     stage bench_2048 200 "$OUT/bench_2048.md" "$PYTHON" -u benchmarks/bench_device.py --n 2048 --steps "$BENCH_STEPS"
 else
