@@ -8,7 +8,7 @@ from __future__ import annotations
 import importlib.util
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Literal
+from typing import Any, Callable, Literal
 
 import numpy as np
 
@@ -331,24 +331,59 @@ class Problem:
         linear interpolation smoothed a rough surface, its approach 3-4 % high and its peak pressure
         10-14 % low at half a cell); on a DC-FFT grid it is interpolated linearly along x between
         neighbouring cells (error f (1 - f) dx^2 max|h''| / 2 at offset f dx), its first column
-        extrapolated linearly (error f (1 + f) dx^2 max|h''| / 2).
+        extrapolated linearly (error f (1 + f) dx^2 max|h''| / 2). :meth:`frame_gaps` does the same
+        on a device.
         """
-        if offset == 0.0:
-            return self.gap
+        return self._host_frame_gaps.at(offset)
+
+    def frame_gaps(self, to_device: Callable[[np.ndarray], Any] = lambda array: array) -> "FrameGaps":
+        """What :meth:`frame_gap` builds the gap from, moved once by ``to_device`` (an
+        :meth:`~viscontact.arrays.ArrayBackend.to_device`): its :meth:`FrameGaps.at` gives the gap at
+        any offset on that device, equal to :meth:`frame_gap`'s, without copying a field there again."""
+        sphere = periodic = None
         if self._gap_is_sphere:
             x, y = self.grid.mesh()
-            return ((x - offset) ** 2 + y**2) / (2.0 * self.radius)
-        if self.grid.periodic:
-            n, dx = self.grid.n, self.grid.spacing
-            k_x = 2.0 * np.pi * np.fft.rfftfreq(n, dx)
-            return np.fft.irfft(self._gap_rows_spectrum * np.exp(-1j * k_x * offset), n, axis=1)
-        frac = offset / self.grid.spacing
-        behind = np.empty_like(self.gap)  # the gap one cell towards -x, h(x - dx)
-        behind[:, 1:] = self.gap[:, :-1]
-        behind[:, 0] = 2.0 * self.gap[:, 0] - self.gap[:, 1]
-        return (1.0 - frac) * self.gap + frac * behind
+            sphere = (to_device(x[:1, :]), to_device(y[:, :1]), self.radius)  # broadcast: the same values
+        elif self.grid.periodic:
+            k_x = 2.0 * np.pi * np.fft.rfftfreq(self.grid.n, self.grid.spacing)
+            periodic = (to_device(self._gap_rows_spectrum), to_device(k_x))
+        return FrameGaps(to_device(self.gap), self.grid.spacing, sphere, periodic)
+
+    @cached_property
+    def _host_frame_gaps(self) -> "FrameGaps":
+        return self.frame_gaps()
 
     @cached_property
     def _gap_rows_spectrum(self) -> np.ndarray:
         """The real FFT of the gap along x (periodic grids: :meth:`frame_gap`)."""
         return np.fft.rfft(self.gap, axis=1)
+
+
+@dataclass(frozen=True)
+class FrameGaps:
+    """The undeformed gap at each frame offset (:meth:`Problem.frame_gap`) from arrays held by one
+    array library (:meth:`Problem.frame_gaps`): each offset's gap is computed there by numpy's
+    functions, which dispatch to the arrays' library, so a device needs no host field per step."""
+
+    gap: Any
+    spacing: float
+    #: a sphere: x (1, n) and y (n, 1) [m], its radius [m]
+    sphere: tuple[Any, Any, float] | None = None
+    #: a periodic grid: the gap's real FFT along x, k_x [1/m]
+    periodic: tuple[Any, Any] | None = None
+
+    def at(self, offset: float) -> Any:
+        """The gap [m] with the indenter centre at x = ``offset`` [m] (:meth:`Problem.frame_gap`)."""
+        if offset == 0.0:
+            return self.gap
+        if self.sphere is not None:
+            x, y, radius = self.sphere
+            return ((x - offset) ** 2 + y**2) / (2.0 * radius)
+        if self.periodic is not None:
+            spectrum, k_x = self.periodic
+            return np.fft.irfft(spectrum * np.exp(-1j * k_x * offset), self.gap.shape[1], axis=1)
+        frac = offset / self.spacing
+        behind = np.empty_like(self.gap)  # the gap one cell towards -x, h(x - dx)
+        behind[:, 1:] = self.gap[:, :-1]
+        behind[:, 0] = 2.0 * self.gap[:, 0] - self.gap[:, 1]
+        return (1.0 - frac) * self.gap + frac * behind

@@ -31,7 +31,7 @@ from .errors import ConvergenceError, ParameterError, ViscontactWarning
 from .guards import check_solution
 from .history import History
 from .periodic import check_approach
-from .problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP, Problem
+from .problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP, FrameGaps, Problem
 from .records import StepRecord
 from .roughness import roughness_metrics
 from .schemes import stable_step_limit
@@ -486,9 +486,12 @@ def _advance_frame(problem: Problem, substrate: TermSubstrate, state: State, k: 
     return state
 
 
-def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[State, StepRecord]:
+def step(problem: Problem, substrate: TermSubstrate, state: State,
+         frame_gaps: FrameGaps | None = None) -> tuple[State, StepRecord]:
     """Advance ``state`` by one time step; returns the new state and the step's record (``state``
-    itself is left as it was)."""
+    itself is left as it was). ``frame_gaps``: the gap's arrays on the substrate's device
+    (:meth:`~viscontact.problem.Problem.frame_gaps`; :func:`steps` moves them there once), else moved
+    for this step."""
     grid, tan = problem.grid, problem.tangential
     k = state.step + 1
     t = k * problem.time.dt
@@ -506,12 +509,17 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
         known_uz, known_ux = substrate.known_from_response(state.response, t, first), None
     else:
         known_uz, known_ux = substrate.known_displacement(state.histories, t, first, need_x=solver.solves_shear)
-    gap = problem.frame_gap(offset)
+    gap = problem.frame_gap(offset)  # on the host, for the record
+    backend = substrate.backend
+    if backend.is_cpu:
+        device_gap = gap
+    else:
+        device_gap = (frame_gaps or problem.frame_gaps(backend.to_device)).at(offset)
     # partial slip, total slip: the stuck points move with the indenter since the contact began (this
     # step, when the last one had none); incremental slip: they keep the slip of the last step
     origin = state.delta_x if state.slip_origin is None else state.slip_origin
     incremental = solver.solves_shear and state.slip_x is not None
-    ctx = StepContext(problem, substrate, k, t, first, substrate.backend.to_device(gap), known_uz, known_ux,
+    ctx = StepContext(problem, substrate, k, t, first, device_gap, known_uz, known_ux,
                       problem.normal.history(t), state.delta_x if incremental else state.delta_x - origin,
                       state.slip_x if incremental else None)
     p0, p0_product = _warm_start(substrate, state, k)
@@ -519,7 +527,7 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
     sol = solve_coupled(solver, ctx, p0, q0, p0_product)
     p, q = sol.pressure, sol.shear_x
     # what the record keeps, on the host (the same arrays on the CPU: :mod:`viscontact.arrays`)
-    to_host = substrate.backend.to_host
+    to_host = backend.to_host
     p_host, q_host, u_z = to_host(p), to_host(q), to_host(sol.displacement_z)
 
     contact = p_host > 0
@@ -610,8 +618,10 @@ def steps(problem: Problem, *, progress: Callable[[int, int], None] | None = Non
     substrate = substrate or substrate_for(problem)
     state = state or init(problem, substrate)
     total = problem.time.n_steps
+    # the gap on the substrate's device, moved there once (each step shifts it there)
+    frame_gaps = None if substrate.backend.is_cpu else problem.frame_gaps(substrate.backend.to_device)
     while state.step + 1 < total:
-        state, record = step(problem, substrate, state)
+        state, record = step(problem, substrate, state, frame_gaps)
         if progress is not None:
             progress(state.step + 1, total)
         yield state, record
