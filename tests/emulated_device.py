@@ -6,7 +6,8 @@ where it
 
 * converts a device array to a numpy array implicitly (``np.asarray(a)``, ``np.array(a)``: TypeError;
   the host copy is explicit, ``cupy.asnumpy``);
-* mixes a numpy array of one or more dimensions with device arrays in one operation (TypeError);
+* mixes a numpy array with device arrays in one operation (TypeError; scalars mix: Python's and numpy's,
+  ``np.float64``; the emulation refuses 0-d numpy arrays too, the safe side of CuPy's scalar rules);
 * creates a field with numpy from a shape (``np.zeros((n, n))``): a host array, which then mixes;
 * passes ``workers`` to an FFT (``cupyx.scipy.fft`` has none) or ``where`` to a reduction.
 
@@ -18,8 +19,10 @@ into the device path, or any of the calls above, raises TypeError.
 """
 from __future__ import annotations
 
+import contextlib
 import types
-from typing import Any
+from dataclasses import dataclass
+from typing import Any, Iterator
 
 import numpy as np
 import scipy.fft
@@ -29,6 +32,35 @@ from viscontact.arrays import ArrayBackend
 
 #: functions that take a ``where`` keyword on the device (the reductions do not)
 _WHERE_ALLOWED = {"copyto", "where"}
+
+
+@dataclass(frozen=True)
+class Transfer:
+    """One explicit copy: ``"to_device"`` (``xp.asarray`` of a host value) or ``"to_host"``."""
+
+    direction: str
+    shape: tuple[int, ...]
+    nbytes: int
+
+
+#: the open :func:`transfers` logs (each copy is appended to every one)
+_LOGS: list[list[Transfer]] = []
+
+
+@contextlib.contextmanager
+def transfers() -> Iterator[list[Transfer]]:
+    """The host-device copies made while the block runs, in order (nested blocks each see theirs)."""
+    log: list[Transfer] = []
+    _LOGS.append(log)
+    try:
+        yield log
+    finally:
+        _LOGS.remove(log)
+
+
+def _logged(direction: str, data: np.ndarray) -> None:
+    for log in _LOGS:
+        log.append(Transfer(direction, data.shape, data.nbytes))
 
 
 class HostArrayError(TypeError):
@@ -119,10 +151,10 @@ class DeviceArray(NDArrayOperatorsMixin):
 
 
 def _unwrap(value: Any) -> Any:
-    """numpy's view of ``value`` (containers walked); a host array of one or more dimensions raises."""
+    """numpy's view of ``value`` (containers walked); a host array (0-d too) raises."""
     if isinstance(value, DeviceArray):
         return value._data
-    if isinstance(value, np.ndarray) and value.ndim > 0:
+    if isinstance(value, np.ndarray):
         raise HostArrayError(f"a numpy array of shape {value.shape} mixed with device arrays")
     if isinstance(value, (list, tuple)):
         return type(value)(_unwrap(v) for v in value)
@@ -151,7 +183,9 @@ def _to_device(value: Any, dtype: Any = None, copy: Any = None, **kwargs: Any) -
         elif copy:
             data = data.copy()
         return DeviceArray(data)
-    return DeviceArray(np.array(value, dtype=dtype, **kwargs))
+    data = np.array(value, dtype=dtype, **kwargs)
+    _logged("to_device", data)
+    return DeviceArray(data)
 
 
 class _Namespace(types.ModuleType):
@@ -196,6 +230,7 @@ def to_host(array: Any) -> np.ndarray:
     """The explicit device-to-host copy (``cupy.asnumpy``)."""
     if not isinstance(array, DeviceArray):
         raise HostArrayError(f"to_host of a {type(array).__name__}, not a device array")
+    _logged("to_host", array._data)
     return array._data.copy()
 
 

@@ -34,11 +34,13 @@ def sphere_problem(material: Material, n: int, half_width: float, *, control: st
                    value: float | PiecewiseLinear = SEED_LOAD, mode: str = "none", friction: float = 0.0,
                    rate: float = 0.0, speed: float = 0.0, t_end: float = 0.0, dt: float | None = None,
                    scheme: str = "constant", every: int = 1, solver: SolverSettings | None = None,
-                   fields: tuple[str, ...] = OutputSettings.fields, title: str = "") -> Problem:
+                   fields: tuple[str, ...] = OutputSettings.fields, title: str = "",
+                   displacement_history: PiecewiseLinear | None = None) -> Problem:
     """A rigid sphere (R = 10 mm) on ``material`` on an n x n grid of [-half_width, half_width]^2 [m].
 
     ``value`` is the held load [N] or approach [m] (``control``), or a piecewise-linear history of
-    it. With sliding, dt defaults to one cell per step, else to tau/20.
+    it. With sliding, dt defaults to one cell per step, else to tau/20. ``displacement_history``:
+    partial slip's delta_x(t) [m] (with the incremental slip; no speed needed).
     """
     grid = Grid(n, half_width)
     x, y = grid.mesh()
@@ -47,7 +49,8 @@ def sphere_problem(material: Material, n: int, half_width: float, *, control: st
     history = value if isinstance(value, PiecewiseLinear) else PiecewiseLinear.constant(value)
     return Problem(material=material, grid=grid, gap=(x**2 + y**2) / (2 * SEED_RADIUS),
                    normal=NormalLoading(control, history),
-                   tangential=TangentialLoading(mode, friction, rate, speed),
+                   tangential=TangentialLoading(mode, friction, rate, speed, slip="incremental" if displacement_history
+                                                else "total", displacement_history=displacement_history),
                    time=TimeStepping(t_end, dt, scheme), solver=solver or SolverSettings(),
                    output=OutputSettings(every, fields), radius=SEED_RADIUS, title=title)
 

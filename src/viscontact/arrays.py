@@ -13,8 +13,10 @@ fields if it keeps to these rules (the array seam):
   ``np.empty_like(field, shape=..., dtype=...)``: numpy hands those to the field's library), never by
   numpy from a shape;
 * what is built once on the host (kernels, preconditioner symbols, the indenter's gap) moves to the
-  device with :meth:`ArrayBackend.to_device`; what the results keep comes back with
-  :attr:`ArrayBackend.to_host` (the record of each step: scalars and fields);
+  device with :meth:`ArrayBackend.to_device`, once: a step copies no field to the device (the gap at
+  each frame offset is shifted there, :meth:`~viscontact.problem.Problem.frame_gaps`); what the
+  results keep comes back with :attr:`ArrayBackend.to_host` (the record of each step: scalars and
+  fields);
 * no implicit conversion of a field (``np.asarray(field)``, ``np.array(field)``), no host array of
   one or more dimensions in an operation with fields, no ``.flat``;
 * the FFT's ``workers`` only for ``scipy.fft`` (:func:`~viscontact.fftbackends.fft_keywords`),
@@ -23,7 +25,7 @@ fields if it keeps to these rules (the array seam):
 On the CPU backend every one of these is free: ``to_device`` and ``to_host`` return their argument,
 and the arithmetic is the same. The test suite runs the transient and the steady solver on an
 emulated device (numpy behind CuPy's rules, ``tests/emulated_device.py``) and checks that they equal
-the numpy runs bit for bit. ``solver.device = "gpu"`` (CuPy, :func:`cupy_backend`) is refused until that suite has run on a
+the numpy runs bit for bit and that a step after the first copies no field to the device. ``solver.device = "gpu"`` (CuPy, :func:`cupy_backend`) is refused until that suite has run on a
 GPU. Checkpoints save a device state through ``to_host`` and restore it to the device
 (:mod:`viscontact.checkpoint`); the GMRES of the direct solve of strongly coupled gross sliding
 (:meth:`~viscontact.transient.NormalContact.solve_direct`) keeps its Krylov vectors on the device

@@ -48,6 +48,7 @@ from .problem import (
     SolverSettings,
     TangentialLoading,
     TimeStepping,
+    check_history,
     check_subsurface_body,
 )
 from .records import StepRecord
@@ -366,18 +367,24 @@ class NormalSection(_Section):
             raise ParameterError("normal.value" if self.value is not None else "normal",
                                  "give exactly one of 'value' (held from t = 0) or 'history' "
                                  "([[t, value], ...], piecewise linear)")
-        if self.history is not None:
-            pts = self.history
-            if not pts or any(len(p) != 2 for p in pts):
-                raise ParameterError("normal.history", "must be a non-empty list of [t, value] pairs")
-        self.build()  # finite values, increasing times: decided by NormalLoading
+        self.build()  # the pairs (piecewise_linear), finite values, increasing times, values >= 0: NormalLoading
         return self
 
     def build(self) -> NormalLoading:
         if self.history is None:
             return NormalLoading(self.control, PiecewiseLinear.constant(self.value))
-        return NormalLoading(self.control, PiecewiseLinear(tuple(float(p[0]) for p in self.history),
-                                                           tuple(float(p[1]) for p in self.history)))
+        return NormalLoading(self.control, piecewise_linear(self.history, "normal.history"))
+
+
+def piecewise_linear(points: list[list[float]], key: str) -> PiecewiseLinear:
+    """The history through ``points`` ([[t, value], ...]) of the case key ``key``, checked: a non-empty
+    list of pairs of finite numbers, times >= 0 s and strictly increasing (else
+    :class:`~viscontact.errors.ParameterError` naming ``key``); the values are the caller's to check."""
+    if not points or any(len(p) != 2 for p in points):
+        raise ParameterError(key, "must be a non-empty list of [t, value] pairs")
+    history = PiecewiseLinear(tuple(float(p[0]) for p in points), tuple(float(p[1]) for p in points))
+    check_history(history, key)
+    return history
 
 
 class TangentialSection(_Section):
@@ -385,12 +392,21 @@ class TangentialSection(_Section):
 
     mode: Literal["none", "frictionless_sliding", "gross_sliding", "partial_slip"] = Field(
         "none", description="indentation only, sliding without friction, Coulomb sliding from t = 0, or partial "
-        "slip at displacement_rate until the stick zone vanishes, then sliding")
+        "slip at displacement_rate until the stick zone vanishes, then sliding (or following "
+        "displacement_history, which does not slide)")
     friction_coefficient: float = _num(0.0, unit="", ge=0, description="Coulomb coefficient mu_f; > 0 for "
                                        "partial_slip")
     displacement_rate: float = _num(0.0, unit="m/s", ge=0, description="rate of the tangential displacement "
-                                    "delta_x during partial slip; > 0 for partial_slip")
-    sliding_speed: float = _num(0.0, unit="m/s", ge=0, description="speed v once sliding; > 0 in every sliding mode")
+                                    "delta_x during partial slip; > 0 for partial_slip unless "
+                                    "displacement_history is given")
+    displacement_history: list[list[float]] | None = Field(
+        None, json_schema_extra={"unit": "[s, m]"}, description="[[t, delta_x], ...]: partial slip's tangential "
+        "displacement, piecewise linear, times increasing from >= 0, delta_x from 0 at t = 0, of either sign and "
+        "reversing (fretting: Q-delta_x loops below gross slip), instead of displacement_rate; needs slip = "
+        "'incremental' (its default here); no sliding: a step whose stick zone vanishes (an amplitude beyond "
+        "gross slip) stops the run; sliding_speed is not needed and time.dt must be given")
+    sliding_speed: float = _num(0.0, unit="m/s", ge=0, description="speed v once sliding; > 0 in every sliding mode "
+                                "(but partial slip under displacement_history)")
     steps_per_cell: int = _int(1, ge=1, description="time steps per grid cell of sliding (the default dt is "
                                "one cell of travel divided by this)")
     slip: Literal["total", "incremental"] = Field(
@@ -398,7 +414,8 @@ class TangentialSection(_Section):
         "seed's Eqs. 9, 11: s_x = 0 at every stuck point at every step, without memory; exact under a held "
         "approach, too stiff where the contact grows: a rising load, creep under a held load) or incremental "
         "(Mindlin-Deresiewicz: a stuck point keeps its s_x, a point entering the contact sticks where it is, "
-        "the slip condition acts on each step's change of s_x); no effect outside partial_slip")
+        "the slip condition acts on each step's change of s_x; the default, and the only one, under "
+        "displacement_history); no effect outside partial_slip")
 
     @model_validator(mode="after")
     def _mode_needs(self) -> TangentialSection:
@@ -406,8 +423,12 @@ class TangentialSection(_Section):
         return self
 
     def build(self) -> TangentialLoading:
+        history = (None if self.displacement_history is None else
+                   piecewise_linear(self.displacement_history, "tangential.displacement_history"))
+        # a displacement history needs the incremental slip: its default where slip is not given
+        slip = "incremental" if history is not None and "slip" not in self.model_fields_set else self.slip
         return TangentialLoading(self.mode, self.friction_coefficient, self.displacement_rate,
-                                 self.sliding_speed, self.steps_per_cell, self.slip)
+                                 self.sliding_speed, self.steps_per_cell, slip, history)
 
 
 class TimeSection(_Section):
@@ -539,6 +560,9 @@ class Case(_Section):
                                  "stored in the result file")
         if self.time.dt is None and self.tangential.mode not in _SLIDING_MODES:
             raise ParameterError("time.dt", "required (> 0 s) when tangential.mode = 'none'")
+        if self.time.dt is None and self.tangential.displacement_history is not None:
+            raise ParameterError("time.dt", "required (> 0 s) with tangential.displacement_history (the indenter "
+                                 "does not slide, so no sliding speed sets it)")
         if self.time.dt is not None and self.time.dt > self.time.t_end:
             raise ParameterError("time.dt", f"must be <= time.t_end = {self.time.t_end:g} s, got {self.time.dt:g} s")
         if self.output.subsurface_depths:

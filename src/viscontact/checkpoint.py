@@ -40,10 +40,12 @@ _ROOT = "state"
 def problem_fingerprint(problem: Problem) -> str:
     """A hash of everything that shapes the result: the solution and the output settings (which
     steps and fields the records hold). A setting added since checkpoints were first written enters
-    it only away from its default (the body's, ``tangential.slip`` in partial slip), so that the checkpoints of the
-    problems it does not change still resume."""
+    it only away from its default (the body's, ``tangential.slip`` in partial slip,
+    ``tangential.displacement_history``), so that the checkpoints of the problems it does not change
+    still resume."""
     h = hashlib.sha256()
-    h.update(repr((problem.material, problem.grid, problem.normal, _repr_without(problem.tangential, "slip"),
+    tangential = _repr_without(problem.tangential, "slip", "displacement_history")
+    h.update(repr((problem.material, problem.grid, problem.normal, tangential,
                    problem.time, problem.solver, problem.radius, problem.output)).encode())
     h.update(np.ascontiguousarray(problem.gap).tobytes())
     body = {"bulk_modulus": problem.bulk_modulus, "layer": problem.layer}
@@ -51,6 +53,8 @@ def problem_fingerprint(problem: Problem) -> str:
         h.update(repr(body).encode())
     if problem.tangential.incremental_slip:  # the seed's total slip, or no partial slip: as it was
         h.update(repr({"slip": problem.tangential.slip}).encode())
+    if problem.tangential.displacement_history is not None:  # a ramp's fingerprint stays what it was
+        h.update(repr({"displacement_history": problem.tangential.displacement_history}).encode())
     return h.hexdigest()
 
 

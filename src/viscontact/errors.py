@@ -1,6 +1,10 @@
 """Exceptions and warnings of viscontact. Each names its cause and, where there is one, the remedy."""
 from __future__ import annotations
 
+import os
+import sys
+import warnings
+
 
 class ViscontactError(Exception):
     """Base class of every error viscontact raises on purpose."""
@@ -53,6 +57,25 @@ class OutputReplacedError(ViscontactError, RuntimeError):
 
 class ViscontactWarning(UserWarning):
     """A result is usable but something may bias it (history dropped, coarse time step, ...)."""
+
+
+#: the folder of the package's modules: :func:`warn_caller` skips the frames of files under it
+_PACKAGE_PREFIX = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+
+def warn_caller(message: str) -> None:
+    """``warnings.warn(message, ViscontactWarning)`` attributed to the first frame outside the package: the
+    user's line that called the API (:func:`viscontact.api.run`, :func:`~viscontact.api.run_to_file`, a
+    generator such as :func:`viscontact.transient.simulate` where it is iterated), however deep in the
+    package the warning is raised. A fixed ``stacklevel`` is right for one call path only. Python
+    >= 3.12 skips the package's frames itself (``skip_file_prefixes``); before, they are counted here."""
+    if sys.version_info >= (3, 12):
+        warnings.warn(message, ViscontactWarning, skip_file_prefixes=(_PACKAGE_PREFIX,))
+        return
+    frame, level = sys._getframe(1), 2  # level 2: this function's caller
+    while frame.f_back is not None and os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE_PREFIX):
+        frame, level = frame.f_back, level + 1
+    warnings.warn(message, ViscontactWarning, stacklevel=level)
 
 
 #: the exit status of a command stopped by SIGINT (128 + 2)

@@ -34,12 +34,11 @@ gives the estimate. The limits are module constants.
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import NumericalGuardError, ParameterError, ViscontactWarning
+from .errors import NumericalGuardError, ParameterError, warn_caller
 from .history import PronyHistory
 from .materials import Material
 from .problem import Problem
@@ -184,9 +183,9 @@ def _check_space(problem: Problem, transient: bool) -> None:
                                  f"half-space theory (a/R <= {RADIUS_RATIO_ERROR:g}); check the units "
                                  "(N, m) of the load and of indenter.radius")
         if ratio > RADIUS_RATIO_WARNING:
-            warnings.warn(f"the contact radius reaches about {ratio:.2g} x the indenter radius: strains of about "
-                          f"{100 * 2 * ratio / math.pi:.0f} % exceed the small-strain theory's comfort "
-                          f"(a/R <= {RADIUS_RATIO_WARNING:g})", ViscontactWarning, stacklevel=3)
+            warn_caller(f"the contact radius reaches about {ratio:.2g} x the indenter radius: strains of about "
+                        f"{100 * 2 * ratio / math.pi:.0f} % exceed the small-strain theory's comfort "
+                        f"(a/R <= {RADIUS_RATIO_WARNING:g})")
         found = _grid_problems(est, grid.n, grid.half_width)
         if found:
             from .case import MAX_GRID_N
@@ -201,10 +200,9 @@ def _check_space(problem: Problem, transient: bool) -> None:
         cells = est.smallest / grid.spacing
         if peak_pressure_error(cells) > WARNING_LIMIT:
             n, _ = grid_suggestion(est, grid.n, grid.half_width)
-            warnings.warn(f"grid.n = {grid.n}: {cells:.2g} cells across the contact radius {est.smallest:.3g} m, "
-                          f"the peak pressure may be off by about {100 * peak_pressure_error(cells):.0f} % "
-                          f"(grid.n = {n} would give less than {100 * WARNING_LIMIT:.0f} %)",
-                          ViscontactWarning, stacklevel=3)
+            warn_caller(f"grid.n = {grid.n}: {cells:.2g} cells across the contact radius {est.smallest:.3g} m, "
+                        f"the peak pressure may be off by about {100 * peak_pressure_error(cells):.0f} % "
+                        f"(grid.n = {n} would give less than {100 * WARNING_LIMIT:.0f} %)")
 
 
 # --- the time step -------------------------------------------------------------------------------
@@ -316,15 +314,14 @@ def _check_time(problem: Problem) -> None:
     err = time_step_error(problem)
     what = "relaxation" if problem.normal.control == "displacement" else "creep"
     if err > TIME_ERROR_LIMIT:
-        key = "time.dt" if not problem.tangential.slides else \
+        key = "time.dt" if not problem.tangential.frame_moves else \
             ("grid.n" if problem.radius is None else "tangential.steps_per_cell")  # dt = dx / (v k) when sliding
         raise ParameterError(key, f"time.dt = {dt:.4g} s with the {problem.time.scheme} scheme misses the {what} of "
                              f"this material and loading by about {100 * err:.0f} % (one-point estimate against the "
                              f"exact hereditary integral); {_time_step_suggestion(problem)}")
     if err > TIME_WARNING_LIMIT:
-        warnings.warn(f"time.dt = {dt:.4g} s: the {problem.time.scheme} scheme misses the {what} by about "
-                      f"{100 * err:.1f} % (one-point estimate); {_time_step_suggestion(problem)}",
-                      ViscontactWarning, stacklevel=3)
+        warn_caller(f"time.dt = {dt:.4g} s: the {problem.time.scheme} scheme misses the {what} by about "
+                    f"{100 * err:.1f} % (one-point estimate); {_time_step_suggestion(problem)}")
 
 
 def _check_end(problem: Problem) -> None:
@@ -333,10 +330,9 @@ def _check_end(problem: Problem) -> None:
     t_end, dt = problem.time.t_end, problem.time.dt
     last = (problem.time.n_steps - 1) * dt
     if t_end - last > END_SHORTFALL * t_end:
-        warnings.warn(f"time.t_end = {t_end:.4g} s is not a multiple of time.dt = {dt:.4g} s: the run ends at "
-                      f"t = {last:.4g} s, {100 * (t_end - last) / t_end:.2g} % short; use time.t_end = "
-                      f"{last + dt:.4g} s (one step more) or a time.dt that divides it", ViscontactWarning,
-                      stacklevel=3)
+        warn_caller(f"time.t_end = {t_end:.4g} s is not a multiple of time.dt = {dt:.4g} s: the run ends at "
+                    f"t = {last:.4g} s, {100 * (t_end - last) / t_end:.2g} % short; use time.t_end = "
+                    f"{last + dt:.4g} s (one step more) or a time.dt that divides it")
 
 
 def _time_step_suggestion(problem: Problem) -> str:
@@ -348,9 +344,9 @@ def _time_step_suggestion(problem: Problem) -> str:
         factor = 2**halvings
         trial = replace(problem, time=replace(problem.time, dt=problem.time.dt / factor))
         if time_step_error(trial) <= TIME_WARNING_LIMIT:
-            if problem.tangential.slides and problem.radius is None:  # dt = dx / v: a finer height file
+            if problem.tangential.frame_moves and problem.radius is None:  # dt = dx / v: a finer height file
                 return f"use grid.n = {problem.grid.n * factor} (time.dt = {trial.time.dt:.3g} s){linear}"
-            if problem.tangential.slides:
+            if problem.tangential.frame_moves:
                 return (f"use tangential.steps_per_cell = {problem.tangential.steps_per_cell * factor} "
                         f"(time.dt = {trial.time.dt:.3g} s){linear}")
             return f"use time.dt = {trial.time.dt:.3g} s{linear}"

@@ -21,14 +21,13 @@ the last step of a run that went to its end.
 """
 from __future__ import annotations
 
-import warnings
 from dataclasses import replace
 from pathlib import Path
 from typing import Callable, Sequence
 
 import numpy as np
 
-from .errors import ViscontactWarning
+from .errors import warn_caller
 from .problem import PHASE_PARTIAL_SLIP, Problem
 from .records import StepRecord
 
@@ -109,17 +108,15 @@ class WakeWarning(Observer):
             self.largest, self.largest_t = record.wake_loss, record.t
         if self.first is None and record.wake_loss > WAKE_WARNING:
             self.first = record.wake_loss
-            warnings.warn(
+            warn_caller(
                 f"history dropped at the trailing edge biases the result by about {100 * record.wake_loss:.2g}% "
-                f"(t = {record.t:.4g} s, growing as the run goes on: see wake_loss); {self.ADVICE}",
-                ViscontactWarning, stacklevel=4)
+                f"(t = {record.t:.4g} s, growing as the run goes on: see wake_loss); {self.ADVICE}")
 
     def on_finish(self, state) -> None:
         if self.first is not None and self.largest > WAKE_GROWTH * self.first:
-            warnings.warn(
+            warn_caller(
                 f"history dropped at the trailing edge biased the result by up to about {100 * self.largest:.2g}% "
-                f"(t = {self.largest_t:.4g} s; wake_loss in the result); {self.ADVICE}",
-                ViscontactWarning, stacklevel=4)
+                f"(t = {self.largest_t:.4g} s; wake_loss in the result); {self.ADVICE}")
 
 
 class ContactGrowthWarning(Observer):
@@ -143,12 +140,12 @@ class ContactGrowthWarning(Observer):
             self.first = record.contact_area
         elif record.contact_area > (1.0 + CONTACT_GROWTH) * self.first:
             self.watching = False
-            warnings.warn(
+            warn_caller(
                 f"the contact grew by {100 * (record.contact_area / self.first - 1):.3g}% during partial slip "
                 f"(t = {record.t:.4g} s): the seed's total slip condition (s_x = u_x - delta_x = 0 on the stuck "
                 "points) has no memory there and sticks each point entering the contact at u_x = delta_x, "
                 "overestimating the friction force and the slip; tangential.slip = \"incremental\" keeps the slip "
-                "of each point (Mindlin-Deresiewicz)", ViscontactWarning, stacklevel=4)
+                "of each point (Mindlin-Deresiewicz)")
 
 
 class Checkpointer(Observer):

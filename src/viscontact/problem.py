@@ -8,7 +8,7 @@ from __future__ import annotations
 import importlib.util
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Literal
+from typing import Any, Callable, Literal
 
 import numpy as np
 
@@ -70,6 +70,20 @@ class PiecewiseLinear:
         return float(max(self.values))
 
 
+def check_history(history: PiecewiseLinear, key: str) -> None:
+    """Raise :class:`ParameterError` naming the case key ``key`` unless ``history`` has as many
+    times as values (one at least), all finite numbers, its times >= 0 s and strictly increasing;
+    the values are the caller's to check (a normal load, a tangential displacement)."""
+    times, values = history.times, history.values
+    if len(times) != len(values) or not times:
+        raise ParameterError(key, f"must be a non-empty list of [t, value] pairs, got {len(times)} times and "
+                             f"{len(values)} values")
+    if not all(_is_number(v) and np.isfinite(v) for v in (*times, *values)):
+        raise ParameterError(key, "must contain finite numbers only")
+    if times[0] < 0 or np.any(np.diff(times) <= 0):
+        raise ParameterError(key, "times must be >= 0 s and strictly increasing")
+
+
 @dataclass(frozen=True)
 class NormalLoading:
     """Normal boundary condition (seed Eqs. 7-8): load W(t) [N] or approach delta_z(t) [m]."""
@@ -89,14 +103,8 @@ class NormalLoading:
         """
         if self.control not in ("load", "displacement"):
             raise ParameterError("normal.control", f"must be 'load' or 'displacement', got {self.control!r}")
-        times, values = self.history.times, self.history.values  # a held value is a history of one point
-        if len(times) != len(values) or not times:
-            raise ParameterError("normal.history", f"must be a non-empty list of [t, value] pairs, got {len(times)} "
-                                 f"times and {len(values)} values")
-        if not all(_is_number(v) and np.isfinite(v) for v in (*times, *values)):
-            raise ParameterError("normal.history", f"must contain finite numbers only, got values {values!r}")
-        if times[0] < 0 or np.any(np.diff(times) <= 0):
-            raise ParameterError("normal.history", "times must be >= 0 s and strictly increasing")
+        check_history(self.history, "normal.history")  # a held value is a history of one point
+        values = self.history.values
         if min(values) < 0 or not max(values) > 0:
             raise ParameterError("normal.history", f"values must be >= 0 (N or m) with a positive maximum, got {values!r}")
 
@@ -111,11 +119,19 @@ class TangentialLoading:
         ``none`` (pure indentation), ``frictionless_sliding`` (seed case 1),
         ``gross_sliding`` (q_x = mu_f p from t = 0, seed case 2) or ``partial_slip``
         (delta_x ramped at ``displacement_rate`` until the stick zone of a contact vanishes, then
-        sliding; the stuck points move with delta_x since the contact began).
+        sliding; the stuck points move with delta_x since the contact began; or delta_x following
+        ``displacement_history``, which may reverse: fretting, stopped if the stick zone vanishes).
     friction_coefficient
         Coulomb coefficient mu_f [-].
     displacement_rate
         d(delta_x)/dt during partial slip [m/s].
+    displacement_history
+        delta_x(t) [m] of partial slip instead of ``displacement_rate``: piecewise linear from
+        delta_x(0) = 0, of either sign and reversing (fretting). It needs ``slip = "incremental"``
+        (a reversal unloads the stuck points from where they are; the total slip has no memory of
+        that). The indenter never slides under it: a step whose contact has no stuck point left (an
+        amplitude beyond gross slip) stops the run (:class:`~viscontact.errors.ParameterError`
+        naming the time), and ``sliding_speed`` is not needed (``time.dt`` is free).
     sliding_speed
         Speed v of the indenter in +x once sliding [m/s].
     steps_per_cell
@@ -136,6 +152,7 @@ class TangentialLoading:
     sliding_speed: float = 0.0
     steps_per_cell: int = 1
     slip: SlipCondition = "total"
+    displacement_history: PiecewiseLinear | None = None
 
     def __post_init__(self) -> None:
         """What each mode needs; the one place that decides it (the case layer delegates here).
@@ -143,8 +160,11 @@ class TangentialLoading:
         Raises
         ------
         ParameterError
-            A sliding mode without a speed > 0 m/s, or partial slip without a displacement rate
-            > 0 m/s or a friction coefficient > 0 (with mu_f = 0 nothing would ever stick).
+            A sliding mode without a speed > 0 m/s (partial slip under a displacement history
+            needs none), partial slip without exactly one of a displacement rate > 0 m/s and a
+            displacement history, or without a friction coefficient > 0 (with mu_f = 0 nothing would
+            ever stick); a displacement history outside partial slip, not starting at 0 m, or with
+            the total slip.
         """
         if self.mode not in ("none", "frictionless_sliding", "gross_sliding", "partial_slip"):
             raise ParameterError("tangential.mode", "must be one of 'none', 'frictionless_sliding', 'gross_sliding', "
@@ -152,18 +172,52 @@ class TangentialLoading:
         for name, unit in (("friction_coefficient", ""), ("displacement_rate", " m/s"), ("sliding_speed", " m/s")):
             _check_number(f"tangential.{name}", getattr(self, name), unit, strict=False)
         _check_integer("tangential.steps_per_cell", self.steps_per_cell)
-        if self.mode != "none" and not self.sliding_speed > 0:
+        history = self.displacement_history
+        if history is not None:
+            self._check_history(history)
+        if self.frame_moves and not self.sliding_speed > 0:
             raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s with mode = '{self.mode}', "
                                  f"got {self.sliding_speed:g}")
         if self.mode == "partial_slip":
-            if not self.displacement_rate > 0:
+            if history is None and not self.displacement_rate > 0:
                 raise ParameterError("tangential.displacement_rate",
-                                     f"must be > 0 m/s with mode = 'partial_slip', got {self.displacement_rate:g}")
+                                     f"must be > 0 m/s with mode = 'partial_slip' (or give "
+                                     f"tangential.displacement_history instead), got {self.displacement_rate:g}")
             if not self.friction_coefficient > 0:
                 raise ParameterError("tangential.friction_coefficient",
                                      f"must be > 0 with mode = 'partial_slip', got {self.friction_coefficient:g}")
         if self.slip not in ("total", "incremental"):
             raise ParameterError("tangential.slip", f"must be 'total' or 'incremental', got {self.slip!r}")
+
+    def _check_history(self, history: PiecewiseLinear) -> None:
+        key = "tangential.displacement_history"
+        check_history(history, key)
+        if self.mode != "partial_slip":
+            raise ParameterError(key, f"only with mode = 'partial_slip', got mode = '{self.mode}'")
+        if self.displacement_rate != 0:
+            raise ParameterError(key, "give exactly one of tangential.displacement_rate (a ramp until gross sliding) "
+                                 f"and tangential.displacement_history, got both (displacement_rate = "
+                                 f"{self.displacement_rate:g} m/s)")
+        if history(0.0) != 0.0:
+            raise ParameterError(key, f"must start at delta_x = 0 m at t = 0 s (the indenter's position at t = 0), "
+                                 f"got {history(0.0):g} m")
+        if self.slip != "incremental":
+            raise ParameterError("tangential.slip", "must be 'incremental' with tangential.displacement_history: the "
+                                 "total slip has no memory of the load path, so on a reversal of delta_x it would "
+                                 "force every stuck point back to u_x = delta_x instead of unloading it from where "
+                                 "it is (Mindlin-Deresiewicz)")
+
+    def delta_x(self, t: float) -> float:
+        """The tangential displacement of partial slip at time ``t`` [s] (m): the history, or the ramp."""
+        if self.displacement_history is not None:
+            return self.displacement_history(t)
+        return self.displacement_rate * t
+
+    @property
+    def frame_moves(self) -> bool:
+        """Whether the indenter may slide, ``time.dt`` then tied to ``sliding_speed`` (v dt = dx / k):
+        every sliding mode but partial slip under a displacement history, which stops instead."""
+        return self.slides and self.displacement_history is None
 
     @property
     def slides(self) -> bool:
@@ -360,24 +414,59 @@ class Problem:
         linear interpolation smoothed a rough surface, its approach 3-4 % high and its peak pressure
         10-14 % low at half a cell); on a DC-FFT grid it is interpolated linearly along x between
         neighbouring cells (error f (1 - f) dx^2 max|h''| / 2 at offset f dx), its first column
-        extrapolated linearly (error f (1 + f) dx^2 max|h''| / 2).
+        extrapolated linearly (error f (1 + f) dx^2 max|h''| / 2). :meth:`frame_gaps` does the same
+        on a device.
         """
-        if offset == 0.0:
-            return self.gap
+        return self._host_frame_gaps.at(offset)
+
+    def frame_gaps(self, to_device: Callable[[np.ndarray], Any] = lambda array: array) -> "FrameGaps":
+        """What :meth:`frame_gap` builds the gap from, moved once by ``to_device`` (an
+        :meth:`~viscontact.arrays.ArrayBackend.to_device`): its :meth:`FrameGaps.at` gives the gap at
+        any offset on that device, equal to :meth:`frame_gap`'s, without copying a field there again."""
+        sphere = periodic = None
         if self._gap_is_sphere:
             x, y = self.grid.mesh()
-            return ((x - offset) ** 2 + y**2) / (2.0 * self.radius)
-        if self.grid.periodic:
-            n, dx = self.grid.n, self.grid.spacing
-            k_x = 2.0 * np.pi * np.fft.rfftfreq(n, dx)
-            return np.fft.irfft(self._gap_rows_spectrum * np.exp(-1j * k_x * offset), n, axis=1)
-        frac = offset / self.grid.spacing
-        behind = np.empty_like(self.gap)  # the gap one cell towards -x, h(x - dx)
-        behind[:, 1:] = self.gap[:, :-1]
-        behind[:, 0] = 2.0 * self.gap[:, 0] - self.gap[:, 1]
-        return (1.0 - frac) * self.gap + frac * behind
+            sphere = (to_device(x[:1, :]), to_device(y[:, :1]), self.radius)  # broadcast: the same values
+        elif self.grid.periodic:
+            k_x = 2.0 * np.pi * np.fft.rfftfreq(self.grid.n, self.grid.spacing)
+            periodic = (to_device(self._gap_rows_spectrum), to_device(k_x))
+        return FrameGaps(to_device(self.gap), self.grid.spacing, sphere, periodic)
+
+    @cached_property
+    def _host_frame_gaps(self) -> "FrameGaps":
+        return self.frame_gaps()
 
     @cached_property
     def _gap_rows_spectrum(self) -> np.ndarray:
         """The real FFT of the gap along x (periodic grids: :meth:`frame_gap`)."""
         return np.fft.rfft(self.gap, axis=1)
+
+
+@dataclass(frozen=True)
+class FrameGaps:
+    """The undeformed gap at each frame offset (:meth:`Problem.frame_gap`) from arrays held by one
+    array library (:meth:`Problem.frame_gaps`): each offset's gap is computed there by numpy's
+    functions, which dispatch to the arrays' library, so a device needs no host field per step."""
+
+    gap: Any
+    spacing: float
+    #: a sphere: x (1, n) and y (n, 1) [m], its radius [m]
+    sphere: tuple[Any, Any, float] | None = None
+    #: a periodic grid: the gap's real FFT along x, k_x [1/m]
+    periodic: tuple[Any, Any] | None = None
+
+    def at(self, offset: float) -> Any:
+        """The gap [m] with the indenter centre at x = ``offset`` [m] (:meth:`Problem.frame_gap`)."""
+        if offset == 0.0:
+            return self.gap
+        if self.sphere is not None:
+            x, y, radius = self.sphere
+            return ((x - offset) ** 2 + y**2) / (2.0 * radius)
+        if self.periodic is not None:
+            spectrum, k_x = self.periodic
+            return np.fft.irfft(spectrum * np.exp(-1j * k_x * offset), self.gap.shape[1], axis=1)
+        frac = offset / self.spacing
+        behind = np.empty_like(self.gap)  # the gap one cell towards -x, h(x - dx)
+        behind[:, 1:] = self.gap[:, :-1]
+        behind[:, 0] = 2.0 * self.gap[:, 0] - self.gap[:, 1]
+        return (1.0 - frac) * self.gap + frac * behind

@@ -211,6 +211,30 @@ class CattaneoMindlin:
         inner = (c / a) * np.sqrt(np.clip(1.0 - (r / c) ** 2, 0.0, None)) if c > 0 else 0.0 * r
         return self.friction_coefficient * p0 * (outer - inner)
 
+    # --- Mindlin & Deresiewicz (1953): oscillating Q under the held W (Johnson §7.3) -----------------
+    def unloading_force(self, displacement: np.ndarray | float, amplitude: float) -> np.ndarray:
+        """Q [N] on the unloading branch from delta_x = ``amplitude`` delta_a (< delta*) down to -delta_a:
+        a reversed Cattaneo-Mindlin distribution of twice the friction superposed on the loading one,
+        Q = Q_a - 2 Q_L((delta_a - delta_x)/2), Q_L = :meth:`force` (the loading curve) and
+        Q_a = Q_L(delta_a); in Johnson's form delta = delta_a - 2 delta_L((Q_a - Q)/2)."""
+        d = np.asarray(displacement, dtype=float)
+        return self.force(amplitude) - 2.0 * self.force(0.5 * (amplitude - d))
+
+    def reloading_force(self, displacement: np.ndarray | float, amplitude: float) -> np.ndarray:
+        """Q [N] on the reloading branch from delta_x = -delta_a back to delta_a: the unloading branch
+        turned by half a turn, Q = -Q_a + 2 Q_L((delta_a + delta_x)/2)."""
+        return -self.unloading_force(-np.asarray(displacement, dtype=float), amplitude)
+
+    def cycle_energy(self, amplitude: float) -> float:
+        """Energy [J] dissipated in one full cycle of delta_x between -delta_a and delta_a, the area of
+        the loop: 9 mu_f^2 W^2 (2 - nu) / (10 G a) {1 - (1 - Q_a/(mu_f W))^(5/3) - (5 Q_a / (6 mu_f W))
+        [1 + (1 - Q_a/(mu_f W))^(2/3)]} with Q_a = Q_L(delta_a) (Johnson §7.3; equal to the
+        integral of the two branches to round-off, tests/validation/test_fretting.py)."""
+        mu_w = self.friction_coefficient * self.load
+        r = float(self.force(amplitude)) / mu_w
+        scale = 9.0 * mu_w**2 * (2.0 - self.poisson_ratio) / (10.0 * self.shear_modulus * self.contact_radius)
+        return scale * (1.0 - (1.0 - r) ** (5.0 / 3.0) - 5.0 * r / 6.0 * (1.0 + (1.0 - r) ** (2.0 / 3.0)))
+
 
 def cattaneo_mindlin(load: float, sphere_radius: float, friction_coefficient: float, shear_modulus: float,
                      poisson_ratio: float) -> CattaneoMindlin:

@@ -11,11 +11,10 @@ from __future__ import annotations
 import math
 import os
 import shutil
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
-from .errors import ParameterError, ViscontactWarning
+from .errors import ParameterError, warn_caller
 from .problem import Problem
 
 _FIELD_BYTES = {"pressure": 8, "shear_x": 8, "stick": 1, "displacement_z": 8}
@@ -90,7 +89,10 @@ def estimate(problem: Problem) -> Estimate:
     padded temporaries (8 (2n)^2 fields), and on a non-periodic grid the support windows' cropped
     self kernels (at most :data:`~viscontact.substrate.WINDOWS_KEPT` sides, each below n) and, with
     ``solver.mixed_precision``, the complex64 spectra of the self kernels, on top of
-    :data:`BASE_MEMORY`. Checkpoint:
+    :data:`BASE_MEMORY`; with ``output.subsurface_depths``, the subsurface stresses' padded
+    transforms and their chunked temporaries (:func:`viscontact.subsurface.working_bytes`), on top
+    of it all (measured: the peak RSS of the shipped ``creep_subsurface_stress`` case grows by the
+    stresses' own peak). Checkpoint:
     the solver state only (history, the last step's fields and, on a DC-FFT grid, the products and
     the response history the state carries; with ``tangential.slip = "incremental"`` its s_x).
     """
@@ -122,6 +124,11 @@ def estimate(problem: Problem) -> Estimate:
         solver += (WINDOWS_KEPT + 1) * self_kernels * per_component * single_bytes
         solver += WINDOWS_KEPT * self_kernels * per_component * kernel_bytes
     state = (2 * modes + 8) * 8 * n * n + carried + slip
+    depths = problem.output.subsurface_depths
+    if depths:  # computed once the steps are done, from the recorded tractions: on top of the run's peak
+        from .subsurface import working_bytes
+
+        solver += working_bytes(problem.grid, max(depths))
     seconds = run_seconds(n, steps, problem.tangential.mode)
     return Estimate(int(result), int(3 * per_record + solver + BASE_MEMORY), int(records), int(state), seconds)
 
@@ -201,7 +208,7 @@ def check_resources(problem: Problem, out: str | Path, *, force: bool = False, c
     for key, message in problems:
         if not force:
             raise ParameterError(key, f"{message} (--force runs it anyway)")
-        warnings.warn(f"{key}: {message}", ViscontactWarning, stacklevel=2)
+        warn_caller(f"{key}: {message}")
     return est
 
 

@@ -298,6 +298,38 @@ def coarse_start(problem: Problem, speed: float) -> np.ndarray:
     return np.repeat(np.repeat(coarse.pressure, 2, axis=0), 2, axis=1)
 
 
+#: the case keys a steady state never reads -> why (:func:`ignored_keys`: with those it ignores only
+#: in some cases). Each was checked to leave every variable of a steady result bit for bit unchanged.
+IGNORED_KEYS = {
+    "time.dt": "a steady state has no time steps",
+    "time.scheme": "a steady state has no time steps",
+    "tangential.steps_per_cell": "it sets the default time.dt, and a steady state has no time steps",
+    "tangential.displacement_rate": "it drives partial slip, and a steady state is gross sliding",
+    "tangential.slip": "it is partial slip's stick condition, and a steady state is gross sliding",
+    "output.every": "a steady state is one record",
+    "output.subsurface_times": "a steady state is one record",
+    "solver.coupling_tolerance": "the steady solver couples the normal and tangential tractions exactly, "
+                                 "without alternations",
+    "solver.max_coupling_iterations": "the steady solver couples the normal and tangential tractions exactly, "
+                                      "without alternations",
+    "solver.mixed_precision": "it sets the transient's conjugate gradient; the steady solver uses GMRES in double",
+    "solver.history": "a steady state has no hereditary sum over past steps",
+}
+
+
+def ignored_keys(problem: Problem) -> dict[str, str]:
+    """The case keys that cannot change ``problem``'s steady state -> why: :data:`IGNORED_KEYS`, and
+    ``time.t_end`` under a held normal condition (its value at t_end is the one taken: only a
+    ``normal.history`` reads it) and ``tangential.friction_coefficient`` without friction
+    (``tangential.mode`` "none" or "frictionless_sliding")."""
+    keys = dict(IGNORED_KEYS)
+    if len(set(problem.normal.history.values)) == 1:
+        keys["time.t_end"] = "the steady state takes the normal condition at time.t_end, and it is held"
+    if problem.tangential.mode in ("none", "frictionless_sliding"):
+        keys["tangential.friction_coefficient"] = f"tangential.mode = {problem.tangential.mode!r} has no friction"
+    return keys
+
+
 def check_speed(speed: float) -> None:
     """A steady state needs a sliding ``speed`` > 0 m/s (:class:`ParameterError` otherwise)."""
     if not speed > 0:

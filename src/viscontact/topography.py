@@ -22,13 +22,12 @@ SurfaceTopography is imported when needed (it takes seconds to import).
 from __future__ import annotations
 
 import math
-import warnings
 from pathlib import Path
 
 import numpy as np
 from scipy import ndimage
 
-from .errors import ParameterError, ViscontactWarning
+from .errors import ParameterError, warn_caller
 from .grid import Grid
 
 #: an rms slope above this is refused: heights in the wrong unit (a half-space model of a surface
@@ -79,13 +78,12 @@ def check_surface(gap: np.ndarray, grid: Grid, key: str) -> None:
         raise ParameterError(key, f"the surface's rms slope is {slope:.3g} on this grid: heights in the wrong unit "
                              "(m expected), or a physical size that is too small? (" + _STEP_NOTE + ")")
     if slope > WARN_RMS_SLOPE:
-        warnings.warn(f"{key}: the surface's rms slope is {slope:.3g}, beyond the small-slope theory of the "
-                      f"half-space (check the height unit; {_STEP_NOTE})", ViscontactWarning, stacklevel=2)
+        warn_caller(f"{key}: the surface's rms slope is {slope:.3g}, beyond the small-slope theory of the "
+                    f"half-space (check the height unit; {_STEP_NOTE})")
     if seam > SEAM_RATIO:
-        warnings.warn(f"{key}: the surface is not periodic over the grid's period: its steps across the period's "
-                      f"edges are {seam:.3g} x those between neighbouring points (rms), a cliff on which the contact "
-                      "piles up; use a periodic map whose period the grid's is a multiple of, or grid.periodic = false",
-                      ViscontactWarning, stacklevel=2)
+        warn_caller(f"{key}: the surface is not periodic over the grid's period: its steps across the period's "
+                    f"edges are {seam:.3g} x those between neighbouring points (rms), a cliff on which the contact "
+                    "piles up; use a periodic map whose period the grid's is a multiple of, or grid.periodic = false")
 
 
 def gap_from_heights(heights: np.ndarray) -> np.ndarray:
@@ -238,9 +236,8 @@ def _resample(heights: np.ndarray, sizes: tuple[float, float], periodic: bool, g
                              f"the grid's outermost cell centres; grid.half_width <= {widest:.6g} m keeps them inside")
     ratio = max(sx, sy) / grid.spacing
     if not 1 / RESAMPLE_RATIO <= ratio <= RESAMPLE_RATIO:
-        warnings.warn(f"{key}: resampling changes the point spacing {ratio:.3g}-fold ({max(sx, sy):.3g} m in the file, "
-                      f"{grid.spacing:.3g} m on the grid): check the file's physical size"
-                      + ("" if ratio > 1 else "; finer detail than the grid's is dropped, not averaged"),
-                      ViscontactWarning, stacklevel=3)
+        warn_caller(f"{key}: resampling changes the point spacing {ratio:.3g}-fold ({max(sx, sy):.3g} m in the file, "
+                    f"{grid.spacing:.3g} m on the grid): check the file's physical size"
+                    + ("" if ratio > 1 else "; finer detail than the grid's is dropped, not averaged"))
     yy, xx = np.meshgrid(y / sy, x / sx, indexing="ij")
     return ndimage.map_coordinates(heights, [yy, xx], order=3, mode="grid-wrap" if periodic else "mirror")

@@ -31,7 +31,7 @@ from .errors import ConvergenceError, ParameterError, ViscontactWarning
 from .guards import check_solution
 from .history import History
 from .periodic import check_approach
-from .problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP, Problem
+from .problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP, FrameGaps, Problem
 from .records import StepRecord
 from .roughness import roughness_metrics
 from .schemes import stable_step_limit
@@ -129,7 +129,7 @@ def init(problem: Problem, substrate: TermSubstrate | None = None) -> State:
 def validate(problem: Problem) -> None:
     """Checks that involve several parts of the problem (each part validated itself)."""
     tan = problem.tangential
-    if tan.slides:
+    if tan.frame_moves:
         if not tan.sliding_speed > 0:
             raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s when sliding, got {tan.sliding_speed}")
         cell_dt = problem.grid.spacing / (tan.sliding_speed * tan.steps_per_cell)
@@ -140,7 +140,7 @@ def validate(problem: Problem) -> None:
     if problem.grid.periodic and problem.normal.control == "displacement":
         check_approach(problem.normal.history.reference, problem.gap,
                        "normal.value" if len(problem.normal.history.values) == 1 else "normal.history")
-    if tan.mode == "partial_slip" and not tan.displacement_rate > 0:
+    if tan.mode == "partial_slip" and tan.displacement_history is None and not tan.displacement_rate > 0:
         raise ParameterError("tangential.displacement_rate", f"must be > 0 m/s for partial_slip, got {tan.displacement_rate}")
     limit = min(stable_step_limit(r, problem.time.scheme) for r in stability_responses(problem))
     if problem.time.dt > limit:
@@ -322,6 +322,18 @@ class PartialSlip:
         return replace(solution, displacement_z=u_z + ctx.known_uz)
 
 
+def gross_slip_under_history(t: float, delta_x: float, force: float, load: float, mu: float) -> ParameterError:
+    """The error that stops partial slip under ``tangential.displacement_history`` at the step ``t`` [s]
+    whose contact has no stuck point left: the amplitude of delta_x [m] exceeds gross slip (the
+    friction force ``force`` [N] has reached mu_f times the ``load`` [N]). The indenter does not slide
+    on (nor back): the steps before are kept."""
+    return ParameterError(
+        "tangential.displacement_history", f"the stick zone vanished at t = {t:.6g} s (delta_x = {delta_x:.6g} m, "
+        f"Q / (mu_f W) = {force / (mu * load) if load > 0 else float('nan'):.3g}): the amplitude exceeds gross slip, "
+        "and a displacement history does not slide on; lower its amplitude, or use tangential.displacement_rate "
+        "(a ramp into gross sliding)")
+
+
 def check_not_full_contact(pressure: np.ndarray, t: float) -> None:
     """Raise :class:`~viscontact.errors.ParameterError` when the contact covers every cell of a
     periodic partial-slip problem whose tangential operator has a free mean: a uniform shear then
@@ -454,7 +466,8 @@ def _warm_start(substrate: TermSubstrate, state: State, k: int) -> tuple[np.ndar
 
 def _advance_frame(problem: Problem, substrate: TermSubstrate, state: State, k: int, t: float) -> State:
     """The state with the frame moved (gross sliding after the step at which it began: v dt per
-    step, the history shifted by a cell every steps_per_cell steps) or delta_x ramped (partial slip)."""
+    step, the history shifted by a cell every steps_per_cell steps) or delta_x ramped or following its
+    history (partial slip)."""
     tan, dt = problem.tangential, problem.time.dt
     if state.phase == PHASE_GROSS_SLIDING and k > 0 and state.t_gross_sliding is not None \
             and t > state.t_gross_sliding + 0.5 * dt:
@@ -469,13 +482,16 @@ def _advance_frame(problem: Problem, substrate: TermSubstrate, state: State, k: 
                        delta_x=state.delta_x + tan.sliding_speed * dt, substep=substep, histories=histories,
                        wake=wake, response=state.response if histories is state.histories else None)
     if state.phase == PHASE_PARTIAL_SLIP:
-        return replace(state, delta_x=tan.displacement_rate * t)
+        return replace(state, delta_x=tan.delta_x(t))
     return state
 
 
-def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[State, StepRecord]:
+def step(problem: Problem, substrate: TermSubstrate, state: State,
+         frame_gaps: FrameGaps | None = None) -> tuple[State, StepRecord]:
     """Advance ``state`` by one time step; returns the new state and the step's record (``state``
-    itself is left as it was)."""
+    itself is left as it was). ``frame_gaps``: the gap's arrays on the substrate's device
+    (:meth:`~viscontact.problem.Problem.frame_gaps`; :func:`steps` moves them there once), else moved
+    for this step."""
     grid, tan = problem.grid, problem.tangential
     k = state.step + 1
     t = k * problem.time.dt
@@ -493,12 +509,17 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
         known_uz, known_ux = substrate.known_from_response(state.response, t, first), None
     else:
         known_uz, known_ux = substrate.known_displacement(state.histories, t, first, need_x=solver.solves_shear)
-    gap = problem.frame_gap(offset)
+    gap = problem.frame_gap(offset)  # on the host, for the record
+    backend = substrate.backend
+    if backend.is_cpu:
+        device_gap = gap
+    else:
+        device_gap = (frame_gaps or problem.frame_gaps(backend.to_device)).at(offset)
     # partial slip, total slip: the stuck points move with the indenter since the contact began (this
     # step, when the last one had none); incremental slip: they keep the slip of the last step
     origin = state.delta_x if state.slip_origin is None else state.slip_origin
     incremental = solver.solves_shear and state.slip_x is not None
-    ctx = StepContext(problem, substrate, k, t, first, substrate.backend.to_device(gap), known_uz, known_ux,
+    ctx = StepContext(problem, substrate, k, t, first, device_gap, known_uz, known_ux,
                       problem.normal.history(t), state.delta_x if incremental else state.delta_x - origin,
                       state.slip_x if incremental else None)
     p0, p0_product = _warm_start(substrate, state, k)
@@ -506,7 +527,7 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
     sol = solve_coupled(solver, ctx, p0, q0, p0_product)
     p, q = sol.pressure, sol.shear_x
     # what the record keeps, on the host (the same arrays on the CPU: :mod:`viscontact.arrays`)
-    to_host = substrate.backend.to_host
+    to_host = backend.to_host
     p_host, q_host, u_z = to_host(p), to_host(q), to_host(sol.displacement_z)
 
     contact = p_host > 0
@@ -521,6 +542,9 @@ def step(problem: Problem, substrate: TermSubstrate, state: State) -> tuple[Stat
     # stays; once sliding, it stays)
     phase, t_gross = state.phase, state.t_gross_sliding
     if phase == PHASE_PARTIAL_SLIP and n_contact and (not stick.any() or mu == 0):
+        if tan.displacement_history is not None:
+            raise gross_slip_under_history(t, state.delta_x, float(q_host.sum() * grid.cell_area),
+                                           float(p_host.sum() * grid.cell_area), mu)
         phase, t_gross = PHASE_GROSS_SLIDING, t
     slip_x = None
     if incremental and phase == PHASE_PARTIAL_SLIP:
@@ -594,8 +618,10 @@ def steps(problem: Problem, *, progress: Callable[[int, int], None] | None = Non
     substrate = substrate or substrate_for(problem)
     state = state or init(problem, substrate)
     total = problem.time.n_steps
+    # the gap on the substrate's device, moved there once (each step shifts it there)
+    frame_gaps = None if substrate.backend.is_cpu else problem.frame_gaps(substrate.backend.to_device)
     while state.step + 1 < total:
-        state, record = step(problem, substrate, state)
+        state, record = step(problem, substrate, state, frame_gaps)
         if progress is not None:
             progress(state.step + 1, total)
         yield state, record

@@ -105,7 +105,7 @@ def test_case_loads_and_converts(path):
     assert problem.grid.n == case.grid.n
     assert problem.time.n_steps >= 2
     assert path.read_text().startswith("#"), "a shipped case starts with a comment block"
-    if problem.tangential.slides:  # the frame moves by whole cells (steps_per_cell steps each)
+    if problem.tangential.frame_moves:  # the frame moves by whole cells (steps_per_cell steps each)
         cell_dt = problem.grid.spacing / problem.tangential.sliding_speed / problem.tangential.steps_per_cell
         assert problem.time.dt == pytest.approx(cell_dt, rel=1e-9)
 

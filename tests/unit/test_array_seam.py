@@ -4,11 +4,15 @@ Every transient mode and body (half-space on DC-FFT and periodic grids, layers, 
 emulated device (tests/emulated_device.py: numpy behind CuPy's rules, so a host array leaking into
 the device path raises) and must equal the numpy run bit for bit, its state held in device arrays.
 Where CuPy finds a CUDA device, the same runs go on the GPU (equal to round-off: cuFFT's arithmetic
-is not pocketfft's).
+is not pocketfft's); VISCONTACT_TEST_DEVICE=gpu runs them there alone, each skipped with its reason
+where there is none (benchmarks/device/check.sh), VISCONTACT_TEST_DEVICE=emulated on the emulation alone.
 """
 from __future__ import annotations
 
 import dataclasses
+import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -29,15 +33,27 @@ from viscontact.shipped import shipped_case
 from viscontact.substrate import substrate_for
 from viscontact import transient
 from viscontact.transient import steps
-from vc_testing import SEED_A0, SEED_TAU, seed_material, sphere_problem
+from vc_testing import SEED_A0, SEED_RADIUS, SEED_TAU, seed_material, sphere_problem
+
+
+#: which backends the device tests run on: unset, the emulation and CuPy where it finds a CUDA device;
+#: "gpu": CuPy alone (each test skipped with the reason where it finds none: benchmarks/device/check.sh);
+#: "emulated": the emulation alone
+DEVICE_VARIABLE = "VISCONTACT_TEST_DEVICE"
 
 
 def _backends() -> list:
-    out = [pytest.param(emulated_device.BACKEND, id="emulated")]
+    chosen = os.environ.get(DEVICE_VARIABLE, "")
+    if chosen not in ("", "gpu", "emulated"):
+        raise ValueError(f"{DEVICE_VARIABLE} must be 'gpu' or 'emulated' (or unset), got {chosen!r}")
+    out = [] if chosen == "gpu" else [pytest.param(emulated_device.BACKEND, id="emulated")]
+    if chosen == "emulated":
+        return out
     try:
         out.append(pytest.param(cupy_backend(), id="cupy"))
-    except ImportError:
-        pass
+    except ImportError as exc:
+        if chosen == "gpu":
+            out.append(pytest.param(None, id="cupy", marks=pytest.mark.skip(reason=f"no CuPy GPU backend: {exc}")))
     return out
 
 
@@ -64,6 +80,8 @@ def test_the_emulated_device_refuses_host_arrays_and_cpu_only_keywords():
         np.asarray(dev)
     with pytest.raises(HostArrayError):
         dev + np.ones((4, 4))
+    with pytest.raises(HostArrayError):  # 0-d arrays too (scalars mix: np.float64(1.0) below)
+        dev + np.array(1.0)
     with pytest.raises(HostArrayError):
         dev[np.zeros((4, 4), dtype=bool)] = 1.0
     with pytest.raises(HostArrayError):
@@ -75,12 +93,28 @@ def test_the_emulated_device_refuses_host_arrays_and_cpu_only_keywords():
     with pytest.raises(AttributeError):
         dev.flat  # noqa: B018
     # what is allowed: numpy's functions dispatched, scalars, explicit transfers
-    out = np.maximum(dev + 1.0, 0.5)
+    out = np.maximum(dev + np.float64(1.0), 0.5)
     assert isinstance(out, DeviceArray) and float(out.sum()) == 16.0
     assert isinstance(np.zeros_like(dev), DeviceArray)
     assert isinstance(emulated_device.to_host(out), np.ndarray)
     with pytest.raises(HostArrayError):
         emulated_device.to_host(np.ones(3))
+
+
+def test_the_gpu_selection_skips_each_device_test_with_its_reason_where_cupy_finds_no_device(tmp_path):
+    """VISCONTACT_TEST_DEVICE=gpu (benchmarks/device/check.sh) without a CUDA device: the device tests
+    are skipped, saying why, and the run succeeds; the emulated ones are left out."""
+    try:
+        cupy_backend()
+        pytest.skip("CuPy finds a CUDA device here")
+    except ImportError:
+        pass
+    out = subprocess.run([sys.executable, "-m", "pytest", "-q", "-rs", "-p", "no:cacheprovider", "-p", "no:xdist",
+                          __file__, "-k", "dcfft or refuses_a_device"],
+                         env={**os.environ, DEVICE_VARIABLE: "gpu"}, capture_output=True, text=True, timeout=120,
+                         cwd=tmp_path)
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert "2 skipped" in out.stdout and "no CuPy GPU backend" in out.stdout and "emulated" not in out.stdout
 
 
 def test_the_cpu_backend_moves_nothing():
@@ -122,6 +156,14 @@ def _transient(mode: str):
     if mode.endswith("_incremental"):  # the incremental slip: s_x carried in the state
         base = _transient(mode[:-len("_incremental")])
         return dataclasses.replace(base, tangential=dataclasses.replace(base.tangential, slip="incremental"))
+    if mode.startswith("sub_cell_"):  # two steps per cell: the indenter moves within a cell (frame_gap)
+        base = _transient({"sub_cell_periodic": "rough_periodic"}.get(mode, "frictionless_sliding"))
+        tangential = dataclasses.replace(base.tangential, steps_per_cell=2)
+        time = dataclasses.replace(base.time, dt=base.time.dt / 2)
+        if mode == "sub_cell_surface":  # a gap given as a surface on a DC-FFT grid: interpolated
+            x, y = base.grid.mesh()
+            base = dataclasses.replace(base, gap=(x**2 + y**2) / (2 * SEED_RADIUS), radius=None)
+        return dataclasses.replace(base, tangential=tangential, time=time)
     material = seed_material()
     if mode == "creep":
         return sphere_problem(material, 32, 2.5 * SEED_A0, t_end=10 * SEED_TAU / 20)
@@ -157,7 +199,8 @@ def _transient(mode: str):
 
 @pytest.mark.parametrize("mode", ["creep", "displacement", "frictionless_sliding", "gross_sliding", "strong_coupling",
                                   "partial_slip", "partial_slip_incremental", "rough_periodic",
-                                  "rough_periodic_incremental", "layer", "layer_on_elastic", "bulk_modulus"])
+                                  "rough_periodic_incremental", "layer", "layer_on_elastic", "bulk_modulus",
+                                  "sub_cell_sphere", "sub_cell_surface", "sub_cell_periodic"])
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_the_transient_on_the_device_equals_numpy(backend, mode, monkeypatch):
     problem = _transient(mode)
@@ -192,6 +235,56 @@ def test_the_transient_on_the_device_equals_numpy(backend, mode, monkeypatch):
             assert final.slip_x is None
         else:
             assert all(s_x is None for s_x in carried)
+
+
+@pytest.mark.parametrize("mode", ["creep", "frictionless_sliding", "gross_sliding", "strong_coupling",
+                                  "partial_slip_incremental", "rough_periodic", "sub_cell_sphere", "sub_cell_surface",
+                                  "sub_cell_periodic"])
+def test_a_step_after_the_first_moves_no_field_to_the_device(mode):
+    """The fields a step needs from the host (kernels, spectra, the gap at every frame offset) move to
+    the device before the run or in its first step; a later step copies nothing as large as a grid
+    row to it (the GMRES's small least-squares solution of the direct solve apart), only the record
+    back (p, q, u_z). The emulation's copies are free, a GPU's are not (an n x n field crosses the bus)."""
+    problem = _transient(mode)
+    n = problem.grid.n
+    run = steps(problem, substrate=substrate_for(problem, backend=emulated_device.BACKEND))
+    next(run)
+    offsets = set()
+    while True:
+        with emulated_device.transfers() as moved:
+            try:
+                _, record = next(run)
+            except StopIteration:
+                break
+        offsets.add(record.frame_offset)
+        fields = [t for t in moved if t.direction == "to_device" and np.prod(t.shape) >= n]
+        assert not fields, f"step {record.step} copied {fields} to the device"
+        assert sum(t.direction == "to_host" and t.shape == (n, n) for t in moved) >= 3  # the record
+    assert len(offsets) == (2 if mode.startswith("sub_cell_") else 1)  # every frame offset was met
+
+
+@pytest.mark.parametrize("body", ["half_space", "gross_sliding", "rough_periodic", "layer"])
+def test_the_steady_active_set_moves_no_field_to_the_device(body, monkeypatch):
+    """The steady solver moves its kernels and the gap once; its active set and Krylov iterations copy
+    nothing as large as a grid row to the device."""
+    from viscontact import steady, steady_periodic, substrate
+    from viscontact.steady import solve_steady
+
+    problem = _steady(body)
+    monkeypatch.setattr(substrate, "array_backend", lambda device: emulated_device.BACKEND)
+    solves = []
+    for module in (steady, steady_periodic):
+        def counted(apply_k, gap, _solve=module.solve_contact_active_set, **kw):
+            with emulated_device.transfers() as moved:
+                out = _solve(apply_k, gap, **kw)
+            solves.append(moved)
+            return out
+        monkeypatch.setattr(module, "solve_contact_active_set", counted)
+    solve_steady(problem)
+    assert solves
+    n = problem.grid.n
+    for moved in solves:
+        assert not [t for t in moved if t.direction == "to_device" and np.prod(t.shape) >= n]
 
 
 @pytest.mark.parametrize("backend", BACKENDS)

@@ -169,3 +169,46 @@ def test_case_keys_list_every_material_type() -> None:
         assert keys[key].json_schema_extra == MATERIALS[takers[0].strip('"')].model_fields[key[9:]].json_schema_extra
     assert keys["material.poisson_ratio"].description == MATERIALS["elastic"].model_fields["poisson_ratio"].description
     assert keys["grid.n"].description  # the other sections as they are
+
+
+FRETTING = ROOT / "cases" / "fretting_zener.toml"
+
+
+@pytest.mark.parametrize(("overrides", "key", "words"), [
+    ({"tangential.displacement_rate": 1e-3}, "tangential.displacement_history", "exactly one of"),
+    ({"tangential.displacement_history": None, "tangential.sliding_speed": 0.05}, "tangential.displacement_rate",
+     "displacement_history instead"),
+    ({"tangential.slip": "total"}, "tangential.slip", "no memory of the load path"),
+    ({"tangential.mode": "gross_sliding", "tangential.sliding_speed": 0.05}, "tangential.displacement_history",
+     "only with mode = 'partial_slip'"),
+    ({"tangential.displacement_history": [[0.0, 1e-6], [0.01, 2e-6]]}, "tangential.displacement_history",
+     "start at delta_x = 0 m"),
+    ({"tangential.displacement_history": [[0.0, 0.0], [0.01, 1e-6], [0.01, -1e-6]]},
+     "tangential.displacement_history", "strictly increasing"),
+    ({"tangential.displacement_history": [[0.0, 0.0, 1.0]]}, "tangential.displacement_history", "[t, value] pairs"),
+    ({"time.dt": None}, "time.dt", "required (> 0 s) with tangential.displacement_history"),
+])
+def test_displacement_history_errors_name_the_key(overrides, key, words) -> None:
+    """A fretting case's bad input: one error naming the key and what is allowed (the history's
+    list checks are the normal history's, one function)."""
+    with pytest.raises(ParameterError) as info:
+        load_case(FRETTING).with_overrides(overrides).to_problem()
+    assert info.value.key == key, info.value
+    assert words in info.value.message, info.value.message
+
+
+def test_displacement_history_defaults_to_the_incremental_slip_and_needs_no_speed() -> None:
+    """Under a displacement history the slip defaults to "incremental" (given or not); no sliding
+    speed is needed and dt is free (the frame never moves); delta_x(t) is the history, piecewise
+    linear, held after its last point. The ramp keeps its default, the total slip."""
+    case = load_case(FRETTING)
+    assert "slip =" not in case.text.split("[tangential]")[1].split("[time]")[0].replace("# slip =", "")
+    problem = case.to_problem()
+    tan = problem.tangential
+    assert tan.slip == "incremental" and tan.incremental_slip and not tan.frame_moves and tan.sliding_speed == 0
+    assert tan.delta_x(0.0) == 0 and tan.delta_x(0.00125) == pytest.approx(4e-6) and tan.delta_x(0.005) == \
+        pytest.approx(0.0, abs=1e-20) and tan.delta_x(1.0) == pytest.approx(8e-6)
+    assert case.with_overrides({"tangential.slip": "incremental"}).to_problem().tangential == tan
+    ramp = case.with_overrides({"tangential.displacement_history": None, "tangential.displacement_rate": 1e-3,
+                                "tangential.sliding_speed": 0.05, "time.dt": None}).to_problem().tangential
+    assert ramp.slip == "total" and ramp.frame_moves and ramp.delta_x(0.01) == pytest.approx(1e-5)

@@ -264,6 +264,32 @@ def test_partial_slip_reaching_full_periodic_contact_is_one_line(tmp_path: Path,
         assert ds.attrs["complete"] == 0 and ds.sizes["t"] == 3 and float(ds["contact_fraction"][-1]) < 1
 
 
+def test_fretting_beyond_gross_slip_stops_in_one_line(tmp_path: Path, capsys) -> None:
+    """A displacement history whose amplitude exceeds gross slip (the shipped fretting case at 32^2,
+    delta_x to 40 um: gross slip at 12.5 um with G(0)) stops at the step whose stick zone vanished,
+    in one line naming the key, the time and the remedy, status 2, the steps done kept (complete = 0);
+    the indenter never slid."""
+    import xarray as xr
+
+    from viscontact import cli
+
+    text = edited((ROOT / "cases" / "fretting_zener.toml").read_text(),
+                  {"n = 64": "n = 32", "[0.0025, 8e-6]": "[0.0025, 40e-6]"})
+    (tmp_path / "case.toml").write_text(text)
+    out = tmp_path / "out.nc"
+    assert cli.main(["run", str(tmp_path / "case.toml"), "--out", str(out), "--quiet"]) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert len(lines) == 1, lines
+    assert lines[0].startswith("viscontact: error: tangential.displacement_history: the stick zone vanished at t = "), \
+        lines[0]
+    assert "exceeds gross slip" in lines[0] and "tangential.displacement_rate" in lines[0]
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        done = ds.sizes["t"]
+        assert ds.attrs["complete"] == 0 and 2 <= done < 11 and (ds["phase"].values == 1).all()
+        assert lines[0].endswith(f"(the {done} records done are in {out}, complete = 0)"), lines[0]
+        assert float(ds["delta_x"][-1]) < 40e-6 and float(ds["sliding_distance"][-1]) == 0
+
+
 # --- argparse's own errors: one line naming the option, status 2 (argparse printed its usage block first) --
 OPTION_ERRORS = {
     "missing_out": (["run", "case.toml"], "--out", "required"),

@@ -364,7 +364,9 @@ def subsurface():
 
 def test_subsurface_maps_have_depth_downwards_one_row_per_recorded_time_and_a_title(subsurface):
     """The two panels share the y axis: each inverted it once and the two inversions cancelled
-    (the surface was drawn at the bottom); only the last time was drawn, with no title."""
+    (the surface was drawn at the bottom); only the last time was drawn, with no title. The maps span
+    the depths computed, no more: the bands of the first and last depths reached half a gap beyond
+    them (above the surface, below the deepest depth)."""
     from viscontact.plotting.result import subsurface_figure
 
     ds = subsurface
@@ -376,7 +378,10 @@ def test_subsurface_maps_have_depth_downwards_one_row_per_recorded_time_and_a_ti
         k, name = divmod(i, 2)
         assert ax.yaxis_inverted(), ax.get_title()                       # depth downwards
         bottom, top = ax.get_ylim()
-        assert top < 0.0 < ds["z"].values[-1] / a0 < bottom                # the surface z = 0 on top
+        z = ds["z"].values / a0
+        assert top == z[0] == 0.0 and bottom == z[-1]                      # the surface z = 0 on top
+        corners = ax.collections[0].get_coordinates()                    # the mesh: the depths computed
+        assert corners[..., 1].min() == z[0] and corners[..., 1].max() == z[-1]
         assert ax.get_title().startswith(f"{('von Mises', 'maximum shear')[name]}, t/τ = "
                                          f"{ds['t_sub'].values[k] / 0.01:.3g}:")
         expected = ds[("von_mises_stress", "max_shear_stress")[name]].values[k] / p0
@@ -384,6 +389,19 @@ def test_subsurface_maps_have_depth_downwards_one_row_per_recorded_time_and_a_ti
                                    rtol=1e-12)
     title = _suptitle(fig)
     assert title.startswith("Subsurface stresses under a Zener") and "a0 = 588.7 µm" in title and "τ = 10 ms" in title
+
+
+def test_subsurface_maps_draw_depths_listed_in_any_order_downwards(subsurface):
+    """output.subsurface_depths in any order (here the shipped case's, reversed): the maps are those
+    of the depths in increasing order, from the first to the last."""
+    from viscontact.plotting.result import subsurface_figure
+
+    ds, a0 = subsurface, subsurface.attrs["a0"]
+    fig = subsurface_figure(ds.isel(z=slice(None, None, -1)))
+    ax = next(ax for ax in fig.axes if ax.collections and ax.get_label() != "<colorbar>")
+    assert ax.get_ylim() == (ds["z"].values[-1] / a0, 0.0)
+    np.testing.assert_allclose(np.asarray(ax.collections[0].get_array()).reshape(ds.sizes["z"], -1),
+                               ds["von_mises_stress"].values[0] / ds.attrs["p0"], rtol=1e-12)
 
 
 def test_tangential_loop_divides_by_the_load_of_each_step_under_a_held_approach(result):
@@ -572,3 +590,29 @@ def test_plot_of_an_incomplete_run_warns_that_its_figures_stop_early(tmp_path, c
     write_netcdf(result, tmp_path / "whole.nc")  # a complete one: no warning
     assert cli.main(["plot", str(tmp_path / "whole.nc"), "--out", str(tmp_path / "figs2")]) == 0
     assert not capsys.readouterr().err.strip()
+
+
+def test_the_tangential_loop_of_a_reversing_history_draws_the_whole_path():
+    """Fretting (a displacement history that reverses, the shipped case at 16^2 and one cycle): Q /
+    (mu_f W) against the indenter's delta_x at every record, both signs (not clipped at delta_x >= 0
+    nor at Q >= 0 as for a ramp), with the elastic Mindlin-Deresiewicz loops of G(0) and G(inf) at
+    the run's amplitude, each closing at (+-delta_a, +-Q_a / (mu_f W))."""
+    from viscontact.api import run
+    from viscontact.case import load_case
+    from viscontact.plotting.result import tangential_loop_figure
+    from viscontact.reference import cattaneo_mindlin
+
+    ds = run(load_case(ROOT / "cases" / "fretting_zener.toml").with_overrides({"grid.n": 16, "time.t_end": 0.0125}))
+    ax = tangential_loop_figure(ds).axes[0]
+    x, y = ax.lines[0].get_data()
+    np.testing.assert_allclose(x, ds["delta_x"].values * 1e6)
+    np.testing.assert_allclose(y, ds["friction_force"].values / (0.3 * ds["load"].values))
+    assert y.min() < -0.4 and y.max() > 0.4 and ax.get_ylim() == (-1.1, 1.1)
+    references = [line for line in ax.lines if "Mindlin-Deresiewicz" in str(line.get_label())]
+    assert [line.get_label() for line in references] == ["Mindlin-Deresiewicz, elastic G(0)",
+                                                         "Mindlin-Deresiewicz, elastic G(∞)"]
+    for line, g in zip(references, (1.93e6, 0.193e6)):
+        q_a = float(cattaneo_mindlin(0.15, 0.01, 0.3, g, 0.5).force(8e-6)) / (0.3 * 0.15)
+        rx, ry = line.get_data()
+        assert rx[0] == pytest.approx(8.0) and rx[-1] == pytest.approx(8.0) and rx.min() == pytest.approx(-8.0)
+        assert ry[0] == pytest.approx(q_a) and ry[-1] == pytest.approx(q_a) and ry.min() == pytest.approx(-q_a)

@@ -25,6 +25,7 @@ BULK = {"material.poisson_ratio": None, "material.bulk_modulus": 2 * G0}
 LAYER = {"layer.thickness": 0.5e-3}
 ON_ELASTIC = {"layer.thickness": 0.5e-3, "layer.substrate": "elastic", "layer.substrate_shear_modulus": 5 * G0,
               "layer.substrate_poisson_ratio": 0.3}
+FRETTING = [[0.0, 0.0], [0.5e-3, 5e-6], [1.5e-3, -5e-6], [2.5e-3, 5e-6]]  # [s, m]
 BODIES = {
     "bulk_modulus gross sliding": {**SLIDING, "tangential.mode": "gross_sliding", **BULK},
     "bulk_modulus periodic": {**SLIDING, "tangential.mode": "gross_sliding", "grid.periodic": True, **BULK},
@@ -34,6 +35,10 @@ BODIES = {
                          "tangential.slip": "incremental"},
     "layer, incremental slip": {**SLIDING, "tangential.mode": "partial_slip", "tangential.displacement_rate": 0.0025,
                                 "tangential.slip": "incremental", **LAYER},
+    # fretting: delta_x out to 5 um, back to -5 um and out again (below gross slip: 12.6 um), the
+    # checkpoint (step 3, t = 0.75 ms) after the first reversal (0.5 ms): s_x holds the path's memory
+    "fretting": {"grid.n": 16, "tangential.mode": "partial_slip", "tangential.friction_coefficient": 0.3,
+                 "tangential.displacement_history": FRETTING, "time.t_end": 2.5e-3, "time.scheme": "linear"},
     "layer periodic": {**SLIDING, "tangential.mode": "frictionless_sliding", "grid.periodic": True, **LAYER},
     "layer on an elastic substrate": {**SLIDING, "tangential.mode": "gross_sliding", **ON_ELASTIC},
     "layer on an elastic substrate, periodic": {**SLIDING, "tangential.mode": "frictionless_sliding",
@@ -111,6 +116,29 @@ def test_resume_of_the_incremental_slip_carries_its_slip_and_refuses_the_total_o
     sliding = {**without, "tangential.mode": "gross_sliding"}
     assert (problem_fingerprint(case({**sliding, "tangential.slip": "incremental"}).to_problem())
             == problem_fingerprint(case(sliding).to_problem()))
+
+
+def test_the_displacement_history_enters_the_fingerprint_and_leaves_the_others_alone(tmp_path):
+    """A fretting checkpoint holds s_x after the reversal; one of another history (the amplitude
+    changed) is refused; and the fingerprints of the problems without a history are those written
+    before the key came (pinned: computed by the version before it for seed_fig10_case3 at n = 16,
+    total and incremental slip), so their checkpoints still resume."""
+    from viscontact.checkpoint import load_checkpoint, problem_fingerprint
+
+    fretting = BODIES["fretting"]
+    ckpt = tmp_path / "r.nc.checkpoint.npz"
+    stopped(fretting, ckpt)
+    state, _ = load_checkpoint(ckpt, case(fretting).to_problem())
+    assert state.phase == 1 and state.delta_x < 5e-6 and np.any(state.slip_x != 0)
+    other = {**fretting, "tangential.displacement_history": [[t, 0.8 * d] for t, d in FRETTING]}
+    assert problem_fingerprint(case(other).to_problem()) != problem_fingerprint(case(fretting).to_problem())
+    with pytest.raises(ParameterError, match="^--resume: checkpoint .* different case"):
+        api.run(case(other), checkpoint=ckpt, resume=True)
+    seed = load_case(ROOT / "cases" / "seed_fig10_case3.toml").with_overrides({"grid.n": 16})
+    assert problem_fingerprint(seed.to_problem()) == \
+        "740ba8c524dc6befa00da9d78b98a9dc45767aa2f5bfedfde3d821029fed2eae"
+    assert problem_fingerprint(seed.with_overrides({"tangential.slip": "incremental"}).to_problem()) == \
+        "baaf21299c44724bc5ce281db7a68a1872d411604035931e17de027f12e0887e"
 
 
 def test_memory_estimate_counts_the_histories_and_kernels_of_the_body():

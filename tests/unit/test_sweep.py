@@ -71,8 +71,13 @@ def transient_sweep(tmp_path_factory, client):
     folder = tmp_path_factory.mktemp("transient")
     spec = write_sweep(folder)
     out = folder / "sweep.nc"
-    ds = sweep(spec, client=client, out=out)
+    with pytest.warns(ViscontactWarning, match="2 of 4 runs recorded other times"):  # the slow runs' dt
+        ds = sweep(spec, client=client, out=out)
     return folder, spec, out, ds
+
+
+def point_label(speed: float, modulus: float) -> str:
+    return f"tangential.sliding_speed={speed!r}, material.shear_modulus_long_term={modulus:g}"
 
 
 # --- distributed == one by one ---------------------------------------------------------------------
@@ -98,6 +103,9 @@ def test_transient_sweep_matches_runs_one_by_one(transient_sweep):
             # the time series, on the union time axis, holds the run's own records exactly
             series = point["mu_app_t"].sel(t=ref["t"].values, method="nearest")
             np.testing.assert_array_equal(series.values, ref["mu_app"].values)
+            # the slow runs recorded every other time of the axis: interpolated there, and listed
+            interpolated = json.loads(ds.attrs["interpolated_runs"])
+            assert (point["tangential__sliding_speed"].item() == SPEEDS[0]) == (point_label(v, g) in interpolated)
             # the kept result file is the full run
             name = run_file_name({"tangential.sliding_speed": v, "material.shear_modulus_long_term": g})
             with xr.open_dataset(runs_dir(out) / name, engine="h5netcdf") as kept:
@@ -222,6 +230,37 @@ def test_cli_sweep_resumes_and_plots(tmp_path, transient_sweep, client, monkeypa
     assert (tmp_path / "fig" / "sweep_mu_app.png").stat().st_size > 0
 
 
+# --- the union time axis -------------------------------------------------------------------------------
+def _fake_result(t):
+    """What a transient run hands to assemble (viscontact.sweep.summarize): mu_app_t = 10 t."""
+    from viscontact.sweep import SERIES, SUMMARIES
+
+    t = np.asarray(t, dtype=float)
+    return {"error": "", "warnings": [], "run_time": 1.0, "t_gross_sliding": 0.0, "complete": 1,
+            **{n: 1.0 for n in SUMMARIES}, "t": t, **{f"{n}_t": 10 * t for n in SERIES}}
+
+
+@pytest.mark.parametrize("slow, warned", [([0.0, 2.0, 4.0], True),   # every other time of the axis
+                                          ([0.0, 1.0, 2.0], False)])  # shorter: NaN beyond, none interpolated
+def test_runs_interpolated_onto_the_union_time_axis_are_listed_and_warned_once(tmp_path, slow, warned):
+    import warnings
+
+    from viscontact.sweep.assemble import assemble
+
+    the_plan = plan(write_sweep(tmp_path, parameters=f'"tangential.sliding_speed" = {SPEEDS}\n'))
+    results = {0: _fake_result(slow), 1: _fake_result([0.0, 1.0, 2.0, 3.0, 4.0])}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ds = assemble(the_plan, results, transient=True)
+    ours = [w for w in caught if issubclass(w.category, ViscontactWarning)]
+    assert ds["t"].values.tolist() == [0.0, 1.0, 2.0, 3.0, 4.0] and "union" in ds.attrs["time_axis"]
+    assert json.loads(ds.attrs["interpolated_runs"]) == ([f"tangential.sliding_speed={SPEEDS[0]}"] if warned else [])
+    assert len(ours) == int(warned) and all(w.filename == __file__ for w in ours)
+    if warned:
+        assert "1 of 2 runs" in str(ours[0].message) and "interpolated linearly" in str(ours[0].message)
+    np.testing.assert_allclose(ds["mu_app_t"].values[0], 10 * ds["t"].values if warned else [0, 10, 20, np.nan, np.nan])
+
+
 # --- validation before any run -----------------------------------------------------------------------
 @pytest.mark.parametrize("parameters, solver, key, words", [
     ('"tangential.sliding_sped" = [0.01]\n', "steady", "tangential.sliding_sped", "did you mean 'tangential.sliding_speed'"),
@@ -239,6 +278,14 @@ def test_cli_sweep_resumes_and_plots(tmp_path, transient_sweep, client, monkeypa
     ('"normal.value" = [0.148, 1.0]\n', "steady", "grid.half_width", "(in the run normal.value=1)"),
     ('"tangential.sliding_speed" = [0.0471, 0]\n[overrides]\n"tangential.mode" = "none"\n"time.dt" = 0.001\n',
      "steady", "tangential.sliding_speed", "steady state, got 0.0 (in the run tangential.sliding_speed=0)"),
+    # an axis the steady solver ignores (viscontact.steady.ignored_keys): every run would be the same
+    ('"tangential.slip" = ["total", "incremental"]\n[overrides]\n"tangential.mode" = "partial_slip"\n'
+     '"tangential.displacement_rate" = 0.01\n"tangential.friction_coefficient" = 0.3\n',
+     "steady", "tangential.slip", "the steady solver ignores it (it is partial slip's stick condition"),
+    ('"time.dt" = [0.001, 0.002]\n', "steady", "time.dt", "a steady state has no time steps"),
+    ('"time.t_end" = [0.012, 0.02]\n', "steady", "time.t_end", "and it is held"),
+    ('"tangential.friction_coefficient" = [0.1, 0.3]\n', "steady", "tangential.friction_coefficient",
+     "'frictionless_sliding' has no friction"),
 ])
 def test_bad_sweep_file_fails_before_any_run(tmp_path, monkeypatch, capsys, parameters, solver, key, words):
     import viscontact.sweep.execute as execute
@@ -254,6 +301,39 @@ def test_bad_sweep_file_fails_before_any_run(tmp_path, monkeypatch, capsys, para
     assert err.count("\n") == 1 and err.startswith(f"viscontact: error: {key}: ") and "Traceback" not in err
     assert time.perf_counter() - started < 5
     assert not (tmp_path / "sweep.nc").exists() and not runs_dir(tmp_path / "sweep.nc").exists()
+
+
+@pytest.mark.parametrize("parameters, overrides", [
+    ('"time.t_end" = [0.01, 0.02]\n', '"normal.history" = [[0.0, 0.1], [0.02, 0.148]]\n'),  # the load at t_end
+    ('"tangential.friction_coefficient" = [0.1, 0.3]\n', '"tangential.mode" = "gross_sliding"\n'),
+    # frictionless in one run only: the coefficient acts in the other
+    ('"tangential.mode" = ["frictionless_sliding", "gross_sliding"]\n"tangential.friction_coefficient" = [0.1, 0.3]\n',
+     ""),
+])
+def test_steady_sweep_keeps_the_keys_that_matter(tmp_path, parameters, overrides):
+    the_plan = plan(write_sweep(tmp_path, solver="steady", parameters=parameters,
+                                extra=f"[overrides]\n{overrides}" if overrides else ""))
+    assert len(the_plan.runs) in (2, 4)
+
+
+def test_steady_state_ignores_the_keys_it_says_it_ignores(tmp_path):
+    """Every key of viscontact.steady.IGNORED_KEYS, changed, leaves every variable of a steady result
+    (partial slip with friction and the subsurface stresses) bit for bit the same."""
+    from viscontact.steady import IGNORED_KEYS
+
+    changed = {"time.dt": 1e-3, "time.scheme": "constant", "tangential.steps_per_cell": 3,
+               "tangential.displacement_rate": 0.05, "tangential.slip": "incremental", "output.every": 5,
+               "output.subsurface_times": [0.001], "solver.coupling_tolerance": 1e-3,
+               "solver.max_coupling_iterations": 3, "solver.mixed_precision": False, "solver.history": "direct"}
+    assert set(changed) == set(IGNORED_KEYS)
+    (tmp_path / "base.toml").write_text(BASE)
+    case = load_case(tmp_path / "base.toml").with_overrides({
+        "tangential.mode": "partial_slip", "tangential.friction_coefficient": 0.3,
+        "tangential.displacement_rate": 0.01, "output.subsurface_depths": [1e-4, 3e-4]})
+    reference = api.run_steady(case)
+    for key, value in changed.items():
+        other = api.run_steady(case.with_overrides({key: value}))
+        xr.testing.assert_identical(other.drop_attrs(), reference.drop_attrs())
 
 
 def test_plan_leaves_the_warnings_of_the_guards_to_the_runs(tmp_path):

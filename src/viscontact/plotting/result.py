@@ -285,10 +285,14 @@ def tangential_loop_figure(ds: xr.Dataset) -> Any:
     relaxing) against the tangential displacement δ_x of partial slip since the first contact (a
     normal history that starts at zero touches after the indenter has moved), 1 at the onset of gross
     sliding, with the elastic Cattaneo-Mindlin curves of :func:`_cattaneo_mindlin_references`
-    (exact for ν = 0.5, where the normal and tangential problems do not couple); returns the Figure."""
+    (exact for ν = 0.5, where the normal and tangential problems do not couple); a δ_x that reverses
+    (``tangential.displacement_history``) is drawn whole, loops of both signs
+    (:func:`_fretting_loop_figure`); returns the Figure."""
     mu = float(ds.attrs.get("friction_coefficient", 0.0) or 0.0)
     load = ds["load"].values
     delta_x = ds["delta_x"].values
+    if np.any(np.diff(delta_x) < 0):  # a displacement history that reverses: fretting loops
+        return _fretting_loop_figure(ds, mu)
     touched = np.flatnonzero(ds["contact_area"].values > 0)
     delta_x = delta_x - (delta_x[touched[0]] if touched.size else 0.0)
     references = _cattaneo_mindlin_references(ds)
@@ -313,6 +317,36 @@ def tangential_loop_figure(ds: xr.Dataset) -> Any:
     ax.legend(fontsize=8, title_fontsize=8, loc="lower right",
               title=f"Cattaneo-Mindlin exact for ν = 0.5 (here {nu:g})" if references and nu != 0.5 else None)
     set_title(fig, ds, "tangential force against displacement" + _held_note(ds))
+    fig.tight_layout()
+    return fig
+
+
+def _fretting_loop_figure(ds: xr.Dataset, mu: float) -> Any:
+    """:func:`tangential_loop_figure` of a displacement history that reverses: Q / (μ_f W(t)) against
+    the indenter's δ_x along the whole path (both signs: the hysteresis loops), with the elastic
+    Mindlin-Deresiewicz loops between ±max |δ_x| of :func:`_cattaneo_mindlin_references` (exact for
+    ν = 0.5) where that amplitude is below their gross slip."""
+    load, delta_x = ds["load"].values, ds["delta_x"].values
+    with np.errstate(divide="ignore", invalid="ignore"):  # no load (no contact): no ratio
+        ratio = np.where(load > 0, ds["friction_force"].values / (mu * load), np.nan)
+    fig, ax = pyplot().subplots(figsize=(6.4, 4.6))
+    ax.plot(delta_x * 1e6, ratio, "o-", ms=2.0, lw=1.0, label="viscontact")
+    amplitude = float(np.max(np.abs(delta_x)))
+    up = np.linspace(-amplitude, amplitude, 200)
+    for cm, name, style in _cattaneo_mindlin_references(ds):
+        if amplitude < cm.sliding_displacement:
+            loop = np.concatenate([cm.unloading_force(up[::-1], amplitude), cm.reloading_force(up, amplitude)])
+            ax.plot(np.concatenate([up[::-1], up]) * 1e6, loop / (mu * cm.load), style, lw=1.0,
+                    label=name.replace("Cattaneo-Mindlin", "Mindlin-Deresiewicz"))
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.axvline(0.0, color="0.6", lw=0.6)
+    ax.set(xlabel="tangential displacement δ_x [µm]", ylim=(-1.1, 1.1),
+           ylabel="Q / (μ_f W)" if _held(load) else "Q(t) / (μ_f W(t))")
+    ax.grid(alpha=0.3)
+    nu = float(ds.attrs.get("poisson_ratio", 0.5))
+    ax.legend(fontsize=8, title_fontsize=8, loc="lower right",
+              title=f"Mindlin-Deresiewicz exact for ν = 0.5 (here {nu:g})" if nu != 0.5 else None)
+    set_title(fig, ds, "fretting loops: tangential force against displacement" + _held_note(ds))
     fig.tight_layout()
     return fig
 
@@ -395,10 +429,21 @@ MAX_SUBSURFACE_TIMES = 6
 _SUBSURFACE = (("von_mises_stress", "von Mises"), ("max_shear_stress", "maximum shear"))
 
 
+def _cell_edges(centres: np.ndarray, *, clipped: bool = False) -> np.ndarray:
+    """The edges of the cells around ``centres`` (increasing, two at least): half-way between two
+    centres, and half a gap beyond the outer ones; ``clipped``: the outer edges at the first and last
+    centres instead (nothing drawn beyond the values computed)."""
+    middle = 0.5 * (centres[1:] + centres[:-1])
+    if clipped:
+        return np.concatenate([centres[:1], middle, centres[-1:]])
+    return np.concatenate([[2 * centres[0] - middle[0]], middle, [2 * centres[-1] - middle[-1]]])
+
+
 def subsurface_figure(ds: xr.Dataset) -> Any:
     """Von Mises and maximum shear stress in the section y = 0, one row per recorded subsurface time
     (``t_sub``; at most :data:`MAX_SUBSURFACE_TIMES`, evenly spread, the title saying how many of how
-    many): maps in x-z with the depth z downwards (the surface on top), each with its own colour
+    many): maps in x-z with the depth z downwards (the surface on top), from the first depth computed
+    to the last (each depth's band reaching half-way to its neighbours'), each with its own colour
     scale and its largest value marked (+), scaled by p0 (else MPa) and x, z by a0 (else mm). A single
     depth: the stresses against x, one line per time. Returns the Figure."""
     plt = pyplot()
@@ -418,12 +463,15 @@ def subsurface_figure(ds: xr.Dataset) -> Any:
     stress_of = " p0" if p_label.startswith("p /") else " MPa"  # after a scaled stress
 
     if z.size > 1:
+        order = np.argsort(z, kind="stable")  # the depths as the case listed them: drawn downwards
+        z = z[order]
+        x_edges, z_edges = _cell_edges(x), _cell_edges(z, clipped=True)
         fig, axes = plt.subplots(picks.size, 2, figsize=(10, 0.7 + 3.3 * picks.size), squeeze=False, sharex=True,
                                  sharey=True, constrained_layout=True)
         for row, k in zip(axes, picks):
             for ax, (name, title) in zip(row, _SUBSURFACE):
-                data = ds[name].values[k] / p_scale
-                mesh = ax.pcolormesh(x, z, data, shading="nearest", cmap="viridis")
+                data = ds[name].values[k][order] / p_scale
+                mesh = ax.pcolormesh(x_edges, z_edges, data, shading="flat", cmap="viridis")
                 fig.colorbar(mesh, ax=ax, label=stress_unit)
                 iz, ix = np.unravel_index(int(np.argmax(data)), data.shape)
                 ax.plot(x[ix], z[iz], "w+", ms=9, mew=1.5)
@@ -457,16 +505,13 @@ def _warn_incomplete(ds: xr.Dataset) -> None:
     except (TypeError, ValueError):
         complete = 1
     if complete == 0:
-        import warnings
-
-        from ..errors import ViscontactWarning
+        from ..errors import warn_caller
 
         stopped = ds.attrs.get("stopped_by")
         why = f", stopped by {stopped}" if stopped else ""
         where = ds.encoding.get("source") or "the result"
-        warnings.warn(f"{where} holds an incomplete run (complete = 0{why}): its figures end at its last record, "
-                      f"t = {float(ds['t'].values[-1]):.4g} s, not at the case's time.t_end", ViscontactWarning,
-                      stacklevel=3)
+        warn_caller(f"{where} holds an incomplete run (complete = 0{why}): its figures end at its last record, "
+                    f"t = {float(ds['t'].values[-1]):.4g} s, not at the case's time.t_end")
 
 
 def _histories_drawn(ds: xr.Dataset, mode: str) -> tuple[str, ...]:

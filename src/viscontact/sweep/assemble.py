@@ -6,6 +6,12 @@ Per run: ``mu_app``, ``peak_pressure``, ``contact_area``, ``contact_shift``, ``d
 defined), ``run_time``; transient sweeps add their time series (``mu_app_t`` ... along ``t``).
 Failed runs are NaN and carry their message in the string variable ``error``; warnings go to
 ``warnings``.
+
+The time axis ``t`` of a transient sweep is the union of the runs' record times. Runs of different
+steps (``time.dt``, or a ``tangential.sliding_speed`` that sets it, ``output.every``) record
+different times: each run's series is interpolated linearly onto the times it did not record inside
+its own time range (NaN outside it). Those values were not computed: the attribute
+``interpolated_runs`` lists such runs (JSON, their parameters) and :func:`assemble` warns once.
 """
 from __future__ import annotations
 
@@ -16,6 +22,7 @@ from typing import TYPE_CHECKING, Any, Mapping, Sequence
 import numpy as np
 
 from ..case import case_keys
+from ..errors import warn_caller
 from .spec import Plan, format_value
 
 if TYPE_CHECKING:  # xarray is imported where it is used
@@ -64,15 +71,24 @@ def _coordinate(values: Sequence[Any]) -> np.ndarray:
     return np.asarray([format_value(v) for v in values], dtype=object)
 
 
-def _time_axis(results: Mapping[int, dict[str, Any]]) -> np.ndarray:
-    """Union of the runs' record times (equal within 1e-9 of the span merged)."""
+def _time_axis(results: Mapping[int, dict[str, Any]]) -> tuple[np.ndarray, float]:
+    """Union of the runs' record times (equal within 1e-9 of the span merged) and that tolerance [s]."""
     times = [r["t"] for r in results.values() if not r["error"] and "t" in r and len(r["t"])]
     if not times:
-        return np.zeros(0)
+        return np.zeros(0), 0.0
     t = np.unique(np.concatenate(times))
     tol = 1e-9 * max(float(t[-1] - t[0]), float(abs(t[-1])), 1e-300)
     keep = np.concatenate([[True], np.diff(t) > tol])
-    return t[keep]
+    return t[keep], tol
+
+
+def _interpolated(t: np.ndarray, tr: np.ndarray, tol: float) -> bool:
+    """Whether a run recording at ``tr`` is interpolated onto ``t``: some time of ``t`` inside the
+    run's time range is none of its own (within ``tol``)."""
+    inside = t[(t >= tr[0] - tol) & (t <= tr[-1] + tol)]
+    nearest = np.clip(np.searchsorted(tr, inside), 1, tr.size - 1)
+    gap = np.minimum(np.abs(inside - tr[nearest - 1]), np.abs(inside - tr[nearest]))
+    return bool(np.any(gap > tol))
 
 
 def assemble(the_plan: Plan, results: Mapping[int, dict[str, Any]], transient: bool) -> xr.Dataset:
@@ -85,7 +101,8 @@ def assemble(the_plan: Plan, results: Mapping[int, dict[str, Any]], transient: b
     error = np.full(shape, "", dtype=object)
     notes = np.full(shape, "", dtype=object)
     files = np.full(shape, "", dtype=object)
-    t = _time_axis(results) if transient else None
+    t, tol = _time_axis(results) if transient else (None, 0.0)
+    interpolated = []
     series = {f"{n}_t": np.full(shape + (t.size,), np.nan) for n in SERIES} if transient else {}
     for k, run in enumerate(the_plan.runs):
         files[run.index] = run.name
@@ -106,6 +123,8 @@ def assemble(the_plan: Plan, results: Mapping[int, dict[str, Any]], transient: b
                 series[n][run.index] = np.where(np.isclose(t, tr[0], rtol=1e-9, atol=0), yr[0], np.nan)
             elif tr.size:
                 series[n][run.index] = np.interp(t, tr, yr, left=np.nan, right=np.nan)
+        if transient and r["t"].size > 1 and _interpolated(t, r["t"], tol):
+            interpolated.append(run.label)
     coords: dict[str, Any] = {}
     valid = case_keys()
     for key, dim in zip(spec.keys, dims):
@@ -127,6 +146,11 @@ def assemble(the_plan: Plan, results: Mapping[int, dict[str, Any]], transient: b
     if transient:
         coords["t"] = ("t", t, {"units": "s", "long_name": "time (union of the runs' record times; each run "
                                 "interpolated linearly, NaN outside its own time range)"})
+        if interpolated:
+            warn_caller(f"{len(interpolated)} of {len(the_plan.runs)} runs recorded other times than the "
+                        "sweep's time axis t (the union of the runs' record times): their time series "
+                        f"(mu_app_t, ...) are interpolated linearly there, not computed (first: {interpolated[0]}; "
+                        "all in the attribute interpolated_runs)")
         for n, data in series.items():
             base = n[:-2]
             long_name = VARIABLES[base][1] if base in VARIABLES else base
@@ -141,4 +165,9 @@ def assemble(the_plan: Plan, results: Mapping[int, dict[str, Any]], transient: b
     ds.attrs.update({"kind": "sweep", "solver": spec.solver, "title": spec.title or the_plan.base.title,
                      "swept_keys": json.dumps(list(spec.keys)), "fixed_overrides": json.dumps(the_plan.fixed),
                      "base": str(the_plan.base_path), "sweep": spec.text})
+    if transient:
+        ds.attrs["time_axis"] = ("union of the runs' record times: the series of a run that did not record "
+                                 "some of them inside its own time range are interpolated linearly there "
+                                 "(interpolated_runs), NaN outside that range")
+        ds.attrs["interpolated_runs"] = json.dumps(interpolated)
     return ds

@@ -17,7 +17,7 @@ import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable
 
-from ..errors import ParameterError, ViscontactWarning
+from ..errors import ParameterError, ViscontactWarning, warn_caller
 from ..output_files import check_output_path, remove_temporaries
 from .assemble import assemble, summarize
 from .spec import Plan, Run, SweepSpec, load_sweep, plan
@@ -139,7 +139,9 @@ def sweep(spec: SweepSpec | Plan | str | Path, client: Any = None, out: str | Pa
     xarray.Dataset
         One dimension per swept key; attributes ``kind = "sweep"``, ``solver``, ``swept_keys``
         (JSON), ``runs_computed``, ``runs_reused``, ``runs_failed``, ``complete`` (1 when no run
-        failed), the base case's ``a0``, ``p0``, ``retardation_time``, ``case`` and ``sweep``
+        failed), for a transient sweep ``time_axis`` and ``interpolated_runs`` (JSON: the runs whose
+        series are interpolated onto the union time axis, :mod:`viscontact.sweep.assemble`; warned
+        once), the base case's ``a0``, ``p0``, ``retardation_time``, ``case`` and ``sweep``
         (the sweep file's text).
 
     A failed run is NaN in the Dataset, its message is in ``error`` and it is reported with a
@@ -173,8 +175,7 @@ def _sweep(the_plan: Plan, client: Any, out: str | Path | None,
         results[k] = result
         if result["error"]:
             failed += 1
-            warnings.warn(f"run failed ({the_plan.runs[k].label}): {result['error']}", ViscontactWarning,
-                          stacklevel=3)
+            warn_caller(f"run failed ({the_plan.runs[k].label}): {result['error']}")
         else:
             done += 1
         if progress is not None:

@@ -193,7 +193,8 @@ def plan(spec: SweepSpec | str | Path, *, fixed: Mapping[str, Any] | None = None
         Unknown solver, missing base case, unknown case key (with the closest valid one), a value
         list that is not a non-empty array of distinct values, or a run whose case is invalid or
         that the solver would refuse before its first step (:func:`check_run`; the message names
-        the run's parameters).
+        the run's parameters); a steady sweep along a key that the steady solver ignores in every
+        run (:func:`viscontact.steady.ignored_keys`: ``time.dt``, ``tangential.slip``, ...).
     """
     spec = load_sweep(spec) if isinstance(spec, (str, Path)) else spec
     if spec.solver not in SOLVERS:
@@ -224,29 +225,40 @@ def plan(spec: SweepSpec | str | Path, *, fixed: Mapping[str, Any] | None = None
         raise ParameterError(exc.key, f"{exc.message} (in base case {base_path})") from None
     extra = {**spec.overrides, **{k: v for k, v in (fixed or {}).items()
                                   if k not in spec.overrides and k not in spec.parameters}}
+    from ..steady import ignored_keys
+
     keys = list(spec.parameters)
     runs = []
+    idle: dict[str, str] | None = None  # the swept keys no run's solver reads so far -> why
     for index in itertools.product(*(range(len(v)) for v in spec.parameters.values())):
         combo = {k: spec.parameters[k][i] for k, i in zip(keys, index)}
         label = ", ".join(f"{k}={format_value(v)}" for k, v in combo.items())
         try:
             case = base.with_overrides({**extra, **combo})
-            check_run(case, spec.solver)
+            problem = check_run(case, spec.solver)
         except ParameterError as exc:
             raise ParameterError(exc.key, f"{exc.message} (in the run {label})") from None
+        if spec.solver == "steady":
+            ignored = ignored_keys(problem)
+            idle = {k: ignored[k] for k in (keys if idle is None else idle) if k in ignored}
         runs.append(Run(index, combo, case, run_file_name(combo), run_fingerprint(spec.solver, case)))
+    if idle:
+        key, why = next(iter(idle.items()))
+        raise ParameterError(key, f"the steady solver ignores it ({why}): every value would give the same "
+                             "steady state; sweep it with solver = \"transient\", or drop it")
     runs = _unique_names(runs)
     return Plan(spec, base, base_path, tuple(runs), extra)
 
 
-def check_run(case: Any, solver: str) -> None:
+def check_run(case: Any, solver: str) -> Any:
     """The checks the solver makes before its first step (those of ``viscontact run`` or
     ``viscontact steady``), made here so that a sweep refuses a bad run before any run starts: the
     physical guards (:func:`viscontact.guards.check_problem`: material, grid, and for the transient
     the time step), then :func:`viscontact.transient.validate` or the steady state's sliding speed.
 
     About 1 ms per run for the steady solver and 6 ms for the transient (the time-step estimate)
-    on a 64 x 64 grid. Warnings are not shown here: the run records them when it runs.
+    on a 64 x 64 grid. Warnings are not shown here: the run records them when it runs. Returns the
+    run's :class:`~viscontact.problem.Problem`.
 
     Raises
     ------
@@ -266,6 +278,7 @@ def check_run(case: Any, solver: str) -> None:
         from ..steady import check_speed
 
         check_speed(problem.tangential.sliding_speed)
+    return problem
 
 
 def run_fingerprint(solver: str, case: Any) -> str:
