@@ -45,7 +45,7 @@ from .problem import Problem
 from .schemes import stable_step_limit, step_coefficients
 
 __all__ = ["ContactEstimate", "check_material", "check_problem", "check_solution", "contact_estimate",
-           "grid_suggestion", "peak_pressure_error", "time_step_error"]
+           "flat_face_cells", "grid_suggestion", "peak_pressure_error", "time_step_error"]
 
 #: estimated relative errors of the peak pressure above which a run is refused / warned about
 ERROR_LIMIT, WARNING_LIMIT = 0.10, 0.05
@@ -171,10 +171,53 @@ def _normal_key(problem: Problem) -> str:
     return "normal.value" if len(problem.normal.history.times) == 1 else "normal.history"
 
 
+#: measured load error of a flat circular punch per cell of dx/a: W / (2 a E* delta) - 1 = -0.12 dx/a
+#: (tests/validation/test_flat_punch.py: -1.54 %, -0.75 %, -0.36 % at a/dx = 8, 16, 32), the rim's
+#: singular pressure averaged over its cells
+FLAT_FACE_LOAD_ERROR_PER_CELL = 0.12
+
+
+def flat_face_cells(gap: np.ndarray) -> float | None:
+    """Cells [-] across the half-width of the flat face of a gap (the cells at its lowest value, to
+    1e-9 of its relief): half the smaller side of the face's bounding box, a disc's radius in cells.
+    None where the lowest cells are no face: fewer than 4 of them, a line (a side of one cell: a
+    cylinder's generator), or reaching the domain's edge (a plane, a cylinder across the domain)."""
+    relief = float(gap.max() - gap.min())
+    face = gap <= gap.min() + 1e-9 * relief
+    rows, cols = np.flatnonzero(face.any(axis=1)), np.flatnonzero(face.any(axis=0))
+    n_y, n_x = gap.shape
+    if (np.count_nonzero(face) < 4 or rows.size < 2 or cols.size < 2 or rows[0] == 0 or cols[0] == 0
+            or rows[-1] == n_y - 1 or cols[-1] == n_x - 1):
+        return None
+    return 0.5 * min(rows[-1] - rows[0] + 1, cols[-1] - cols[0] + 1)
+
+
+def _check_flat_face(problem: Problem) -> None:
+    """Warn where an indenter without a Hertz scale (:func:`contact_estimate` is None) has a flat face
+    too coarse for its load: a flat punch carries its load on its face at any load, and the rim's
+    singular pressure, a cell average on the grid, costs about
+    :data:`FLAT_FACE_LOAD_ERROR_PER_CELL` dx/a of the load at a given approach (Boussinesq)."""
+    if problem.grid.periodic or problem.radius is not None:
+        return
+    cells = flat_face_cells(problem.gap)
+    if cells is None:
+        return
+    error = FLAT_FACE_LOAD_ERROR_PER_CELL / cells
+    if error > WARNING_LIMIT:
+        # the face's width in cells is quantised: one cell more than the error's share
+        needed = math.ceil(problem.grid.n * (FLAT_FACE_LOAD_ERROR_PER_CELL / WARNING_LIMIT + 1.0) / cells)
+        warn_caller(f"grid.n = {problem.grid.n}: the indenter's flat face is {2 * cells:.0f} cells across, so its "
+                    f"rim (a singular pressure averaged over a cell) may put the load at a given approach off by "
+                    f"about {100 * error:.0f} % (Boussinesq; grid.n = {needed} would give less than "
+                    f"{100 * WARNING_LIMIT:.0f} %)")
+
+
 def _check_space(problem: Problem, transient: bool) -> None:
     grid = problem.grid
     est = contact_estimate(problem, transient=transient)
-    if est is not None:
+    if est is None:
+        _check_flat_face(problem)
+    else:
         ratio = est.largest / est.sphere_radius
         if ratio > RADIUS_RATIO_ERROR:
             raise ParameterError(_normal_key(problem), f"the contact radius reaches about {ratio:.2g} x the "
