@@ -154,7 +154,7 @@ def _add_plot(sub: Any) -> None:
 
 
 def _add_sweep(sub: Any) -> None:
-    from .sweep.execute import default_workers
+    from .resources import available_cores  # not the sweep's modules: the parser is built for every command
 
     p = sub.add_parser("sweep", help="a parameter sweep on a dask cluster (resumable)",
                        description="Run the Cartesian product of the values in SWEEP.toml. "
@@ -164,7 +164,7 @@ def _add_sweep(sub: Any) -> None:
     p.add_argument("--scheduler", metavar="ADDRESS", help="an existing dask scheduler, e.g. tcp://host:8786 "
                    "(default: a local cluster)")
     p.add_argument("--workers", type=int, metavar="N", help=f"local worker processes (default: one per core, "
-                   f"{default_workers()} here)")
+                   f"{available_cores()} here)")
     p.add_argument("--plots", metavar="DIR", help="also write the sweep figures into DIR")
     _figure_arguments(p)
     p.add_argument("--force", action="store_true", help="replace an existing SWEEP.nc of another sweep")

@@ -57,6 +57,14 @@ def run_seconds(n: int, steps: int, mode: str) -> float:
     return START_SECONDS + SETUP_SECONDS_PER_CELL * fft_bound + steps * step
 
 
+
+def available_cores() -> int:
+    """Cores available to this process (its CPU affinity where the system has one)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
+
 @dataclass(frozen=True)
 class Estimate:
     """``result_bytes``: the result file (uncompressed); ``peak_memory_bytes``: the process at its peak;

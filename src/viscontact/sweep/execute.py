@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import time
 import warnings
 from pathlib import Path
@@ -19,6 +18,7 @@ from typing import TYPE_CHECKING, Any, Callable
 
 from ..errors import ParameterError, ViscontactWarning, warn_caller
 from ..output_files import check_output_path, remove_temporaries
+from ..resources import available_cores as default_workers
 from .assemble import assemble, summarize
 from .spec import Plan, Run, SweepSpec, load_sweep, plan
 
@@ -83,14 +83,6 @@ def _reuse(path: Path, fingerprint: str, series: bool) -> dict[str, Any] | None:
             return out
     except Exception:  # unreadable: compute it again
         return None
-
-
-def default_workers() -> int:
-    """Cores available to this process."""
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:  # pragma: no cover - not Linux
-        return os.cpu_count() or 1
 
 
 def runs_dir(out: str | Path) -> Path:
