@@ -401,8 +401,8 @@ class TangentialSection(_Section):
                                     "displacement_history is given")
     displacement_history: list[list[float]] | None = Field(
         None, json_schema_extra={"unit": "[s, m]"}, description="[[t, delta_x], ...]: partial slip's tangential "
-        "displacement, piecewise linear, times increasing from >= 0, delta_x from 0 at t = 0, of either sign and "
-        "reversing (fretting: Q-delta_x loops below gross slip), instead of displacement_rate; needs slip = "
+        "displacement, piecewise linear, times increasing from >= 0, delta_x from 0 at t = 0 (held at the first "
+        "value before the first time and at the last value after the last time), of either sign and reversing (fretting: Q-delta_x loops below gross slip), instead of displacement_rate; needs slip = "
         "'incremental' (its default here); no sliding: a step whose stick zone vanishes (an amplitude beyond "
         "gross slip) stops the run; sliding_speed is not needed and time.dt must be given")
     sliding_speed: float = _num(0.0, unit="m/s", ge=0, description="speed v once sliding; > 0 in every sliding mode "

@@ -67,6 +67,9 @@ LOADED_FRACTION = 1e-6
 LOAD_BALANCE_TOLERANCE = 1e-6
 #: shortfall of the last step's time under time.t_end, as a fraction of t_end, above which a run warns
 END_SHORTFALL = 0.01
+#: fraction of a displacement history's largest |delta_x| by which the time steps may miss one of its
+#: turning points (:func:`turning_point_miss`); refused above
+TURNING_POINT_MISS = 0.01
 #: the time-step check runs the scheme over at most this many steps (the response has settled by then
 #: or the estimate is taken over the first part of the run)
 MAX_CHECKED_STEPS = 4000
@@ -378,6 +381,66 @@ def _check_end(problem: Problem) -> None:
                     f"{last + dt:.4g} s (one step more) or a time.dt that divides it")
 
 
+def turning_point_miss(problem: Problem, dt: float | None = None) -> tuple[float, float, float, float] | None:
+    """How far the time steps t = k ``dt`` (default ``time.dt``) miss the turning points of
+    ``tangential.displacement_history`` that the run reaches: the run's delta_x is the history at the
+    steps, so a reversal between two steps is cut to the nearer of them (a cycle faster than dt is
+    aliased into another). Returns, for the first turning point missed by more than
+    :data:`TURNING_POINT_MISS` of the history's largest |delta_x| (else the one missed most):
+    (the miss [m], its time [s], its delta_x [m], the extreme the steps reach [m]); None without a
+    history or a reversal within the run. A turning point held over a plateau is met where a step
+    falls on the plateau."""
+    history = problem.tangential.displacement_history
+    if history is None:
+        return None
+    dt = problem.time.dt if dt is None else dt
+    last = problem.time.n_steps - 1
+    times, values = np.asarray(history.times), np.asarray(history.values)
+    limit = TURNING_POINT_MISS * float(np.max(np.abs(values)))
+    starts = np.flatnonzero(np.r_[True, np.diff(values) != 0])  # plateaus of equal values: [start, end]
+    ends = np.r_[starts[1:] - 1, values.size - 1]
+    worst = None
+    for g in range(1, starts.size - 1):
+        i, j = starts[g], ends[g]
+        before, after = np.sign(values[i] - values[i - 1]), np.sign(values[starts[g + 1]] - values[j])
+        if before == after:
+            continue  # not a reversal
+        k = int(np.ceil(times[i] / dt - 1e-9))  # the first step on or after the turning point
+        if k > last or k * dt <= times[j] + 1e-9 * dt:
+            continue  # the run ends before it reverses, or a step falls on the turning point
+        near = (history((k - 1) * dt), history(k * dt))
+        reached = max(near) if before > 0 else min(near)
+        found = (float(abs(values[i] - reached)), float(times[i]), float(values[i]), float(reached))
+        if found[0] > limit:
+            return found
+        if worst is None or found[0] > worst[0]:
+            worst = found
+    return worst
+
+
+def _check_turning_points(problem: Problem) -> None:
+    """Refuse a time step that misses a turning point of the displacement history by more than
+    :data:`TURNING_POINT_MISS` of its largest |delta_x| (:func:`turning_point_miss`), suggesting dt
+    halved until none is."""
+    worst = turning_point_miss(problem)
+    if worst is None:
+        return
+    scale = max(abs(v) for v in problem.tangential.displacement_history.values)
+    miss, t, value, reached = worst
+    if not miss > TURNING_POINT_MISS * scale:
+        return
+    dt = problem.time.dt
+    # the largest step below dt that meets them: dt / m, or the missed turning point's time / m
+    first = int(np.ceil(t / dt))
+    candidates = sorted({dt / m for m in range(2, 101)} | {t / m for m in range(first, first + 100)}, reverse=True)
+    trial = next((c for c in candidates
+                  if not (turning_point_miss(problem, c) or (0.0,))[0] > TURNING_POINT_MISS * scale), candidates[-1])
+    raise ParameterError("time.dt", f"{dt:.4g} s misses the turning point of tangential.displacement_history at "
+                         f"t = {t:.6g} s (delta_x = {value:.4g} m) by {miss:.3g} m ({100 * miss / scale:.2g} % of its "
+                         f"largest |delta_x|): the steps sample the history, and the run would turn at {reached:.4g} "
+                         f"m; use time.dt = {trial:.4g} s, or one that puts the turning points on steps")
+
+
 def _time_step_suggestion(problem: Problem) -> str:
     """The step (halved until the estimate is under the warning limit) and the scheme to use."""
     from dataclasses import replace
@@ -461,6 +524,7 @@ def check_problem(problem: Problem, *, transient: bool = True) -> None:
     if transient:
         _check_time(problem)
         _check_end(problem)
+        _check_turning_points(problem)
 
 
 def check_solution(problem: Problem, pressure: np.ndarray, load: float, value: float, *, where: str = "") -> None:

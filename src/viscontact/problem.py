@@ -127,7 +127,8 @@ class TangentialLoading:
         d(delta_x)/dt during partial slip [m/s].
     displacement_history
         delta_x(t) [m] of partial slip instead of ``displacement_rate``: piecewise linear from
-        delta_x(0) = 0, of either sign and reversing (fretting). It needs ``slip = "incremental"``
+        delta_x(0) = 0 (held after its last point, as :class:`PiecewiseLinear`), of either sign and
+        reversing (fretting). It needs ``slip = "incremental"``
         (a reversal unloads the stuck points from where they are; the total slip has no memory of
         that). The indenter never slides under it: a step whose contact has no stuck point left (an
         amplitude beyond gross slip) stops the run (:class:`~viscontact.errors.ParameterError`

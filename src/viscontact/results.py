@@ -303,6 +303,7 @@ def global_attrs(problem: Problem, case_text: str = "") -> dict[str, Any]:
         "friction_coefficient": tan.effective_friction,
         "sliding_speed": tan.sliding_speed,
         "displacement_rate": tan.displacement_rate,
+        **_displacement_history_attrs(tan.displacement_history),
         "shear_modulus_instantaneous": mat.shear_modulus_instantaneous,
         "shear_modulus_long_term": mat.shear_modulus_long_term,
         "poisson_ratio": mat.poisson_ratio,
@@ -330,6 +331,16 @@ def history_stamp(action: str) -> str:
     from . import __version__
 
     return f"{datetime.now(timezone.utc).strftime('%Y-%m-%dT%H:%M:%SZ')} {action} by viscontact {__version__}"
+
+
+def _displacement_history_attrs(history) -> dict[str, Any]:
+    """Partial slip's ``tangential.displacement_history`` as the run used it, where given (none for a
+    ramp): ``displacement_history_times`` [s] and ``displacement_history_values`` [m], delta_x held at
+    the last value after the last time; a result run from a Problem has no case text to hold it."""
+    if history is None:
+        return {}
+    return {"displacement_history_times": np.asarray(history.times, dtype=float),
+            "displacement_history_values": np.asarray(history.values, dtype=float)}
 
 
 def _prony_attrs(material) -> dict[str, Any]:

@@ -336,6 +336,17 @@ def check_speed(speed: float) -> None:
         raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s for a steady state, got {speed}")
 
 
+def check_steady(problem: Problem, speed: float | None = None) -> None:
+    """What a steady state needs of ``problem`` besides the guards: an indenter that slides (a
+    ``tangential.displacement_history`` never does: fretting has no steady sliding state) at a
+    ``speed`` > 0 m/s (default: the problem's sliding speed; :func:`check_speed`)."""
+    if problem.tangential.displacement_history is not None:
+        raise ParameterError("tangential.displacement_history", "a displacement history (fretting) never slides, so "
+                             "the case has no steady sliding state; run its transient (viscontact run), or drop "
+                             "the history and give tangential.sliding_speed for a steady state of sliding")
+    check_speed(problem.tangential.sliding_speed if speed is None else speed)
+
+
 def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.ndarray | None = None,
                  substrate: TermSubstrate | None = None) -> StepRecord:
     """Steady state of sliding at ``speed`` [m/s] (default: the problem's sliding speed).
@@ -349,7 +360,7 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
     the steady state is exact in Fourier space (:mod:`viscontact.steady_periodic`).
     """
     v = problem.tangential.sliding_speed if speed is None else speed
-    check_speed(v)
+    check_steady(problem, v)
     grid = problem.grid
     mu = problem.tangential.effective_friction if problem.tangential.mode != "none" else 0.0
     value = problem.normal.history(problem.time.t_end)

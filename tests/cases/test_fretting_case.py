@@ -58,3 +58,23 @@ def test_the_loops_dissipate_more_than_the_elastic_limits(result):
     assert energies[0] < energies[1] < energies[2], energies
     radius = np.sqrt(result["contact_area"].values / np.pi)
     assert radius[-1] > 2 * radius[0]
+
+
+def test_the_result_states_the_displacement_history(result):
+    """The result holds the history the run followed (attributes displacement_history_times [s] and
+    _values [m]), also where no case text does (a run of a Problem); a ramp's result has neither -
+    before, only the case text held it, and a Problem's run lost it."""
+    from vc_testing import sphere_problem
+
+    from viscontact.materials import Material
+    from viscontact.problem import PiecewiseLinear
+
+    history = load_case(CASE).to_problem().tangential.displacement_history
+    np.testing.assert_array_equal(result.attrs["displacement_history_times"], history.times)
+    np.testing.assert_array_equal(result.attrs["displacement_history_values"], history.values)
+    fretting = PiecewiseLinear((0.0, 1.0, 3.0), (0.0, 1e-6, -1e-6))
+    kw = dict(mode="partial_slip", friction=MU, t_end=0.2, dt=0.1, scheme="linear")
+    ds = run(sphere_problem(Material.elastic(1.93e6, 0.5), 16, 1e-3, displacement_history=fretting, **kw))
+    assert ds.attrs["case"] == "" and list(ds.attrs["displacement_history_values"]) == [0.0, 1e-6, -1e-6]
+    ramp = run(sphere_problem(Material.elastic(1.93e6, 0.5), 16, 1e-3, rate=1e-6, speed=1.25e-3, **kw))  # dt = dx / v
+    assert not any(key.startswith("displacement_history") for key in ramp.attrs)

@@ -290,6 +290,31 @@ def test_fretting_beyond_gross_slip_stops_in_one_line(tmp_path: Path, capsys) ->
         assert float(ds["delta_x"][-1]) < 40e-6 and float(ds["sliding_distance"][-1]) == 0
 
 
+@pytest.mark.parametrize("speeds", [(), ("--speeds", "0.01,0.1")])
+def test_steady_of_a_fretting_case_is_refused_in_one_line(tmp_path: Path, capsys, speeds) -> None:
+    """A displacement history never slides, so a fretting case has no steady sliding state: steady
+    (one speed given with --set, or --speeds) refuses it in one line keyed
+    tangential.displacement_history, status 2, no file - before, it wrote the steady state of gross
+    sliding at the speed given, which the case never reaches; a steady sweep of such runs is refused
+    before any run (check_run)."""
+    from viscontact import cli
+    from viscontact.case import load_case
+    from viscontact.errors import ParameterError
+    from viscontact.sweep.spec import check_run
+
+    (tmp_path / "case.toml").write_text(edited((ROOT / "cases" / "fretting_zener.toml").read_text(),
+                                               {"n = 64": "n = 16"}))
+    out = tmp_path / "out.nc"
+    args = ["steady", str(tmp_path / "case.toml"), "--out", str(out), *speeds]
+    assert cli.main([*args, *(() if speeds else ("--set", "tangential.sliding_speed=0.01"))]) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("viscontact: error: tangential.displacement_history: a "
+                                                   "displacement history (fretting) never slides"), lines
+    assert not out.exists()
+    with pytest.raises(ParameterError, match="^tangential.displacement_history: .*no steady sliding state"):
+        check_run(load_case(tmp_path / "case.toml").with_overrides({"tangential.sliding_speed": 0.01}), "steady")
+
+
 # --- argparse's own errors: one line naming the option, status 2 (argparse printed its usage block first) --
 OPTION_ERRORS = {
     "missing_out": (["run", "case.toml"], "--out", "required"),

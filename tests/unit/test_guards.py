@@ -378,3 +378,41 @@ def test_the_dry_run_of_a_result_without_fields_says_so(capsys):
                      "--set", "output.fields=[]"]) == 0
     said = capsys.readouterr().out
     assert "records of the histories only (output.fields = [])" in said and "records of )" not in said
+
+
+def _fretting_problem(points, dt, t_end):
+    """An elastic sphere (16^2) under the seed's load, partial slip under the displacement history
+    ``points`` ([(t, delta_x), ...]) at ``dt``."""
+    history = PiecewiseLinear(tuple(float(t) for t, _ in points), tuple(float(d) for _, d in points))
+    return sphere_problem(Material.elastic(1.93e6, 0.5), 16, 1e-3, mode="partial_slip", friction=0.3, t_end=t_end,
+                          dt=dt, scheme="linear", displacement_history=history)
+
+
+def test_a_time_step_that_misses_a_turning_point_of_the_displacement_history_is_refused():
+    """The run's delta_x is the history at the steps t = k dt: a reversal between two steps is cut to
+    the nearer one, and a cycle faster than dt is aliased into another. Before, both ran silently:
+    +-8 um reversing every 0.2 ms at dt = 0.25 ms turned at 0, +-4 and +-8 um in turn (and stopped
+    at 'the amplitude exceeds gross slip' for a jump of 12 um in one step); a turning point at
+    2.6 ms at dt = 0.25 ms turned at 7.69 um instead of 8 (-3.8 %). Refused above 1 % of the largest
+    |delta_x| (keyed time.dt, naming the turning point and a dt that meets it); turning points on
+    steps, at a plateau holding a step, beyond the run, or missed by under 1 % pass."""
+    amp = 8e-6
+    fast = [(0.0, 0.0)] + [(1e-4 * (2 * k + 1), amp * (-1) ** k) for k in range(20)]
+    with pytest.raises(ParameterError, match=r"^time.dt: 0.00025 s misses the turning point of "
+                       r"tangential.displacement_history at t = 0.0001 s \(delta_x = 8e-06 m\) by 8e-06 m .*"
+                       r"use time.dt = 0.0001 s"):
+        guards.check_problem(_fretting_problem(fast, 2.5e-4, 4e-3))
+    guards.check_problem(_fretting_problem(fast, 1e-4, 4e-3))
+    late = [(0.0, 0.0), (2.6e-3, amp), (7.6e-3, -amp)]
+    with pytest.raises(ParameterError, match=r"at t = 0.0026 s .* by 3.08e-07 m \(3.8 % .* turn at 7.692e-06 m; "
+                       r"use time.dt = (?P<dt>[0-9.e-]+) s") as info:
+        guards.check_problem(_fretting_problem(late, 2.5e-4, 1e-2))
+    suggested = float(info.value.message.split("use time.dt = ")[1].split(" s")[0])
+    assert suggested < 2.5e-4
+    assert guards.turning_point_miss(_fretting_problem(late, suggested, 1e-2))[0] < 0.01 * amp
+    # passes: a plateau holding a step, the turning point after the run's last step, a miss under 1 %
+    guards.check_problem(_fretting_problem([(0.0, 0.0), (2.5e-3, amp), (2.6e-3, amp), (7.6e-3, -amp)], 2.5e-4, 1e-2))
+    guards.check_problem(_fretting_problem(late, 2.5e-4, 2.5e-3))
+    assert guards.turning_point_miss(_fretting_problem([(0.0, 0.0), (2.51e-3, amp), (7.5e-3, -amp)], 2.5e-4, 1e-2)) \
+        == pytest.approx((amp * 0.01 / 2.51, 2.51e-3, amp, amp * 2.5 / 2.51))
+    guards.check_problem(_fretting_problem([(0.0, 0.0), (2.51e-3, amp), (7.5e-3, -amp)], 2.5e-4, 1e-2))
