@@ -41,7 +41,7 @@ import numpy as np
 from .errors import NumericalGuardError, ParameterError, warn_caller
 from .history import PronyHistory
 from .materials import Material
-from .problem import Problem
+from .problem import PiecewiseLinear, Problem
 from .schemes import stable_step_limit, step_coefficients
 
 __all__ = ["ContactEstimate", "check_material", "check_problem", "check_solution", "contact_estimate",
@@ -67,8 +67,9 @@ LOADED_FRACTION = 1e-6
 LOAD_BALANCE_TOLERANCE = 1e-6
 #: shortfall of the last step's time under time.t_end, as a fraction of t_end, above which a run warns
 END_SHORTFALL = 0.01
-#: fraction of a displacement history's largest |delta_x| by which the time steps may miss one of its
-#: turning points (:func:`turning_point_miss`); refused above
+#: fraction of a history's largest absolute value (the displacement history's |delta_x|, the normal
+#: history's load or approach) by which the time steps may miss one of its turning points
+#: (:func:`turning_point_miss`); refused above
 TURNING_POINT_MISS = 0.01
 #: the time-step check runs the scheme over at most this many steps (the response has settled by then
 #: or the estimate is taken over the first part of the run)
@@ -381,16 +382,27 @@ def _check_end(problem: Problem) -> None:
                     f"{last + dt:.4g} s (one step more) or a time.dt that divides it")
 
 
-def turning_point_miss(problem: Problem, dt: float | None = None) -> tuple[float, float, float, float] | None:
-    """How far the time steps t = k ``dt`` (default ``time.dt``) miss the turning points of
-    ``tangential.displacement_history`` that the run reaches: the run's delta_x is the history at the
-    steps, so a reversal between two steps is cut to the nearer of them (a cycle faster than dt is
-    aliased into another). Returns, for the first turning point missed by more than
-    :data:`TURNING_POINT_MISS` of the history's largest |delta_x| (else the one missed most):
-    (the miss [m], its time [s], its delta_x [m], the extreme the steps reach [m]); None without a
-    history or a reversal within the run. A turning point held over a plateau is met where a step
-    falls on the plateau."""
-    history = problem.tangential.displacement_history
+def _histories(problem: Problem) -> dict[str, tuple[PiecewiseLinear, str, str]]:
+    """The piecewise-linear histories the steps sample: case key -> (history, its symbol, unit)."""
+    normal = problem.normal
+    found = {"normal.history": (normal.history, "W" if normal.control == "load" else "delta_z",
+                                "N" if normal.control == "load" else "m")}
+    if problem.tangential.displacement_history is not None:
+        found["tangential.displacement_history"] = (problem.tangential.displacement_history, "delta_x", "m")
+    return found
+
+
+def turning_point_miss(problem: Problem, dt: float | None = None,
+                       key: str = "tangential.displacement_history") -> tuple[float, float, float, float] | None:
+    """How far the time steps t = k ``dt`` (default ``time.dt``) miss the turning points that the run
+    reaches of the history ``key`` (``tangential.displacement_history``, or ``normal.history``: a load
+    or approach that rises and falls): the run's value is the history at the steps, so a reversal
+    between two steps is cut to the nearer of them (a cycle faster than dt is aliased into another).
+    Returns, for the first turning point missed by more than :data:`TURNING_POINT_MISS` of the
+    history's largest absolute value (else the one missed most): (the miss, its time [s], its value,
+    the extreme the steps reach), in the history's unit; None without that history or a reversal
+    within the run. A turning point held over a plateau is met where a step falls on the plateau."""
+    history = _histories(problem).get(key, (None,))[0]
     if history is None:
         return None
     dt = problem.time.dt if dt is None else dt
@@ -419,26 +431,27 @@ def turning_point_miss(problem: Problem, dt: float | None = None) -> tuple[float
 
 
 def _check_turning_points(problem: Problem) -> None:
-    """Refuse a time step that misses a turning point of the displacement history by more than
-    :data:`TURNING_POINT_MISS` of its largest |delta_x| (:func:`turning_point_miss`), suggesting dt
-    halved until none is."""
-    worst = turning_point_miss(problem)
-    if worst is None:
-        return
-    scale = max(abs(v) for v in problem.tangential.displacement_history.values)
-    miss, t, value, reached = worst
-    if not miss > TURNING_POINT_MISS * scale:
-        return
+    """Refuse a time step that misses a turning point of a history (the displacement history, the
+    normal load's or approach's) by more than :data:`TURNING_POINT_MISS` of its largest absolute
+    value (:func:`turning_point_miss`), suggesting the largest dt below it that meets every one."""
     dt = problem.time.dt
-    # the largest step below dt that meets them: dt / m, or the missed turning point's time / m
-    first = int(np.ceil(t / dt))
-    candidates = sorted({dt / m for m in range(2, 101)} | {t / m for m in range(first, first + 100)}, reverse=True)
-    trial = next((c for c in candidates
-                  if not (turning_point_miss(problem, c) or (0.0,))[0] > TURNING_POINT_MISS * scale), candidates[-1])
-    raise ParameterError("time.dt", f"{dt:.4g} s misses the turning point of tangential.displacement_history at "
-                         f"t = {t:.6g} s (delta_x = {value:.4g} m) by {miss:.3g} m ({100 * miss / scale:.2g} % of its "
-                         f"largest |delta_x|): the steps sample the history, and the run would turn at {reached:.4g} "
-                         f"m; use time.dt = {trial:.4g} s, or one that puts the turning points on steps")
+    for key, (history, symbol, unit) in _histories(problem).items():
+        scale = max(abs(v) for v in history.values)
+        worst = turning_point_miss(problem, key=key)
+        if worst is None or not worst[0] > TURNING_POINT_MISS * scale:
+            continue
+        miss, t, value, reached = worst
+        # the largest step below dt that meets them: dt / m, or the missed turning point's time / m
+        first = int(np.ceil(t / dt))
+        candidates = sorted({dt / m for m in range(2, 101)} | {t / m for m in range(first, first + 100)},
+                            reverse=True)
+        trial = next((c for c in candidates if all(
+            not (turning_point_miss(problem, c, k) or (0.0,))[0] > TURNING_POINT_MISS * max(abs(v) for v in h.values)
+            for k, (h, _, _) in _histories(problem).items())), candidates[-1])
+        raise ParameterError("time.dt", f"{dt:.4g} s misses the turning point of {key} at t = {t:.6g} s ({symbol} = "
+                             f"{value:.4g} {unit}) by {miss:.3g} {unit} ({100 * miss / scale:.2g} % of its largest "
+                             f"|{symbol}|): the steps sample the history, and the run would turn at {reached:.4g} "
+                             f"{unit}; use time.dt = {trial:.4g} s, or one that puts the turning points on steps")
 
 
 def _time_step_suggestion(problem: Problem) -> str:

@@ -416,3 +416,21 @@ def test_a_time_step_that_misses_a_turning_point_of_the_displacement_history_is_
     assert guards.turning_point_miss(_fretting_problem([(0.0, 0.0), (2.51e-3, amp), (7.5e-3, -amp)], 2.5e-4, 1e-2)) \
         == pytest.approx((amp * 0.01 / 2.51, 2.51e-3, amp, amp * 2.5 / 2.51))
     guards.check_problem(_fretting_problem([(0.0, 0.0), (2.51e-3, amp), (7.5e-3, -amp)], 2.5e-4, 1e-2))
+
+
+def test_a_time_step_that_misses_the_peak_of_a_load_history_is_refused():
+    """The steps sample ``normal.history`` as they sample the displacement history: a load that
+    rises to 0.15 N at 2.6 ms and falls again was cut to 0.144 N at dt = 0.25 ms (-3.8 %) silently,
+    for any material (the time-step guard, which runs the scheme on the sampled history, cannot see
+    it). Refused above 1 % of the largest load, keyed time.dt, naming the history and a dt that
+    meets the peak; a peak on a step, or held over a step, passes."""
+    pulse = PiecewiseLinear((0.0, 2.6e-3, 5.2e-3), (0.0, 0.15, 0.0))
+    problem = sphere_problem(Material.elastic(1.93e6, 0.3), 32, 1.5e-3, t_end=5e-3, dt=2.5e-4, scheme="linear")
+    problem = replace(problem, normal=replace(problem.normal, history=pulse))
+    with pytest.raises(ParameterError, match=r"^time.dt: 0.00025 s misses the turning point of normal.history at "
+                       r"t = 0.0026 s \(W = 0.15 N\) by 0.00577 N \(3.8 % .* turn at 0.1442 N; use time.dt = "):
+        guards.check_problem(problem)
+    on_a_step = PiecewiseLinear((0.0, 2.5e-3, 5.0e-3), (0.0, 0.15, 0.0))
+    guards.check_problem(replace(problem, normal=replace(problem.normal, history=on_a_step)))
+    held = PiecewiseLinear((0.0, 2.4e-3, 2.6e-3, 5.0e-3), (0.0, 0.15, 0.15, 0.0))
+    guards.check_problem(replace(problem, normal=replace(problem.normal, history=held)))
