@@ -75,7 +75,7 @@ def check_history(history: PiecewiseLinear, key: str) -> None:
     times as values (one at least), all finite numbers, its times >= 0 s and strictly increasing;
     the values are the caller's to check (a normal load, a tangential displacement)."""
     times, values = history.times, history.values
-    if len(times) != len(values) or not times:
+    if len(times) != len(values) or len(times) == 0:  # len: numpy arrays of times are sequences too
         raise ParameterError(key, f"must be a non-empty list of [t, value] pairs, got {len(times)} times and "
                              f"{len(values)} values")
     if not all(_is_number(v) and np.isfinite(v) for v in (*times, *values)):
