@@ -206,11 +206,13 @@ def check_checkpoint_path(path: str | Path) -> None:
                                 str(path))
     if path.is_file() and path.stat().st_size == 0:
         return
-    try:
-        with np.load(path, allow_pickle=False) as data:
-            ours = {"format_version", "fingerprint"} <= set(getattr(data, "files", ()))
-    except (OSError, ValueError, EOFError, zipfile.BadZipFile):
-        ours = False
+    ours = False
+    if zipfile.is_zipfile(path):  # a checkpoint is an .npz archive; np.load reads a .npy file as an array
+        try:
+            with np.load(path, allow_pickle=False) as data:
+                ours = {"format_version", "fingerprint"} <= set(data.files)
+        except (OSError, ValueError, EOFError, zipfile.BadZipFile):
+            pass
     if not ours:
         raise FileExistsError(errno.EEXIST, "exists and is not a viscontact checkpoint; refusing to replace it "
                               "with one: choose another checkpoint path", str(path))
