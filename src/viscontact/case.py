@@ -436,7 +436,8 @@ class TimeSection(_Section):
     ``scheme``: ``"linear"`` (default, second order) or the seed's ``"constant"`` (first order)."""
 
     t_end: float = _num(unit="s", gt=0, description="end time")
-    dt: float | None = _num(None, unit="s", gt=0, description="time step, <= t_end; required without sliding")
+    dt: float | None = _num(None, unit="s", gt=0, description="time step, <= t_end; required without sliding "
+                            "(tangential.mode = 'none', or a tangential.displacement_history)")
     scheme: Literal["constant", "linear"] = Field("linear", description="traction linear within a step (the "
                                                   "default: second order, stable for any dt) or constant "
                                                   "(the seed's, first order)")

@@ -30,7 +30,7 @@ import numpy as np
 from .arrays import CPU, ArrayBackend, array_backend
 from .errors import ParameterError
 from .output_files import write_atomically
-from .problem import Problem
+from .problem import Problem, is_integer
 from .transient import State
 
 FORMAT_VERSION = 2
@@ -184,7 +184,7 @@ def save_checkpoint(path: str | Path, problem: Problem, state: State,
 def check_checkpoint_every(every: object, key: str = "checkpoint_every") -> None:
     """Raise :class:`ParameterError` naming ``key`` unless ``every`` (steps between checkpoints; 0:
     none) is an integer >= 0."""
-    if isinstance(every, (bool, np.bool_)) or not isinstance(every, (int, np.integer)) or every < 0:
+    if not is_integer(every) or every < 0:
         raise ParameterError(key, f"must be an integer >= 0 steps (0: no checkpoint), got {every!r}")
 
 
@@ -206,11 +206,13 @@ def check_checkpoint_path(path: str | Path) -> None:
                                 str(path))
     if path.is_file() and path.stat().st_size == 0:
         return
-    try:
-        with np.load(path, allow_pickle=False) as data:
-            ours = {"format_version", "fingerprint"} <= set(getattr(data, "files", ()))
-    except (OSError, ValueError, EOFError, zipfile.BadZipFile):
-        ours = False
+    ours = False
+    if zipfile.is_zipfile(path):  # a checkpoint is an .npz archive; np.load reads a .npy file as an array
+        try:
+            with np.load(path, allow_pickle=False) as data:
+                ours = {"format_version", "fingerprint"} <= set(data.files)
+        except (OSError, ValueError, EOFError, zipfile.BadZipFile):
+            pass
     if not ours:
         raise FileExistsError(errno.EEXIST, "exists and is not a viscontact checkpoint; refusing to replace it "
                               "with one: choose another checkpoint path", str(path))

@@ -41,7 +41,7 @@ import numpy as np
 from .errors import NumericalGuardError, ParameterError, warn_caller
 from .history import PronyHistory
 from .materials import Material
-from .problem import PiecewiseLinear, Problem
+from .problem import PiecewiseLinear, Problem, is_number
 from .schemes import stable_step_limit, step_coefficients
 
 __all__ = ["ContactEstimate", "check_material", "check_problem", "check_solution", "contact_estimate",
@@ -503,8 +503,7 @@ def positive_values(values: object, key: str, unit: str, given: str | None = Non
     if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
         raise ParameterError(key, f"must be a list of numbers in {unit}, got {shown}")
     values = list(values)
-    if not all(isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
-               for v in values):
+    if not all(is_number(v) for v in values):
         raise ParameterError(key, f"must be a list of numbers in {unit}, got {shown}")
     values = [float(v) for v in values]
     if not values:

@@ -28,22 +28,27 @@ PHASE_NAMES = {PHASE_INDENTATION: "indentation", PHASE_PARTIAL_SLIP: "partial sl
                PHASE_GROSS_SLIDING: "gross sliding"}
 
 
-def _is_number(value: object) -> bool:
+def is_number(value: object) -> bool:
     """A real number (Python or numpy), not a boolean."""
     return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
+
+
+def is_integer(value: object) -> bool:
+    """An integer (Python or numpy), not a boolean."""
+    return isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))
 
 
 def _check_number(key: str, value: object, unit: str, *, low: float = 0.0, strict: bool = True) -> None:
     """Raise :class:`ParameterError` naming ``key`` unless ``value`` is a finite number > ``low``
     (``strict``) or >= ``low``."""
-    ok = _is_number(value) and bool(np.isfinite(value)) and (value > low if strict else value >= low)
+    ok = is_number(value) and bool(np.isfinite(value)) and (value > low if strict else value >= low)
     if not ok:
         raise ParameterError(key, f"must be a finite number {'>' if strict else '>='} {low:g}{unit}, got {value!r}")
 
 
 def _check_integer(key: str, value: object, low: int = 1) -> None:
     """Raise :class:`ParameterError` naming ``key`` unless ``value`` is an integer >= ``low``."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or value < low:
+    if not is_integer(value) or value < low:
         raise ParameterError(key, f"must be an integer >= {low}, got {value!r}")
 
 
@@ -75,10 +80,10 @@ def check_history(history: PiecewiseLinear, key: str) -> None:
     times as values (one at least), all finite numbers, its times >= 0 s and strictly increasing;
     the values are the caller's to check (a normal load, a tangential displacement)."""
     times, values = history.times, history.values
-    if len(times) != len(values) or not times:
+    if len(times) != len(values) or len(times) == 0:  # len: numpy arrays of times are sequences too
         raise ParameterError(key, f"must be a non-empty list of [t, value] pairs, got {len(times)} times and "
                              f"{len(values)} values")
-    if not all(_is_number(v) and np.isfinite(v) for v in (*times, *values)):
+    if not all(is_number(v) and np.isfinite(v) for v in (*times, *values)):
         raise ParameterError(key, "must contain finite numbers only")
     if times[0] < 0 or np.any(np.diff(times) <= 0):
         raise ParameterError(key, "times must be >= 0 s and strictly increasing")
@@ -289,7 +294,7 @@ class SolverSettings:
             if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
                 raise ParameterError(f"solver.{name}", f"must be an integer >= 1, got {value!r}")
         w = self.workers
-        if isinstance(w, bool) or not isinstance(w, (int, np.integer)) or w == 0 or w < -1:
+        if not is_integer(w) or w == 0 or w < -1:
             raise ParameterError("solver.workers", f"must be -1 (all cores) or an integer >= 1, got {w!r}")
         if self.history not in ("recursive", "direct"):
             raise ParameterError("solver.history", f"must be 'recursive' or 'direct', got {self.history!r}")

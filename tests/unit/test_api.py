@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 from test_results import fake_records, make_problem  # tests/unit is on sys.path
 
@@ -80,12 +81,16 @@ def test_run_steady_checks_its_speeds_as_the_command_line_does(speeds) -> None:
     assert err.value.key == "speeds"
 
 
-@pytest.mark.parametrize("victim", ["result.nc", "case.toml"])
+@pytest.mark.parametrize("victim", ["result.nc", "case.toml", "heights.npy"])
 def test_run_never_writes_its_checkpoint_over_a_file_that_is_no_checkpoint(tmp_path, victim) -> None:
     """``vc.run(case, checkpoint="result.nc")`` (the checkpoint taken for the output) wrote the
-    solver state over the finished result; over the case file too."""
+    solver state over the finished result; over the case file too. A numpy array file (a case's
+    heights), which ``np.load`` reads as an array and not as an archive, is refused the same way."""
     path = tmp_path / victim
-    path.write_bytes(b"\x89HDF\r\n\x1a\n a result" if victim.endswith(".nc") else b"title = 'x'\n")
+    if victim.endswith(".npy"):
+        np.save(path, np.zeros((4, 4)))
+    else:
+        path.write_bytes(b"\x89HDF\r\n\x1a\n a result" if victim.endswith(".nc") else b"title = 'x'\n")
     before = path.read_bytes()
     with pytest.raises(FileExistsError, match="not a viscontact checkpoint"):
         vc.run(make_problem("none"), checkpoint=path, checkpoint_every=1)

@@ -72,3 +72,17 @@ def test_the_case_file_says_the_same_as_the_problem() -> None:
         with pytest.raises(vc.ParameterError) as direct:
             NormalLoading("load", PiecewiseLinear(*map(tuple, zip(*history))))
         assert str(from_case.value) == str(direct.value) and direct.value.key == "normal.history"
+
+
+def test_a_history_of_numpy_arrays_is_checked_as_one_of_tuples() -> None:
+    """Times and values given as numpy arrays (a scripted history, np.linspace) are checked as
+    tuples are: accepted when valid (a held value of one point too), refused naming the key."""
+    for times, values in (((0.0, 2e-4), (0.1, 0.15)), ((0.0,), (0.15,))):
+        as_arrays = NormalLoading("load", PiecewiseLinear(np.array(times), np.array(values)))
+        assert as_arrays.history(1e-4) == NormalLoading("load", PiecewiseLinear(times, values)).history(1e-4)
+    with pytest.raises(vc.ParameterError) as info:
+        NormalLoading("load", PiecewiseLinear(np.array([0.0, 3e-4, 1e-4]), np.array([0.1, 0.15, 0.0])))
+    assert info.value.key == "normal.history" and "strictly increasing" in info.value.message
+    with pytest.raises(vc.ParameterError) as info:
+        NormalLoading("load", PiecewiseLinear(np.array([]), np.array([])))
+    assert info.value.key == "normal.history"

@@ -5,6 +5,7 @@ warn several calls deep, at a depth that differs between :func:`viscontact.api.r
 (:func:`viscontact.errors.warn_caller`)."""
 from __future__ import annotations
 
+import subprocess
 import sys
 import warnings
 from pathlib import Path
@@ -79,3 +80,22 @@ def test_guard_warnings_point_at_the_callers_line(entry: str, tmp_path: Path) ->
         line = ENTRY_POINTS[entry](_uneven_end(), tmp_path)
     ours = [w for w in caught if "is not a multiple of time.dt" in str(w.message)]
     assert [(w.filename, w.lineno) for w in ours] == [(__file__, line)]
+
+
+SCRIPT = Path(sys.executable).with_name("viscontact")
+CREEP = Path(__file__).resolve().parents[2] / "cases" / "creep_indentation.toml"
+
+
+@pytest.mark.skipif(not SCRIPT.exists(), reason="the viscontact console script is not installed")
+def test_the_console_script_prints_each_warning_once_as_a_line(tmp_path: Path) -> None:
+    """Under the console script every frame but the script's own line is the package's, so every
+    warning is attributed to that one line; Python's once-per-place registry still tells two
+    messages apart: the coarse grid and the uneven end, two lines, each ``viscontact: warning:``,
+    no source line under them."""
+    proc = subprocess.run([str(SCRIPT), "run", str(CREEP), "--set", "grid.n=12", "--set", "time.dt=0.001",
+                           "--set", "time.t_end=0.0024", "--out", str(tmp_path / "r.nc")],
+                          capture_output=True, text=True, timeout=300, check=False)
+    lines = proc.stderr.splitlines()
+    assert proc.returncode == 0 and len(lines) == 2, proc.stderr
+    assert all(line.startswith("viscontact: warning: ") for line in lines), lines
+    assert "grid.n = 12" in lines[0] and "is not a multiple of time.dt" in lines[1], lines
