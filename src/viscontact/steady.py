@@ -305,7 +305,6 @@ IGNORED_KEYS = {
     "time.scheme": "a steady state has no time steps",
     "tangential.steps_per_cell": "it sets the default time.dt, and a steady state has no time steps",
     "tangential.displacement_rate": "it drives partial slip, and a steady state is gross sliding",
-    "tangential.displacement_history": "it drives partial slip, and a steady state is gross sliding",
     "tangential.slip": "it is partial slip's stick condition, and a steady state is gross sliding",
     "output.every": "a steady state is one record",
     "output.subsurface_times": "a steady state is one record",
