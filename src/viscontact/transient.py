@@ -20,14 +20,13 @@ the output settings ask for.
 """
 from __future__ import annotations
 
-import warnings
 from dataclasses import asdict, dataclass, field, replace
 from typing import Callable, Iterator, Protocol
 
 import numpy as np
 
 from .allocator import tune_allocator
-from .errors import ConvergenceError, ParameterError, ViscontactWarning
+from .errors import ConvergenceError, ParameterError
 from .guards import check_solution
 from .history import History
 from .periodic import check_approach
