@@ -139,6 +139,10 @@ def validate(problem: Problem) -> None:
     if problem.grid.periodic and problem.normal.control == "displacement":
         check_approach(problem.normal.history.reference, problem.gap,
                        "normal.value" if len(problem.normal.history.values) == 1 else "normal.history")
+    if tan.displacement_history is not None and tan.sliding_speed != 0:
+        raise ParameterError("tangential.sliding_speed", "give none with tangential.displacement_history: the "
+                             "indenter never slides under a history (a vanished stick zone stops the run), got "
+                             f"{tan.sliding_speed:g} m/s")
     if tan.mode == "partial_slip" and tan.displacement_history is None and not tan.displacement_rate > 0:
         raise ParameterError("tangential.displacement_rate", f"must be > 0 m/s for partial_slip, got {tan.displacement_rate}")
     limit = min(stable_step_limit(r, problem.time.scheme) for r in stability_responses(problem))

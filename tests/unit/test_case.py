@@ -212,3 +212,18 @@ def test_displacement_history_defaults_to_the_incremental_slip_and_needs_no_spee
     ramp = case.with_overrides({"tangential.displacement_history": None, "tangential.displacement_rate": 1e-3,
                                 "tangential.sliding_speed": 0.05, "time.dt": None}).to_problem().tangential
     assert ramp.slip == "total" and ramp.frame_moves and ramp.delta_x(0.01) == pytest.approx(1e-5)
+
+
+def test_a_sliding_speed_beside_a_displacement_history_is_refused_by_the_run(tmp_path):
+    """A displacement history never slides, so a sliding speed beside it is a contradiction: the run
+    (transient.validate, what viscontact run and the sweeps' checks call) refuses it in one line keyed
+    tangential.sliding_speed - before, it was accepted silently and written to the result's
+    attributes as if the indenter had slid. (viscontact steady refuses the history itself.)"""
+    from viscontact.shipped import shipped_case
+    from viscontact.transient import validate
+
+    case = load_case(shipped_case("fretting_zener")).with_overrides({"grid.n": 16})
+    validate(case.to_problem())
+    with pytest.raises(ParameterError, match=r"^tangential.sliding_speed: give none with "
+                                             r"tangential.displacement_history.*got 0.01 m/s"):
+        validate(case.with_overrides({"tangential.sliding_speed": 0.01}).to_problem())
