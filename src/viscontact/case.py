@@ -447,10 +447,12 @@ _FIELD_NAMES = Literal["pressure", "shear_x", "stick", "displacement_z"]
 
 
 class OutputSection(_Section):
-    """Record every ``every``-th step (and the last) and these fields; optionally the subsurface
+    """Record every ``every``-th step (and the last and the histories' turning points) and these fields; optionally the subsurface
     stresses in the section y = 0 at ``subsurface_depths`` [m] and ``subsurface_times`` [s]."""
 
-    every: int = _int(OutputSettings.every, ge=1, description="record every k-th step (and the last)")
+    every: int = _int(OutputSettings.every, ge=1,
+                      description="record every k-th step (and the last, and the steps at the turning points of "
+                                  "normal.history and tangential.displacement_history)")
     fields: list[_FIELD_NAMES] = Field(list(OutputSettings.fields), json_schema_extra={"unit": ""},
                                        description="fields on the grid kept at the recorded steps")
     subsurface_depths: list[Annotated[float, Field(ge=0, allow_inf_nan=False)]] = Field(

@@ -406,23 +406,12 @@ def turning_point_miss(problem: Problem, dt: float | None = None,
     if history is None:
         return None
     dt = problem.time.dt if dt is None else dt
-    last = problem.time.n_steps - 1
-    times, values = np.asarray(history.times), np.asarray(history.values)
-    limit = TURNING_POINT_MISS * float(np.max(np.abs(values)))
-    starts = np.flatnonzero(np.r_[True, np.diff(values) != 0])  # plateaus of equal values: [start, end]
-    ends = np.r_[starts[1:] - 1, values.size - 1]
+    limit = TURNING_POINT_MISS * float(np.max(np.abs(history.values)))
     worst = None
-    for g in range(1, starts.size - 1):
-        i, j = starts[g], ends[g]
-        before, after = np.sign(values[i] - values[i - 1]), np.sign(values[starts[g + 1]] - values[j])
-        if before == after:
-            continue  # not a reversal
-        k = int(np.ceil(times[i] / dt - 1e-9))  # the first step on or after the turning point
-        if k > last or k * dt <= times[j] + 1e-9 * dt:
-            continue  # the run ends before it reverses, or a step falls on the turning point
-        near = (history((k - 1) * dt), history(k * dt))
-        reached = max(near) if before > 0 else min(near)
-        found = (float(abs(values[i] - reached)), float(times[i]), float(values[i]), float(reached))
+    # turning_steps lists the turning points the run reaches, in the same order
+    for (first, _, value, _), (_, reached) in zip(history.turning_points(),
+                                                   history.turning_steps(dt, problem.time.n_steps - 1)):
+        found = (float(abs(value - reached)), first, value, float(reached))
         if found[0] > limit:
             return found
         if worst is None or found[0] > worst[0]:

@@ -7,8 +7,8 @@
 :class:`~viscontact.errors.RunInterrupted` is raised; ``on_finish`` is called on every observer after
 the last step of a run that went to its end.
 
-* :class:`Recorder`: keeps every ``output.every``-th step and the last, with ``output.fields``, in
-  memory (:func:`viscontact.api.run`);
+* :class:`Recorder`: keeps every ``output.every``-th step, the last and the histories' turning points,
+  with ``output.fields``, in memory (:func:`viscontact.api.run`);
 * :class:`StreamWriter`: the same records, appended to a streamed result file instead of kept
   (:func:`viscontact.api.run_to_file`: memory does not grow with the number of steps);
 * :class:`WakeWarning`: warns when the dropped wake biases the result by over 1 %, and again at the
@@ -55,18 +55,18 @@ class Observer:
 
 
 class Recorder(Observer):
-    """Keeps the records the output settings ask for: step k when k % every == 0 and the last step,
-    with the fields not in ``output.fields`` dropped. ``records`` holds them (``initial`` first)."""
+    """Keeps the records the output settings ask for (:meth:`Problem.recorded`: step k when
+    k % every == 0, the last step and the steps at the histories' turning points), with the fields
+    not in ``output.fields`` dropped. ``records`` holds them (``initial`` first)."""
 
     def __init__(self, problem: Problem, initial: Sequence[StepRecord] = ()) -> None:
-        self.every = problem.output.every
-        self.total = problem.time.n_steps
+        self.problem = problem
         self.dropped = {name: None for name in StepRecord.FIELDS if name not in problem.output.fields}
         self.records: list[StepRecord] = list(initial)
 
     def kept(self, record: StepRecord) -> StepRecord | None:
         """The record as kept, or None when this step is not recorded."""
-        if not (record.step % self.every == 0 or record.step + 1 == self.total):
+        if not self.problem.recorded(record.step):
             return None
         return replace(record, **self.dropped) if self.dropped else record
 

@@ -74,6 +74,37 @@ class PiecewiseLinear:
         """The largest value of the history (used to normalise: Hertz a0, p0)."""
         return float(max(self.values))
 
+    def turning_points(self) -> tuple[tuple[float, float, float, int], ...]:
+        """The history's reversals, in time order: (first time [s], last time [s] of the extreme held
+        there — the same time unless a plateau holds it —, the extreme, +1 for a peak or -1 for a
+        trough). A change of slope without a change of direction is none."""
+        values = np.asarray(self.values)
+        starts = np.flatnonzero(np.r_[True, np.diff(values) != 0])  # plateaus of equal values: [start, end]
+        ends = np.r_[starts[1:] - 1, values.size - 1]
+        found = []
+        for g in range(1, starts.size - 1):
+            i, j = starts[g], ends[g]
+            before, after = np.sign(values[i] - values[i - 1]), np.sign(values[starts[g + 1]] - values[j])
+            if before != after:
+                found.append((float(self.times[i]), float(self.times[j]), float(values[i]), int(before)))
+        return tuple(found)
+
+    def turning_steps(self, dt: float, last: int) -> tuple[tuple[int, float], ...]:
+        """For each turning point that steps t = k ``dt`` (k <= ``last``) reach: (the step nearest to it,
+        the value the steps reach there): the first step on its plateau where one falls there, else the
+        more extreme of the steps just before and after it."""
+        found = []
+        for first, held_until, _, direction in self.turning_points():
+            k = int(np.ceil(first / dt - 1e-9))  # the first step on or after the turning point
+            if k > last:
+                break
+            if k * dt <= held_until + 1e-9 * dt:  # a step on the turning point or its plateau
+                found.append((k, self(k * dt)))
+                continue
+            value, k = max((direction * self(m * dt), m) for m in (k, k - 1))
+            found.append((k, direction * value))
+        return tuple(found)
+
 
 def check_history(history: PiecewiseLinear, key: str) -> None:
     """Raise :class:`ParameterError` naming the case key ``key`` unless ``history`` has as many
@@ -409,6 +440,20 @@ class Problem:
         x, y = self.grid.mesh()
         sphere = (x**2 + y**2) / (2.0 * self.radius)
         return bool(np.allclose(self.gap, sphere, rtol=0.0, atol=1e-13 * sphere.max()))
+
+    @cached_property
+    def turning_steps(self) -> frozenset[int]:
+        """The steps nearest the turning points of the run's histories (``normal.history``,
+        ``tangential.displacement_history``: :meth:`PiecewiseLinear.turning_steps`), recorded whatever
+        ``output.every`` (a fretting loop keeps its tips, a load pulse its peak)."""
+        last = self.time.n_steps - 1
+        histories = [self.normal.history, self.tangential.displacement_history]
+        return frozenset(k for h in histories if h is not None for k, _ in h.turning_steps(self.time.dt, last))
+
+    def recorded(self, step: int) -> bool:
+        """Whether the result keeps step ``step``: every ``output.every``-th, the last and the
+        :attr:`turning_steps`."""
+        return step % self.output.every == 0 or step == self.time.n_steps - 1 or step in self.turning_steps
 
     def frame_gap(self, offset: float) -> np.ndarray:
         """Undeformed gap [m] on the grid with the indenter centre at x = ``offset`` [m], 0 <= offset < dx.

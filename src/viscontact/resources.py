@@ -143,9 +143,11 @@ def estimate(problem: Problem) -> Estimate:
 
 def recorded_steps(problem: Problem) -> int:
     """How many time entries the result of ``problem``'s transient run holds (every
-    ``output.every``-th step and the last)."""
+    ``output.every``-th step, the last and those at the histories' turning points:
+    :meth:`Problem.recorded`)."""
     steps, every = problem.time.n_steps, problem.output.every
-    return (steps - 1) // every + 1 + (1 if (steps - 1) % every else 0)
+    regular = (steps - 1) // every + 1 + (1 if (steps - 1) % every else 0)
+    return regular + sum(1 for k in problem.turning_steps if k % every and k != steps - 1)
 
 
 def record_bytes(problem: Problem) -> int:

@@ -78,3 +78,26 @@ def test_the_result_states_the_displacement_history(result):
     assert ds.attrs["case"] == "" and list(ds.attrs["displacement_history_values"]) == [0.0, 1e-6, -1e-6]
     ramp = run(sphere_problem(Material.elastic(1.93e6, 0.5), 16, 1e-3, rate=1e-6, speed=1.25e-3, **kw))  # dt = dx / v
     assert not any(key.startswith("displacement_history") for key in ramp.attrs)
+
+
+def test_a_thinned_output_keeps_the_turning_points(tmp_path):
+    """With output.every = 7 the steps of the turning points (10, 30, ..., 110 at 0.25 ms; 70 is
+    kept anyway, 130 is the last) fall between the kept ones: before, the records turned at +-7.2 um instead of +-8 um, and the loop
+    figure's tips were cut. They are recorded too (Problem.recorded), in memory and streamed, and
+    the streamed file holds as many records as resources.recorded_steps claimed (disk space)."""
+    from viscontact import resources
+    from viscontact.api import run_to_file
+    from viscontact.results import open_result
+
+    case = load_case(CASE).with_overrides({"grid.n": 16, "output.every": 7})
+    problem = case.to_problem()
+    assert sorted(problem.turning_steps) == [10, 30, 50, 70, 90, 110]
+    ds = run(case)
+    kept = ds["step"].values
+    assert set(range(0, 131, 7)) | {130} | set(problem.turning_steps) == set(kept)
+    assert ds.sizes["t"] == resources.recorded_steps(problem) == 20 + 5  # 0, 7, ..., 126, 130 and five turns
+    assert ds["delta_x"].max() == pytest.approx(AMPLITUDE, rel=1e-12)
+    assert ds["delta_x"].min() == pytest.approx(-AMPLITUDE, rel=1e-12)
+    run_to_file(case, tmp_path / "r.nc")
+    streamed = open_result(tmp_path / "r.nc")
+    assert np.array_equal(streamed["step"].values, kept) and streamed.attrs["complete"] == 1
