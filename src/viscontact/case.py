@@ -447,8 +447,9 @@ _FIELD_NAMES = Literal["pressure", "shear_x", "stick", "displacement_z"]
 
 
 class OutputSection(_Section):
-    """Record every ``every``-th step (and the last and the histories' turning points) and these fields; optionally the subsurface
-    stresses in the section y = 0 at ``subsurface_depths`` [m] and ``subsurface_times`` [s]."""
+    """Record every ``every``-th step (and the last and the histories' turning points) and these
+    fields; optionally the subsurface stresses in the section y = 0 at ``subsurface_depths`` [m] and
+    ``subsurface_times`` [s]."""
 
     every: int = _int(OutputSettings.every, ge=1,
                       description="record every k-th step (and the last, and the steps at the turning points of "
