@@ -39,6 +39,11 @@ BODIES = {
     # checkpoint (step 3, t = 0.75 ms) after the first reversal (0.5 ms): s_x holds the path's memory
     "fretting": {"grid.n": 16, "tangential.mode": "partial_slip", "tangential.friction_coefficient": 0.3,
                  "tangential.displacement_history": FRETTING, "time.t_end": 2.5e-3, "time.scheme": "linear"},
+    # output.every = 3 keeps the turning points' steps (2 and 6 at 0.25 ms) beside 0, 3, ..., 18 and 20
+    # (delta_x held after the history's end)
+    "fretting, thinned output": {"grid.n": 16, "tangential.mode": "partial_slip", "tangential.friction_coefficient": 0.3,
+                                 "tangential.displacement_history": FRETTING, "time.t_end": 5e-3,
+                                 "time.scheme": "linear", "output.every": 3},
     "layer periodic": {**SLIDING, "tangential.mode": "frictionless_sliding", "grid.periodic": True, **LAYER},
     "layer on an elastic substrate": {**SLIDING, "tangential.mode": "gross_sliding", **ON_ELASTIC},
     "layer on an elastic substrate, periodic": {**SLIDING, "tangential.mode": "frictionless_sliding",
