@@ -321,6 +321,12 @@ class IndenterSection(_SelfAffineKeys):
     roughness: RoughnessSection | None = Field(None, description="with shape = 'sphere': self-affine roughness "
                                                "([indenter.roughness], the self-affine keys)")
 
+    @property
+    def uses_surface_topography(self) -> bool:
+        """Whether building this surface imports SurfaceTopography (a self-affine surface or roughness,
+        a measured topography): :data:`viscontact.resources.TOPOGRAPHY_IMPORT_MEMORY` more."""
+        return self.shape in ("self_affine", "topography") or self.roughness is not None
+
     @model_validator(mode="after")
     def _consistent(self) -> IndenterSection:
         shape = self.shape

@@ -149,22 +149,25 @@ def test_the_displacement_history_enters_the_fingerprint_and_leaves_the_others_a
 def test_memory_estimate_counts_the_histories_and_kernels_of_the_body():
     """A viscoelastic layer on an elastic substrate holds D M history fields and D + 1 kernels per
     component (D + 1 shift nodes, layers.shift_nodes), and its support windows keep the D + 1
-    cropped kernels of each of the last WINDOWS_KEPT sides (and, with mixed precision, a complex64
-    spectrum of each kernel on the grid and on each side): the estimate of its solver state grows by
-    that much over the half-space's (Zener: M = 1, 9 nodes at the default tolerance), less the
-    half-space's response history (M + 1 fields in the old and the new state), which a body of
-    several kernels does not carry (substrate.TermSubstrate.initial_response)."""
+    cropped kernels of each of the last WINDOWS_KEPT sides, and of one more being built beside them
+    with its crops (and, with mixed precision, a complex64 spectrum of each kernel on the grid and
+    on each side): the estimate of its solver state grows by that much over the half-space's
+    (Zener: M = 1, 9 nodes at the default tolerance), less the half-space's response history
+    (M + 1 fields in the old and the new state), which a body of several kernels does not carry
+    (substrate.TermSubstrate.initial_response)."""
     from viscontact.layers import shift_nodes
-    from viscontact.resources import estimate
+    from viscontact.resources import estimate, kernel_bytes, window_cells
     from viscontact.substrate import WINDOWS_KEPT
 
     half = case({"grid.n": 64}).to_problem()
     layer = case({"grid.n": 64, **ON_ELASTIC}).to_problem()
     nodes = shift_nodes(layer.material).nodes.size
-    n = 64
-    per_field, per_kernel = 2 * 2 * 8 * n * n, 4 * n * n * 8 + 2 * n * (n + 1) * 16
+    n, m = 64, window_cells(layer)
+    assert window_cells(half) == m > 0
+    per_field = 2 * 2 * 8 * n * n
     single = 2 * n * (n + 1) * 8  # mixed precision: the complex64 spectrum of each self kernel
+    per_kernel = kernel_bytes(n) + (1 + WINDOWS_KEPT) * (single + kernel_bytes(m)) + 4 * m * m * 8
     grown = estimate(layer).peak_memory_bytes - estimate(half).peak_memory_bytes
     assert nodes == 9
     response = 2 * (1 + 1) * 8 * n * n
-    assert grown == (nodes - 2) * per_field + (nodes - 1) * (per_kernel + single) * (1 + WINDOWS_KEPT) - response
+    assert grown == (nodes - 2) * per_field + (nodes - 1) * per_kernel - response
