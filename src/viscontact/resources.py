@@ -126,6 +126,7 @@ def available_cores() -> int:
     except AttributeError:  # pragma: no cover - not Linux
         return os.cpu_count() or 1
 
+
 @dataclass(frozen=True)
 class Estimate:
     """``result_bytes``: the result file (uncompressed); ``peak_memory_bytes``: the process at its peak;
