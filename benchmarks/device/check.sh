@@ -7,13 +7,17 @@
 # 2. prints the GPU (nvidia-smi -L), the versions, and a CuPy smoke test (a transform on the device);
 # 3. runs tests/unit/test_array_seam.py on the real CuPy backend (VISCONTACT_TEST_DEVICE=gpu: every
 #    device test on cupy_backend(), each skipped with its reason where CuPy finds no CUDA device);
-# 4. runs benchmarks/bench_device.py at 1024^2 and at 2048^2 (BENCH_STEPS steps, CPU rows and GPU
-#    rows); without a CUDA device only at 128^2 (the CPU rows and "no CUDA device"), to check the path.
+# 4. runs benchmarks/device/cli_check.py: viscontact run and steady of seed Table 1 on the CPU and on
+#    the GPU (solver.device = "gpu"), timed, their results compared;
+# 5. runs benchmarks/device/plan_cost.py: what a new transform length (a new cuFFT plan) costs;
+# 6. runs benchmarks/bench_device.py at 1024^2 and at 2048^2 (BENCH_STEPS steps, CPU rows and GPU
+#    rows, on the device ladder and on scipy's lengths); without a CUDA device only at 128^2 (the CPU
+#    rows and "no CUDA device"), to check the path.
 #
 # Every stage runs under `timeout` within CHECK_BUDGET seconds in all; logs go to $OUT/ (or
 # out/device/ where $OUT is unset): env.txt, install.log, seam.log, seam.xml, bench_<n>.md,
-# summary.txt. CHECK_STAGES="seam" or "bench" reruns one of the two (install and environment, a few
-# seconds, always run). Exit status: the first failing stage's (a stage timed out: 124), else 0 (no CUDA
+# cli.md, plans.md, summary.txt. CHECK_STAGES (default "seam cli plans bench") reruns some (install and
+# environment, a few seconds, always run). Exit status: the first failing stage's (a stage timed out: 124), else 0 (no CUDA
 # device: the tests skipped, the status 0).
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -21,7 +25,7 @@ OUT=${OUT:-$PWD/out/device}
 mkdir -p "$OUT"
 BUDGET=${CHECK_BUDGET:-480}
 BENCH_STEPS=${BENCH_STEPS:-6}
-STAGES=${CHECK_STAGES:-seam bench}  # a rerun of one: CHECK_STAGES=seam or =bench (install and environment always run)
+STAGES=${CHECK_STAGES:-seam cli plans bench}  # a rerun of some: CHECK_STAGES="seam", "bench", ... (install and environment always run)
 if [ -z "${PYTHON:-}" ]; then
     if [ -x /opt/torch/.venv/bin/python3 ]; then PYTHON=/opt/torch/.venv/bin/python3; else PYTHON=python3; fi
 fi
@@ -112,15 +116,18 @@ wanted() { [[ " $STAGES " == *" $1 "* ]]; }
 stage install 90 "$OUT/install.log" bash -c install_wheels
 stage environment 60 "$OUT/env.txt" bash -c environment
 wanted seam && stage seam 240 "$OUT/seam.log" env VISCONTACT_TEST_DEVICE=gpu "$PYTHON" -m pytest -q -rs -p no:cacheprovider \
-    -n "${SEAM_WORKERS:-4}" --durations=10 --junitxml="$OUT/seam.xml" tests/unit/test_array_seam.py
-if ! wanted bench; then
-    :
-elif has_device; then
-    stage bench_1024 120 "$OUT/bench_1024.md" "$PYTHON" -u benchmarks/bench_device.py --n 1024 --steps "$BENCH_STEPS"
-    stage bench_2048 200 "$OUT/bench_2048.md" "$PYTHON" -u benchmarks/bench_device.py --n 2048 --steps "$BENCH_STEPS"
-else
+    -n "${SEAM_WORKERS:-4}" --durations=10 --junitxml="$OUT/seam.xml" tests/unit/test_array_seam.py \
+    tests/unit/test_fftbackends.py::test_solver_device_and_mixed_precision_are_case_keys
+if ! has_device; then
     echo "no CUDA device: the benchmark runs at 128^2 only, to check its path" | tee -a "$OUT/summary.txt"
-    stage bench_128 120 "$OUT/bench_128.md" "$PYTHON" -u benchmarks/bench_device.py --n 128 --steps 3
+    wanted bench && stage bench_128 120 "$OUT/bench_128.md" "$PYTHON" -u benchmarks/bench_device.py --n 128 --steps 3
+else
+    wanted cli && stage cli 90 "$OUT/cli.md" "$PYTHON" -u benchmarks/device/cli_check.py
+    wanted plans && stage plans 40 "$OUT/plans.md" "$PYTHON" -u benchmarks/device/plan_cost.py
+    if wanted bench; then
+        stage bench_1024 120 "$OUT/bench_1024.md" "$PYTHON" -u benchmarks/bench_device.py --n 1024 --steps "$BENCH_STEPS" --scipy-lengths
+        stage bench_2048 200 "$OUT/bench_2048.md" "$PYTHON" -u benchmarks/bench_device.py --n 2048 --steps "$BENCH_STEPS" --scipy-lengths
+    fi
 fi
 echo "== summary ($SECONDS s in all; logs in $OUT)"
 cat "$OUT/summary.txt"

@@ -41,7 +41,13 @@ from typing import Any, Callable
 import numpy as np
 import scipy.fft
 
-__all__ = ["ArrayBackend", "CPU", "array_backend", "cupy_backend"]
+__all__ = ["ArrayBackend", "CPU", "array_backend", "cpu_fast_length", "cupy_backend", "device_fast_length"]
+
+
+def cpu_fast_length(length: int) -> int:
+    """``scipy.fft.next_fast_len(length, real=True)``: pocketfft's plans cost next to nothing, so every
+    length with small prime factors will do (the tightest box)."""
+    return scipy.fft.next_fast_len(length, real=True)
 
 
 @dataclass(frozen=True)
@@ -59,12 +65,19 @@ class ArrayBackend:
         ``cupyx.scipy.fft``).
     to_host
         A field of ``xp`` -> a numpy array (``numpy.asarray``: the same array; ``cupy.asnumpy``: a copy).
+    fast_length
+        The smallest transform length >= its argument that this backend transforms fast and plans
+        cheaply: the padded side 2m of a support window (:func:`viscontact.support_window.window_side`).
+        On the CPU every 2^a 3^b 5^c 7^d 11^e length (:func:`cpu_fast_length`); on a GPU the coarse
+        ladder of :func:`device_fast_length`, so that a creeping contact re-plans its transforms
+        seldom.
     """
 
     name: str
     xp: ModuleType
     fft: ModuleType
     to_host: Callable[[Any], np.ndarray]
+    fast_length: Callable[[int], int] = cpu_fast_length
 
     def to_device(self, array: Any) -> Any:
         """``array`` (numpy, built on the host) as a field of this backend (on the CPU: itself)."""
@@ -74,6 +87,23 @@ class ArrayBackend:
     def is_cpu(self) -> bool:
         """Whether the fields are numpy arrays."""
         return self.xp is np
+
+
+def device_fast_length(length: int) -> int:
+    """The smallest 2^k or 3 x 2^k >= ``length`` (ratios 4/3 and 3/2 between rungs).
+
+    On a GPU a new transform length costs a new cuFFT plan, about a tenth of a second each where the
+    four transforms of a DC-FFT product and the kernels' spectra are planned for every new support
+    window: a creeping contact, whose window grows by a few cells a step, spent more time planning
+    than solving (seed creep at 1024^2 on an H200: 0.65 s a step with ``scipy.fft``'s lengths, against
+    0.11 s for the sliding contact, whose window keeps its side; BENCHMARKS.md). On this ladder the
+    window changes side only when the contact grows by a third or more; the larger box costs little
+    on a GPU, whose small transforms are bound by their launches."""
+    if length <= 1:
+        return 1
+    power = 1 << (int(length) - 1).bit_length()  # the smallest 2^k >= length
+    three = 3 * power // 4                        # 3 x 2^(k-2), between power / 2 and power
+    return three if three >= length and power % 4 == 0 else power
 
 
 #: numpy and scipy.fft (pocketfft)
@@ -122,4 +152,4 @@ def cupy_backend() -> ArrayBackend:
         raise ImportError(f"CuPy finds no CUDA device: {exc}") from exc
     if not devices:
         raise ImportError("CuPy finds no CUDA device")
-    return ArrayBackend("gpu", cupy, cupyx.scipy.fft, cupy.asnumpy)
+    return ArrayBackend("gpu", cupy, cupyx.scipy.fft, cupy.asnumpy, device_fast_length)

@@ -530,8 +530,9 @@ class SolverSection(_Section):
                                   "preconditioner in single precision (float32 transforms, about half their time; "
                                   "the solution and its residual stay double, so the results agree to the "
                                   "tolerance); false: every product in double")
-    device: Literal["cpu", "gpu"] = Field(SolverSettings.device, description="array backend: cpu (numpy); gpu "
-                                          "(CuPy) is reserved and refused by this version")
+    device: Literal["cpu", "gpu"] = Field(SolverSettings.device, description="array backend: cpu (numpy, "
+                                          "scipy.fft) or gpu (CuPy and cuFFT on the first CUDA device; needs the "
+                                          "optional extra gpu or gpu-cuda13)")
 
     @model_validator(mode="after")
     def _workers(self) -> SolverSection:

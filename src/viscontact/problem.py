@@ -313,7 +313,7 @@ class SolverSettings:
     coupling: bool = True             # False: drop the (1 - 2 nu) normal/tangential cross terms
     fft: Literal["scipy", "pyfftw"] = "scipy"  # DC-FFT transforms (viscontact.fftbackends); pyfftw: extra "fast"
     mixed_precision: bool = True      # CG search directions and preconditioner in float32 (viscontact.constrained)
-    device: Literal["cpu", "gpu"] = "cpu"  # array backend; "gpu" (CuPy) is not built yet and is refused
+    device: Literal["cpu", "gpu"] = "cpu"  # array backend: numpy, or CuPy on a CUDA GPU (viscontact.arrays)
 
     def __post_init__(self) -> None:
         for name in ("tolerance", "coupling_tolerance"):
@@ -332,11 +332,15 @@ class SolverSettings:
         for name in ("coupling", "mixed_precision"):
             if not isinstance(getattr(self, name), (bool, np.bool_)):
                 raise ParameterError(f"solver.{name}", f"must be true or false, got {getattr(self, name)!r}")
-        if self.device == "gpu":
-            raise ParameterError("solver.device", "'gpu' (a CuPy backend) is not available in this version: "
-                                 "the solver runs on the CPU; use 'cpu'")
-        if self.device != "cpu":
-            raise ParameterError("solver.device", f"must be 'cpu' (or 'gpu', not yet available), got {self.device!r}")
+        if self.device not in ("cpu", "gpu"):
+            raise ParameterError("solver.device", f"must be 'cpu' or 'gpu', got {self.device!r}")
+        if self.device == "gpu" and self.fft == "pyfftw":
+            raise ParameterError("solver.fft", "'pyfftw' transforms on the CPU: with solver.device = 'gpu' "
+                                 "the transforms are cuFFT's; use 'scipy' (the default)")
+        if self.device == "gpu" and importlib.util.find_spec("cupy") is None:
+            raise ParameterError("solver.device", "'gpu' needs the optional package CuPy for the machine's CUDA "
+                                 "(pip install 'viscontact[gpu]' for CUDA 12, 'viscontact[gpu-cuda13]' for CUDA 13); "
+                                 "use 'cpu'")
         if self.fft not in ("scipy", "pyfftw"):
             raise ParameterError("solver.fft", f"must be 'scipy' or 'pyfftw', got {self.fft!r}")
         if self.fft == "pyfftw" and importlib.util.find_spec("pyfftw") is None:

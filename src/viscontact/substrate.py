@@ -48,7 +48,7 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
-from .arrays import CPU, ArrayBackend, array_backend
+from .arrays import CPU, ArrayBackend, array_backend, cpu_fast_length
 from .convolution import Convolver, FourierPreconditioner
 from .errors import ParameterError
 from .fftbackends import ZeroBlockTransforms, dcfft_transforms
@@ -98,7 +98,9 @@ class ElasticOperator:
     """The step's operator K = sum J_inst K_term for :func:`~viscontact.constrained.constrained_cg`.
 
     ``window``: m -> the same operator restricted to an m x m sub-box of the grid (tractions zero
-    outside it; :mod:`viscontact.support_window`), or None where it has none (periodic grids).
+    outside it; :mod:`viscontact.support_window`), or None where it has none (periodic grids);
+    ``fast_length``: the padded window sides its backend transforms best
+    (:attr:`~viscontact.arrays.ArrayBackend.fast_length`).
     ``apply_increment`` and ``single_preconditioner``: K and the preconditioner in single precision
     (float32 transforms), for the search directions of a mixed-precision solve; None where the
     solves must reach round-off (periodic grids: their preconditioner is exact)."""
@@ -109,6 +111,7 @@ class ElasticOperator:
     window: Callable[[int], "ElasticOperator"] | None = None
     apply_increment: Operator | None = None
     single_preconditioner: Operator | None = None
+    fast_length: Callable[[int], int] = cpu_fast_length
 
     def cg_options(self, mixed_precision: bool = True) -> dict[str, Operator | None]:
         """Keyword arguments of :func:`~viscontact.constrained.constrained_cg` besides the action:
@@ -309,7 +312,7 @@ class TermSubstrate:
         windowed = not self.periodic and self.convolver.kernels is not None
         window = (lambda m: self._window_operator(component, first, m)) if windowed else None
         return _operator(self._factors(component, first), self.convolver, self.preconditioners, window,
-                         single=not self.periodic)
+                         single=not self.periodic, fast_length=self.backend.fast_length)
 
     def _window_operator(self, component: str, first: bool, m: int) -> ElasticOperator:
         """:meth:`elastic_operator` on an m x m window: a convolver of the kernels cropped to the window
@@ -422,10 +425,11 @@ class TermSubstrate:
 
 def _operator(factors: Sequence[tuple[str, float]], conv: Convolver,
               preconditioners: Mapping[str, FourierPreconditioner],
-              window: Callable[[int], ElasticOperator] | None, single: bool) -> ElasticOperator:
+              window: Callable[[int], ElasticOperator] | None, single: bool,
+              fast_length: Callable[[int], int] = cpu_fast_length) -> ElasticOperator:
     """K x = sum over ``factors`` (kernel name, J_inst [1/Pa]) of J_inst K_name x through ``conv``, with
     the Fourier preconditioner of the summed symbols (:class:`ElasticOperator`); ``single``: with its
-    single-precision variants as well."""
+    single-precision variants as well; ``fast_length``: the backend's window sides."""
     if len(factors) == 1:
         (kernel, j_inst), = factors
         base = preconditioners[kernel]
@@ -449,8 +453,9 @@ def _operator(factors: Sequence[tuple[str, float]], conv: Convolver,
             return sum(conv.apply_sparse(k, x, j) for k, j in factors)
 
     if not single:
-        return ElasticOperator(product, precond, sparse, window)
-    return ElasticOperator(product, precond, sparse, window, lambda x: product(x, True), precond.single())
+        return ElasticOperator(product, precond, sparse, window, fast_length=fast_length)
+    return ElasticOperator(product, precond, sparse, window, lambda x: product(x, True), precond.single(),
+                           fast_length)
 
 
 class HalfSpace(TermSubstrate):

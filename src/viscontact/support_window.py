@@ -13,7 +13,8 @@ of the strictly convex programme being unique, it equals the full-domain solve's
 The box (:func:`window_side`) holds the support of the warm start (the extrapolated pressure of the
 last steps, :func:`viscontact.transient.step`) plus a margin of :data:`MARGIN_CELLS` cells or
 :data:`MARGIN_FRACTION` of its extent, its side m rounded up so that the padded length 2m is an
-FFT-friendly size (``scipy.fft.next_fast_len``). Where the check finds a penetration outside W, the
+FFT-friendly size of the backend (:attr:`viscontact.arrays.ArrayBackend.fast_length`: on the CPU
+``scipy.fft.next_fast_len``; on a GPU a coarser ladder, whose cuFFT plans a growing contact reuses). Where the check finds a penetration outside W, the
 box is enlarged over those points and the solve repeated from the same warm start (not from the last
 box's solution: Polonsky and Keer's stopping test, the relative change of p in an iteration, would
 pass at once from a point that is exact on the old box, with the new points still unloaded); after
@@ -28,11 +29,12 @@ unknown and the restricted solution is exact.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
-import scipy.fft
 
+from .arrays import cpu_fast_length
 from .constrained import ConstrainedSolution, constrained_cg
 from .grid import mask_span
 
@@ -49,13 +51,14 @@ FULL_FRACTION = 0.95
 MAX_ENLARGEMENTS = 3
 
 
-def window_side(extent: int, n: int) -> int | None:
+def window_side(extent: int, n: int, fast_length: Callable[[int], int] = cpu_fast_length) -> int | None:
     """Side m [cells] of the box for a support of ``extent`` cells on an n x n grid: the extent plus two
-    margins, rounded up so that 2m is a ``scipy.fft.next_fast_len`` size; None above
-    :data:`FULL_FRACTION` n (the full grid is then the cheaper box)."""
+    margins, rounded up so that the padded length 2m is a ``fast_length`` (the backend's,
+    :attr:`~viscontact.arrays.ArrayBackend.fast_length`: on the CPU ``scipy.fft.next_fast_len``);
+    None above :data:`FULL_FRACTION` n (the full grid is then the cheaper box)."""
     m = extent + 2 * max(MARGIN_CELLS, math.ceil(MARGIN_FRACTION * extent))
-    while scipy.fft.next_fast_len(2 * m, real=True) != 2 * m:
-        m += 1
+    while fast_length(2 * m) != 2 * m:
+        m = (fast_length(2 * m) + 1) // 2
     return m if m <= FULL_FRACTION * n else None
 
 
@@ -64,12 +67,12 @@ def _start(span: tuple[int, int], m: int, n: int) -> int:
     return min(max((span[0] + span[1] - m) // 2, 0), n - m)
 
 
-def _box(mask: np.ndarray) -> tuple[int, tuple[slice, slice]] | None:
-    """(m, the m x m box) around the True cells of ``mask`` (n, n) with :func:`window_side`'s margins;
-    None when that box would not be worth it."""
+def _box(mask: np.ndarray, fast_length: Callable[[int], int]) -> tuple[int, tuple[slice, slice]] | None:
+    """(m, the m x m box) around the True cells of ``mask`` (n, n) with :func:`window_side`'s margins
+    and the backend's ``fast_length``; None when that box would not be worth it."""
     n = mask.shape[0]
     rows, cols = mask_span(mask, 0), mask_span(mask, 1)
-    m = window_side(max(rows[1] - rows[0], cols[1] - cols[0]), n)
+    m = window_side(max(rows[1] - rows[0], cols[1] - cols[0]), n, fast_length)
     if m is None:
         return None
     r0, c0 = _start(rows, m, n), _start(cols, m, n)
@@ -120,7 +123,7 @@ def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None
         return full(x0, 0)
     iterations, cover = 0, support
     for _ in range(MAX_ENLARGEMENTS + 1):
-        window = _box(cover)
+        window = _box(cover, op.fast_length)
         if window is None:
             break
         m, box = window
@@ -169,7 +172,7 @@ def windowed_bounded_cg(op, b: np.ndarray, x0: np.ndarray, lower: np.ndarray, up
         As for :func:`windowed_cg`.
     """
     movable = lower < upper
-    window = _box(movable) if op.window is not None and movable.any() else None
+    window = _box(movable, op.fast_length) if op.window is not None and movable.any() else None
     if window is None:
         return constrained_cg(op.apply, b, x0, lower, upper, tolerance=tolerance, max_iterations=max_iterations,
                               what=what, **op.cg_options(mixed_precision))

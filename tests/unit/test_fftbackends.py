@@ -134,16 +134,22 @@ def test_default_workers_are_one_thread_up_to_512_squared() -> None:
 
 
 def test_solver_device_and_mixed_precision_are_case_keys() -> None:
-    """``[solver] device`` is a contract key: "cpu" runs, "gpu" (no CuPy backend yet) is refused with
-    one line naming the key, anything else too; ``mixed_precision`` reaches the problem."""
+    """``[solver] device`` is a contract key: "cpu" runs, "gpu" needs CuPy (refused with one line naming
+    the key and the extra where it is missing), anything else is refused; ``mixed_precision`` reaches
+    the problem."""
     case = load_case(ROOT / "cases" / "creep_indentation.toml")
     assert case.to_problem().solver.device == "cpu" and case.to_problem().solver.mixed_precision
     assert case.with_overrides({"solver.device": "cpu"}).to_problem().solver.device == "cpu"
     assert not case.with_overrides({"solver.mixed_precision": False}).to_problem().solver.mixed_precision
-    for value in ("gpu", "tpu"):
-        with pytest.raises(ParameterError) as err:
-            case.with_overrides({"solver.device": value}).to_problem()
-        assert err.value.key == "solver.device"
     with pytest.raises(ParameterError) as err:
-        SolverSettings(device="gpu")
-    assert "not available" in err.value.message
+        case.with_overrides({"solver.device": "tpu"}).to_problem()
+    assert err.value.key == "solver.device"
+    with pytest.raises(ParameterError) as err:
+        SolverSettings(device="gpu", fft="pyfftw")
+    assert err.value.key == "solver.fft" and "cuFFT" in err.value.message
+    if importlib.util.find_spec("cupy") is None:
+        with pytest.raises(ParameterError) as err:
+            case.with_overrides({"solver.device": "gpu"}).to_problem()
+        assert err.value.key == "solver.device" and "viscontact[gpu]" in err.value.message
+    else:
+        assert case.with_overrides({"solver.device": "gpu"}).to_problem().solver.device == "gpu"
