@@ -426,7 +426,8 @@ def test_a_streamed_run_stopped_and_resumed_on_the_device_equals_the_cpu_run(bac
         assert dev.attrs["complete"] == 1 and dev.sizes == cpu.sizes and "resumed" in dev.attrs["history"]
         assert set(dev.data_vars) == set(cpu.data_vars)
         for name in cpu.data_vars:
-            _assert_same(dev[name].values.astype(float), cpu[name].values.astype(float), backend, name)
+            if name != "iterations" or _exact(backend):  # the CG iterations may differ off the emulation
+                _assert_same(dev[name].values.astype(float), cpu[name].values.astype(float), backend, name)
 
 
 def _steady(body: str):
@@ -468,8 +469,8 @@ def test_the_steady_state_on_the_device_equals_numpy(backend, body, monkeypatch)
         if isinstance(want, np.ndarray):
             assert isinstance(value, np.ndarray), f.name
             _assert_same(value, want, backend, f.name)
-        elif isinstance(want, float) and not _exact(backend):
+        elif isinstance(want, float) and not _exact(backend):  # equal infinities too (sliding_distance)
             scale = max(abs(want), problem.grid.spacing if f.name in LENGTHS else 0.0)
-            assert abs(value - want) <= ROUND_OFF_AGREEMENT * scale, f.name
+            assert value == want or abs(value - want) <= ROUND_OFF_AGREEMENT * scale, f.name
         elif f.name != "iterations" or _exact(backend):
             assert value == want, f.name
