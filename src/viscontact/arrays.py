@@ -25,11 +25,15 @@ fields if it keeps to these rules (the array seam):
 On the CPU backend every one of these is free: ``to_device`` and ``to_host`` return their argument,
 and the arithmetic is the same. The test suite runs the transient and the steady solver on an
 emulated device (numpy behind CuPy's rules, ``tests/emulated_device.py``) and checks that they equal
-the numpy runs bit for bit and that a step after the first copies no field to the device. ``solver.device = "gpu"`` (CuPy, :func:`cupy_backend`) is refused until that suite has run on a
-GPU. Checkpoints save a device state through ``to_host`` and restore it to the device
+the numpy runs bit for bit and that a step after the first copies no field to the device; on a GPU
+(CuPy, :func:`cupy_backend`: ``solver.device = "gpu"``) the same tests hold its runs to the numpy
+runs to round-off (1e-10 of each field's peak, both solved to 1e-13: validated on an NVIDIA H200,
+2026-11-28). Checkpoints save a device state through ``to_host`` and restore it to the device
 (:mod:`viscontact.checkpoint`); the GMRES of the direct solve of strongly coupled gross sliding
 (:meth:`~viscontact.transient.NormalContact.solve_direct`) keeps its Krylov vectors on the device
-and its small Hessenberg system on the host. CPU-only: the literal hereditary sum (the reference,
+and its small Hessenberg system on the host. The support windows of a device run take their padded
+sides from :func:`device_fast_length`, whose few lengths keep cuFFT's plans (about 0.2 s each to
+make) in use as a contact grows. CPU-only: the literal hereditary sum (the reference,
 refused in one line on a device).
 """
 from __future__ import annotations
@@ -92,13 +96,13 @@ class ArrayBackend:
 def device_fast_length(length: int) -> int:
     """The smallest 2^k or 3 x 2^k >= ``length`` (ratios 4/3 and 3/2 between rungs).
 
-    On a GPU a new transform length costs a new cuFFT plan, about a tenth of a second each where the
-    four transforms of a DC-FFT product and the kernels' spectra are planned for every new support
-    window: a creeping contact, whose window grows by a few cells a step, spent more time planning
-    than solving (seed creep at 1024^2 on an H200: 0.65 s a step with ``scipy.fft``'s lengths, against
-    0.11 s for the sliding contact, whose window keeps its side; BENCHMARKS.md). On this ladder the
-    window changes side only when the contact grows by a third or more; the larger box costs little
-    on a GPU, whose small transforms are bound by their launches."""
+    On a GPU a new transform length costs new cuFFT plans: the first kernel spectrum and product of a
+    new window side took 0.18-0.51 s on an H200 (``benchmarks/device/plan_cost.py``), against 0.6-0.7 ms
+    for the same product afterwards. With ``scipy.fft``'s lengths a creeping contact, whose window
+    grows by a few cells a step, planned at every step: seed creep at 1024^2 took 0.66 s a step on
+    the GPU, no faster than 16 CPU cores; on this ladder it takes 0.072 s (BENCHMARKS.md). The window
+    changes side only when the contact grows by a third or more; the larger box costs little on a
+    GPU, whose small transforms are bound by their launches."""
     if length <= 1:
         return 1
     power = 1 << (int(length) - 1).bit_length()  # the smallest 2^k >= length
@@ -111,8 +115,7 @@ CPU = ArrayBackend("cpu", np, scipy.fft, np.asarray)
 
 
 def array_backend(device: str) -> ArrayBackend:
-    """The backend of ``solver.device``: :data:`CPU` for ``"cpu"``, :func:`cupy_backend` for ``"gpu"``
-    (which :class:`~viscontact.problem.SolverSettings` refuses for now).
+    """The backend of ``solver.device``: :data:`CPU` for ``"cpu"``, :func:`cupy_backend` for ``"gpu"``.
 
     Raises
     ------
@@ -132,11 +135,12 @@ def array_backend(device: str) -> ArrayBackend:
 
 
 def cupy_backend() -> ArrayBackend:
-    """CuPy and ``cupyx.scipy.fft`` on the current CUDA device.
+    """CuPy and ``cupyx.scipy.fft`` on the current CUDA device, its window sides on
+    :func:`device_fast_length`'s ladder (``solver.device = "gpu"``).
 
-    Not yet validated on a GPU (no session of this project has had one): the test suite's backend
-    tests run on it where CuPy finds a device, and ``solver.device = "gpu"`` stays refused until they
-    have passed there.
+    Validated on an NVIDIA H200 (CuPy 14.2, CUDA 13): the test suite's backend tests run on it where
+    CuPy finds a device and hold it to the numpy runs to round-off; it pays off from about 1024^2
+    cells (docs/gpu.md: 5-11 times the 16 CPU cores of its host there; slower than they at 256^2).
 
     Raises
     ------

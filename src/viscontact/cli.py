@@ -461,10 +461,12 @@ def _run_locked(args: argparse.Namespace, started: float) -> int:
     estimate = check_resources(outline, args.out, force=args.force, checkpoints=bool(args.checkpoint_every),
                                written_bytes=written, topography=case.indenter.uses_surface_topography)
     if args.dry_run:  # a run prepares its problem in run_to_file
+        from .arrays import array_backend
         from .transient import validate
 
         problem, _ = api.prepare(case)
         validate(problem)
+        array_backend(problem.solver.device)  # 'gpu' without a CUDA device: one line, as the run would
         print(describe(problem, estimate))
         return 0
     if args.resume:  # what the killed run's writes left half way

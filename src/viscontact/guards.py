@@ -71,6 +71,10 @@ END_SHORTFALL = 0.01
 #: history's load or approach) by which the time steps may miss one of its turning points
 #: (:func:`turning_point_miss`); refused above
 TURNING_POINT_MISS = 0.01
+#: cells per side below which ``solver.device = "gpu"`` warns: its transforms are bound by their
+#: launches there (seed Table 1 at 256^2 through the command line: 23.8 s on an H200 against 11.0 s
+#: on its host's 16 cores; at 1024^2 the GPU steps 5.4 times as fast: BENCHMARKS.md)
+GPU_SMALL_GRID = 512
 #: the time-step check runs the scheme over at most this many steps (the response has settled by then
 #: or the estimate is taken over the first part of the run)
 MAX_CHECKED_STEPS = 4000
@@ -214,6 +218,16 @@ def _check_flat_face(problem: Problem) -> None:
                     f"rim (a singular pressure averaged over a cell) may put the load at a given approach off by "
                     f"about {100 * error:.0f} % (Boussinesq; grid.n = {needed} would give less than "
                     f"{100 * WARNING_LIMIT:.0f} %)")
+
+
+def _check_device(problem: Problem) -> None:
+    """Warn where ``solver.device = "gpu"`` runs a grid below :data:`GPU_SMALL_GRID` cells a side, on
+    which the CPU is likely the faster device."""
+    n = problem.grid.n
+    if problem.solver.device == "gpu" and n < GPU_SMALL_GRID:
+        warn_caller(f"solver.device = 'gpu' on {n} x {n} cells: below {GPU_SMALL_GRID} x {GPU_SMALL_GRID} the GPU's "
+                    "transforms are bound by their launches and the CPU is likely faster (seed Table 1 at 256 x 256: "
+                    "23.8 s on an H200 against 11.0 s on 16 CPU cores); solver.device = 'cpu' runs it there")
 
 
 def _check_space(problem: Problem, transient: bool) -> None:
@@ -522,6 +536,7 @@ def check_problem(problem: Problem, *, transient: bool = True) -> None:
     """
     check_material(problem.material)
     _check_space(problem, transient)
+    _check_device(problem)
     if transient:
         _check_time(problem)
         _check_end(problem)

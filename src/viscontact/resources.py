@@ -345,12 +345,14 @@ def _records_of(problem: Problem, est: Estimate) -> str:
 
 
 def describe(problem: Problem, est: Estimate) -> str:
-    """One paragraph for ``viscontact run --dry-run``."""
+    """One paragraph for ``viscontact run --dry-run`` (its memory and run time those of a CPU run)."""
     g, t = problem.grid, problem.time
     return (f"{problem.title or 'case'}: {g.n} x {g.n} cells of {g.spacing * 1e6:.3g} um, {t.n_steps} steps of "
             f"{t.dt:.4g} s ({problem.tangential.mode}, {problem.normal.control} control, scheme {t.scheme}); "
             f"result about {format_size(est.result_bytes)} ({_records_of(problem, est)}), "
-            f"peak memory about {format_size(est.peak_memory_bytes)}, run time about {_duration(est.seconds)}")
+            f"peak memory about {format_size(est.peak_memory_bytes)}, run time about {_duration(est.seconds)}"
+            + ("; memory and run time are the CPU run's (solver.device = 'gpu': not estimated for the GPU, "
+               "see docs/gpu.md)" if problem.solver.device == "gpu" else ""))
 
 
 def format_size(nbytes: float) -> str:

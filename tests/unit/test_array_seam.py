@@ -14,6 +14,7 @@ import os
 import subprocess
 import sys
 import types
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -171,6 +172,38 @@ def test_the_gpu_selection_skips_each_device_test_with_its_reason_where_cupy_fin
                          cwd=tmp_path)
     assert out.returncode == 0, out.stdout + out.stderr
     assert "2 skipped" in out.stdout and "no CuPy GPU backend" in out.stdout and "emulated" not in out.stdout
+
+
+@pytest.mark.parametrize("dry_run", [False, True])
+def test_cupy_without_a_cuda_device_is_one_line_and_exit_2_before_anything_is_written(tmp_path, dry_run):
+    """solver.device = "gpu" where CuPy is installed but finds no device (a stand-in CuPy whose runtime
+    raises as CUDA's does): ``viscontact run`` and its ``--dry-run`` stop with one line naming the key,
+    status 2, and write nothing."""
+    fake = tmp_path / "fake"
+    (fake / "cupyx" / "scipy").mkdir(parents=True)
+    (fake / "cupy").mkdir()
+    (fake / "cupy" / "__init__.py").write_text(
+        "class _Runtime:\n"
+        "    @staticmethod\n"
+        "    def getDeviceCount():\n"
+        "        raise RuntimeError('cudaErrorNoDevice: no CUDA-capable device is detected')\n"
+        "class cuda:\n"
+        "    runtime = _Runtime\n")
+    for package in ("cupyx", "cupyx/scipy"):
+        (fake / package / "__init__.py").write_text("")
+    (fake / "cupyx" / "scipy" / "fft.py").write_text("")
+    src = Path(__file__).resolve().parents[2] / "src"
+    out_file = tmp_path / "r.nc"
+    out = subprocess.run([sys.executable, "-m", "viscontact", "run", str(shipped_case("creep_indentation")),
+                          "--out", str(out_file), "--set", 'solver.device="gpu"', "--set", "grid.n=512",
+                          *(["--dry-run"] if dry_run else [])],
+                         env={**os.environ, "PYTHONPATH": f"{fake}{os.pathsep}{src}"}, capture_output=True, text=True,
+                         timeout=120)
+    assert out.returncode == 2, out.stdout + out.stderr
+    lines = out.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("viscontact: error: solver.device: 'gpu' needs CuPy and a CUDA device")
+    assert "cudaErrorNoDevice" in lines[0]
+    assert not list(tmp_path.glob("r.nc*"))
 
 
 def test_the_cpu_backend_moves_nothing():

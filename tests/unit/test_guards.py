@@ -434,3 +434,26 @@ def test_a_time_step_that_misses_the_peak_of_a_load_history_is_refused():
     guards.check_problem(replace(problem, normal=replace(problem.normal, history=on_a_step)))
     held = PiecewiseLinear((0.0, 2.4e-3, 2.6e-3, 5.0e-3), (0.0, 0.15, 0.15, 0.0))
     guards.check_problem(replace(problem, normal=replace(problem.normal, history=held)))
+
+
+def test_a_gpu_run_on_a_small_grid_warns_that_the_cpu_is_likely_faster(monkeypatch):
+    """solver.device = "gpu" below GPU_SMALL_GRID cells a side warns once, naming the key and the
+    measurement; at GPU_SMALL_GRID it runs without the warning (CuPy's presence faked: the check is
+    the guard's, not the device's)."""
+    import importlib.util
+
+    from viscontact.problem import SolverSettings
+
+    real_find_spec = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec",
+                        lambda name, *a: object() if name == "cupy" else real_find_spec(name, *a))
+    case = load_case(ROOT / "cases" / "seed_table1_v0.8.toml")
+    problem = case.to_problem()
+    small = replace(problem, solver=SolverSettings(device="gpu"))
+    with pytest.warns(ViscontactWarning, match=r"solver.device = 'gpu' on 256 x 256 cells.*'cpu'"):
+        guards.check_problem(small)
+    large = case.with_overrides({"grid.n": guards.GPU_SMALL_GRID, "solver.device": "gpu"}).to_problem()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        guards.check_problem(large, transient=False)
+    assert not [w for w in caught if "solver.device" in str(w.message)]
