@@ -20,6 +20,8 @@ from viscontact import arrays, cli
 from viscontact.errors import ParameterError
 from viscontact.problem import SolverSettings
 
+pytestmark = pytest.mark.filterwarnings("ignore::viscontact.errors.ViscontactWarning")  # small grids on the "gpu"
+
 ROOT = Path(__file__).resolve().parents[2]
 CASES = ROOT / "cases"
 GPU = ['--set', 'solver.device="gpu"']
@@ -56,3 +58,52 @@ def test_the_reference_sum_on_a_gpu_is_one_line_before_anything_is_written(gpu, 
     with pytest.raises(ParameterError) as err:
         SolverSettings(device="gpu", history="direct")
     assert err.value.key == "solver.history"
+
+
+# --- a checkpoint resumes on the other device ------------------------------------------------------
+
+def _stopped_run(case, out: Path, after: int) -> None:
+    """``viscontact run --checkpoint-every 3`` of ``case`` stopped after ``after`` steps (as by SIGINT)."""
+    from viscontact import api
+    from viscontact.errors import RunInterrupted
+
+    done: list[int] = []
+    with pytest.raises(RunInterrupted):
+        api.run_to_file(case, out, checkpoint_every=3, progress=lambda k, total: done.append(k),
+                        should_stop=lambda: "SIGINT" if len(done) >= after else None)
+
+
+@pytest.mark.parametrize("devices", [("cpu", "gpu"), ("gpu", "cpu")])
+@pytest.mark.parametrize("name, sets", [("seed_table1_v0.8", {"grid.n": 32, "tangential.steps_per_cell": 4}),
+                                        ("fretting_zener", {"grid.n": 32})])
+def test_a_run_checkpointed_on_one_device_resumes_on_the_other(gpu, monkeypatch, tmp_path, capsys, devices,
+                                                               name, sets):
+    """``--resume`` with the other ``solver.device`` than the run that wrote the checkpoint was refused
+    as "written for a different case or output settings" (the device was in the fingerprint), which
+    left a run checkpointed on a GPU that is gone no way on. It resumes: sliding (the wake's columns
+    on the host, the histories shifted) and fretting (the incremental slip), on the emulation with
+    the CPU's window sides equal to the uninterrupted CPU run bit for bit."""
+    import xarray as xr
+
+    from viscontact import api
+    from viscontact.case import load_case
+    from viscontact.shipped import shipped_case
+
+    monkeypatch.setattr(arrays, "cupy_backend", lambda: emulated_device.BACKEND)  # numpy's windows: bit for bit
+    case = load_case(shipped_case(name)).with_overrides(sets)
+    first, then = devices
+    api.run_to_file(case.with_overrides({"solver.device": "cpu"}), tmp_path / "whole.nc")
+    out = tmp_path / "r.nc"
+    _stopped_run(case.with_overrides({"solver.device": first}), out, 30)
+    with np.load(api.checkpoint_path(out)) as saved:
+        assert ("state.pressure.__device__" in saved.files) == (first == "gpu")
+        assert name != "seed_table1_v0.8" or "state.wake.strips.0" in saved.files  # the wake is in it
+    capsys.readouterr()
+    assert cli.main(["run", str(shipped_case(name)), "--out", str(out), "--resume", "--quiet",
+                     *[a for k, v in sets.items() for a in ("--set", f"{k}={v}")],
+                     "--set", f'solver.device="{then}"']) == 0, capsys.readouterr().err
+    assert not api.checkpoint_path(out).exists()
+    with xr.open_dataset(tmp_path / "whole.nc") as whole, xr.open_dataset(out) as resumed:
+        assert resumed.attrs["complete"] == 1 and resumed.sizes == whole.sizes and "resumed" in resumed.attrs["history"]
+        for var in whole.data_vars:
+            np.testing.assert_array_equal(resumed[var].values, whole[var].values, err_msg=var)
