@@ -12,7 +12,8 @@ the in-memory :func:`viscontact.api.run` also holds the records so far.
 
 A state on a device array backend (:mod:`viscontact.arrays`) is saved through the backend's
 ``to_host``, each such array marked, and restored to the device with its ``to_device``; the arrays
-the state keeps on the host (the wake's columns) stay there.
+the state keeps on the host (the wake's columns) stay there. ``solver.device`` is not in the problem's
+fingerprint: a checkpoint of either device resumes on the other (:func:`state_from_arrays`).
 """
 from __future__ import annotations
 
@@ -42,11 +43,14 @@ def problem_fingerprint(problem: Problem) -> str:
     steps and fields the records hold). A setting added since checkpoints were first written enters
     it only away from its default (the body's, ``tangential.slip`` in partial slip,
     ``tangential.displacement_history``), so that the checkpoints of the problems it does not change
-    still resume."""
+    still resume. ``solver.device`` does not enter it (it is hashed as ``"cpu"``, as before the GPU):
+    the two devices solve the same problem, so a run checkpointed on one resumes on the other
+    (:func:`state_from_arrays`)."""
     h = hashlib.sha256()
     tangential = _repr_without(problem.tangential, "slip", "displacement_history")
+    solver = dataclasses.replace(problem.solver, device="cpu") if problem.solver.device != "cpu" else problem.solver
     h.update(repr((problem.material, problem.grid, problem.normal, tangential,
-                   problem.time, problem.solver, problem.radius, problem.output)).encode())
+                   problem.time, solver, problem.radius, problem.output)).encode())
     h.update(np.ascontiguousarray(problem.gap).tobytes())
     body = {"bulk_modulus": problem.bulk_modulus, "layer": problem.layer}
     if any(v is not None for v in body.values()):  # the half-space's fingerprint stays what it was
@@ -102,9 +106,10 @@ def _flatten(key: str, value: Any, out: dict[str, np.ndarray], to_host: Callable
         out[f"{key}.__device__"] = np.array(True)
 
 
-def _unflatten(key: str, data, to_device: Callable[[np.ndarray], Any]) -> Any:
+def _unflatten(key: str, data, to_device: Callable[[np.ndarray], Any],
+               on_device: Callable[[str, np.ndarray], bool] | None = None) -> Any:
     """Inverse of :func:`_flatten` (classes only from this package; the arrays marked ``__device__``
-    through ``to_device``)."""
+    through ``to_device``, and those for which ``on_device(key, array)`` holds)."""
     if f"{key}.__class__" in data:
         module, name = str(data[f"{key}.__class__"]).split(":")
         if module.split(".")[0] != __name__.split(".")[0]:
@@ -112,18 +117,18 @@ def _unflatten(key: str, data, to_device: Callable[[np.ndarray], Any]) -> Any:
         cls = getattr(importlib.import_module(module), name)
         # a field added since the checkpoint was written takes its default (e.g. the carried products
         # of the transient state: recomputed where missing)
-        return cls(**{f.name: _unflatten(f"{key}.{f.name}", data, to_device) for f in dataclasses.fields(cls)
-                      if _stored(f"{key}.{f.name}", data) or not _has_default(f)})
+        return cls(**{f.name: _unflatten(f"{key}.{f.name}", data, to_device, on_device)
+                      for f in dataclasses.fields(cls) if _stored(f"{key}.{f.name}", data) or not _has_default(f)})
     if f"{key}.__dict__" in data:
-        return {str(k): _unflatten(f"{key}.{k}", data, to_device) for k in data[f"{key}.__dict__"]}
+        return {str(k): _unflatten(f"{key}.{k}", data, to_device, on_device) for k in data[f"{key}.__dict__"]}
     for kind in (list, tuple):
         if f"{key}.__{kind.__name__}__" in data:
-            return kind(_unflatten(f"{key}.{i}", data, to_device)
+            return kind(_unflatten(f"{key}.{i}", data, to_device, on_device)
                         for i in range(int(data[f"{key}.__{kind.__name__}__"])))
     if f"{key}.__none__" in data:
         return None
     value = data[key]
-    if f"{key}.__device__" in data:
+    if f"{key}.__device__" in data or (on_device is not None and on_device(key, value)):
         return to_device(value.copy())
     return value.item() if value.ndim == 0 else value.copy()
 
@@ -146,10 +151,23 @@ def state_arrays(state: State, backend: ArrayBackend = CPU) -> dict[str, np.ndar
     return out
 
 
+#: the part of a state that a device run keeps on the host: the wake's columns
+#: (:meth:`~viscontact.substrate.TermSubstrate.shifted` copies the dropped history there)
+_HOST_PART = f"{_ROOT}.wake."
+
+
 def state_from_arrays(data, backend: ArrayBackend = CPU) -> State:
     """Inverse of :func:`state_arrays` (bit-exact), the arrays that were on the device moved to
-    ``backend``'s."""
-    return _unflatten(_ROOT, _Keys(data), backend.to_device)
+    ``backend``'s. A state saved by a run on the CPU (no array marked) and restored to a device has
+    there what a device run keeps there: every array of one or more dimensions but the wake's; one
+    saved on a device and restored to the CPU has its marked arrays as numpy arrays."""
+    keys = _Keys(data)
+
+    def written_on_the_cpu(key: str, value: np.ndarray) -> bool:
+        return value.ndim >= 1 and not key.startswith(_HOST_PART)
+
+    marked = any(name.endswith(".__device__") for name in keys.names)
+    return _unflatten(_ROOT, keys, backend.to_device, None if backend.is_cpu or marked else written_on_the_cpu)
 
 
 class _Keys:

@@ -337,6 +337,9 @@ class SolverSettings:
         if self.device == "gpu" and self.fft == "pyfftw":
             raise ParameterError("solver.fft", "'pyfftw' transforms on the CPU: with solver.device = 'gpu' "
                                  "the transforms are cuFFT's; use 'scipy' (the default)")
+        if self.device == "gpu" and self.history == "direct":  # refused here, before any file: --dry-run too
+            raise ParameterError("solver.history", "'direct' (the reference sum) runs on the CPU only: with "
+                                 "solver.device = 'gpu' use 'recursive' (the default)")
         if self.device == "gpu" and importlib.util.find_spec("cupy") is None:
             raise ParameterError("solver.device", "'gpu' needs the optional package CuPy for the machine's CUDA "
                                  "(pip install 'viscontact[gpu]' for CUDA 12, 'viscontact[gpu-cuda13]' for CUDA 13); "

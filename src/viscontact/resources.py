@@ -299,7 +299,8 @@ def check_resources(problem: Problem, out: str | Path, *, force: bool = False, c
     """Refuse a run that needs more than the machine has: its result (and, with ``checkpoints``,
     its checkpoints) beyond the free disk of ``out``, its memory beyond the free RAM, its run time
     beyond :data:`MAX_RUN_SECONDS`. :class:`ParameterError` naming the key to change, or with
-    ``force`` a warning. ``written_bytes``: what a resumed run's streamed file already holds on
+    ``force`` a warning; with ``solver.device = "gpu"`` the memory and the run time (the CPU run's,
+    :func:`describe`) only warn. ``written_bytes``: what a resumed run's streamed file already holds on
     that disk [bytes] (not needed again). ``topography``: the case's surface imports SurfaceTopography
     (:func:`estimate`)."""
     est = estimate(problem, topography=topography)
@@ -324,10 +325,16 @@ def check_resources(problem: Problem, out: str | Path, *, force: bool = False, c
     if est.seconds > MAX_RUN_SECONDS:
         problems.append(("time.t_end", f"{problem.time.n_steps} steps on {problem.grid.n}^2 cells would take about "
                          f"{_duration(est.seconds)}: check time.t_end and time.dt (and grid.n)"))
+    # a GPU run's memory and time are not estimated: the CPU run's, which hold its fields in host memory
+    # and take 5-11 times as long at 1024^2 and above (docs/gpu.md), refuse nothing; the disk is the same
+    cpu_only = {"grid.n", "time.t_end"} if problem.solver.device == "gpu" else set()
     for key, message in problems:
-        if not force:
+        if key in cpu_only:
+            warn_caller(f"{key}: {message} (the CPU run's estimate: solver.device = 'gpu' runs it)")
+        elif not force:
             raise ParameterError(key, f"{message} (--force runs it anyway)")
-        warn_caller(f"{key}: {message}")
+        else:
+            warn_caller(f"{key}: {message}")
     return est
 
 
