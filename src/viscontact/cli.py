@@ -164,7 +164,7 @@ def _add_sweep(sub: Any) -> None:
     p.add_argument("--scheduler", metavar="ADDRESS", help="an existing dask scheduler, e.g. tcp://host:8786 "
                    "(default: a local cluster)")
     p.add_argument("--workers", type=int, metavar="N", help=f"local worker processes (default: one per core, "
-                   f"{available_cores()} here)")
+                   f"{available_cores()} here; one where the runs use solver.device = \"gpu\")")
     p.add_argument("--plots", metavar="DIR", help="also write the sweep figures into DIR")
     _figure_arguments(p)
     p.add_argument("--force", action="store_true", help="replace an existing SWEEP.nc of another sweep")

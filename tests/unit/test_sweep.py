@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import os
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -410,3 +411,29 @@ def test_plot_sweep_of_a_saved_file(tmp_path, transient_sweep):
 # --- helpers ---------------------------------------------------------------------------------------
 def _forbidden(*a, **k):
     raise AssertionError("a cluster was started before the sweep file was checked")
+
+
+@pytest.mark.parametrize("device, workers, expected", [("gpu", None, 1), ("gpu", 3, 3), ("cpu", None, None)])
+def test_a_local_cluster_for_gpu_runs_has_one_worker_unless_told(tmp_path, monkeypatch, device, workers, expected):
+    """Runs with solver.device = "gpu" share the one CUDA device: the local cluster defaults to one
+    worker process for them (not one per core, each with its own CUDA context); --workers still
+    sets it; CPU runs keep the default (one per core). CuPy's presence is faked: no run starts."""
+    import importlib.util
+
+    from viscontact.sweep import execute
+
+    real_find_spec = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec",
+                        lambda name, *a: object() if name == "cupy" else real_find_spec(name, *a))
+    asked = []
+
+    def no_cluster(client, n):
+        asked.append(n)
+        raise RuntimeError("stop before any run")
+
+    monkeypatch.setattr(execute, "cluster_client", no_cluster)
+    spec = write_sweep(tmp_path, extra=f'[overrides]\n"solver.device" = "{device}"\n"grid.n" = 512\n')
+    with pytest.raises(RuntimeError, match="stop before any run"), warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the CPU run's estimates at 512^2
+        sweep(spec, workers=workers)
+    assert asked == [expected]

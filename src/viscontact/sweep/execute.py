@@ -114,7 +114,8 @@ def sweep(spec: SweepSpec | Plan | str | Path, client: Any = None, out: str | Pa
         :class:`Plan` :func:`planned` made of it.
     client
         A ``distributed.Client``. None: a ``LocalCluster`` of ``workers`` processes (default one
-        per core) with one thread each is started for the call and closed after it.
+        per core; one where a run has ``solver.device = "gpu"``: the runs share the first CUDA
+        device) with one thread each is started for the call and closed after it.
     out
         The sweep's netCDF file; the runs' result files go to ``SWEEP.runs/`` beside it, and complete
         ones found there are reused (resume). An existing ``out`` is replaced when it holds this same
@@ -191,6 +192,8 @@ def _sweep(the_plan: Plan, client: Any, out: str | Path | None,
                 remove_temporaries(folder / the_plan.runs[k].name)  # a result only, never an input
                 check_output_path(folder / the_plan.runs[k].name, force=True, inputs=inputs)
         tasks = {k: _task(the_plan, the_plan.runs[k], folder) for k in todo}
+        if client is None and workers is None and any(the_plan.runs[k].case.solver.device == "gpu" for k in todo):
+            workers = 1  # every run on the one GPU: a process per core would each hold a CUDA context
         with cluster_client(client, workers) as cl:
             _submit_all(cl, tasks, tick)
     ds = assemble(the_plan, results, transient)
