@@ -166,8 +166,9 @@ def estimate(problem: Problem, *, topography: bool = False, transform: float | N
       contact foreseen (:func:`window_cells`) and, with ``solver.mixed_precision``, the complex64
       spectra of the self kernels;
     * with ``topography``, :data:`TOPOGRAPHY_IMPORT_MEMORY`;
-    * with ``output.subsurface_depths``, the subsurface stresses' padded transforms and their
-      chunked temporaries (:func:`viscontact.subsurface.working_bytes`), on top of it all (measured:
+    * with ``output.subsurface_depths``, the subsurface stresses' padded transforms (the pressure's,
+      and q_x's where the mode has a shear traction) and their chunked temporaries
+      (:func:`viscontact.subsurface.working_bytes`), on top of it all (measured:
       the peak RSS of the shipped ``creep_subsurface_stress`` case grows by the stresses' own peak).
 
     Measured (``benchmarks/bench_memory.py``, ``viscontact run``'s VmHWM, 2026-11-28): creep
@@ -219,7 +220,7 @@ def estimate(problem: Problem, *, topography: bool = False, transform: float | N
     if depths:  # computed once the steps are done, from the recorded tractions: on top of the run's peak
         from .subsurface import working_bytes
 
-        solver += working_bytes(problem.grid, max(depths))
+        solver += working_bytes(problem.grid, max(depths), 2 if problem.tangential.has_shear else 1)
     if transform is None:
         transform = transform_seconds(problem)
     share = 1.0 if problem.grid.periodic else ((window_cells(problem) or n) / n) ** 2

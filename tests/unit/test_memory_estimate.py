@@ -44,6 +44,23 @@ def test_a_surface_made_by_surface_topography_adds_its_import():
         - estimate(outline).peak_memory_bytes == int(TOPOGRAPHY_IMPORT_MEMORY)
 
 
+def test_the_subsurface_stresses_add_the_transforms_of_the_tractions_the_mode_makes():
+    """The subsurface stresses (on top of the run's peak) cost working_bytes of the pressure alone
+    where the mode makes no shear traction (q_x = 0: not transformed), of p and q_x in gross sliding."""
+    import dataclasses
+
+    from viscontact.subsurface import working_bytes
+
+    for mode, tractions in (("none", 1), ("frictionless_sliding", 1), ("gross_sliding", 2)):
+        moving = {"tangential.sliding_speed": 0.01} if mode != "none" else {}
+        problem = _case("creep_subsurface_stress", **{"tangential.mode": mode, **moving}).problem_outline()
+        depths = problem.output.subsurface_depths
+        bare = dataclasses.replace(problem, output=dataclasses.replace(problem.output, subsurface_depths=()))
+        added = estimate(problem).peak_memory_bytes - estimate(bare).peak_memory_bytes
+        assert added == working_bytes(problem.grid, max(depths), tractions)
+    assert working_bytes(problem.grid, max(depths), 1) < 0.85 * working_bytes(problem.grid, max(depths), 2)
+
+
 def test_the_arrays_scale_with_the_cells_above_a_constant_base():
     """Every array term of a periodic case (no windows: no contact to size them) is a number of n x n
     or padded (2n)^2 fields: the estimate's growth from 256^2 to 512^2 is 4x its growth from 128^2 to
