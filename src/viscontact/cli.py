@@ -459,7 +459,7 @@ def _run_locked(args: argparse.Namespace, started: float) -> int:
     outline = case.problem_outline()  # the estimate's sizes, before any n x n array
     check_material(outline.material)  # the estimate reads its creep spectrum
     estimate = check_resources(outline, args.out, force=args.force, checkpoints=bool(args.checkpoint_every),
-                               written_bytes=written, topography=case.indenter.uses_surface_topography)
+                               written_bytes=written)  # the outline says whether SurfaceTopography makes its gap
     if args.dry_run:  # a run prepares its problem in run_to_file
         from .arrays import array_backend
         from .transient import validate

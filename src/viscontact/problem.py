@@ -430,6 +430,10 @@ class Problem:
     bulk_modulus: float | None = None
     #: the material is a layer on a substrate (None: a half-space)
     layer: LayerSettings | None = None
+    #: the gap was made by SurfaceTopography (a self-affine surface or roughness, a measured
+    #: topography; set by :meth:`viscontact.case.Case.to_problem`): a run of it imports that package,
+    #: which :func:`viscontact.resources.estimate` counts. It does not shape the solution.
+    surface_topography: bool = False
 
     def __post_init__(self) -> None:
         n = self.grid.n

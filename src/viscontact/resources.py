@@ -146,7 +146,7 @@ class Estimate:
         return self.result_bytes + (2 * self.checkpoint_bytes if checkpoints else 0)
 
 
-def estimate(problem: Problem, *, topography: bool = False, transform: float | None = None) -> Estimate:
+def estimate(problem: Problem, *, topography: bool | None = None, transform: float | None = None) -> Estimate:
     """Result size and peak memory of the transient run of ``problem``.
 
     Result: what :mod:`viscontact.streaming` claims on disk for it (:func:`stream_bytes`) plus the
@@ -165,7 +165,8 @@ def estimate(problem: Problem, *, topography: bool = False, transform: float | N
       last and of one more being built (with its crops), each side at most the box of the widest
       contact foreseen (:func:`window_cells`) and, with ``solver.mixed_precision``, the complex64
       spectra of the self kernels;
-    * with ``topography``, :data:`TOPOGRAPHY_IMPORT_MEMORY`;
+    * with ``topography`` (default ``problem.surface_topography``: the problem of a case whose
+      surface SurfaceTopography makes), :data:`TOPOGRAPHY_IMPORT_MEMORY`;
     * with ``output.subsurface_depths``, the subsurface stresses' padded transforms (the pressure's,
       and q_x's where the mode has a shear traction) and their chunked temporaries
       (:func:`viscontact.subsurface.working_bytes`), on top of it all (measured:
@@ -213,6 +214,8 @@ def estimate(problem: Problem, *, topography: bool = False, transform: float | N
         m = window_cells(problem)
         solver += (WINDOWS_KEPT + 1) * self_kernels * per_component * kernel_bytes(m) \
             + self_kernels * per_component * 4 * m * m * 8
+    if topography is None:
+        topography = problem.surface_topography
     if topography:  # the case's surface (self-affine, a measured topography) imports SurfaceTopography
         solver += TOPOGRAPHY_IMPORT_MEMORY
     state = (2 * modes + 8) * 8 * n * n + carried + slip
@@ -296,13 +299,13 @@ def available_memory() -> int | None:
 
 
 def check_resources(problem: Problem, out: str | Path, *, force: bool = False, checkpoints: bool = False,
-                    written_bytes: int = 0, topography: bool = False) -> Estimate:
+                    written_bytes: int = 0, topography: bool | None = None) -> Estimate:
     """Refuse a run that needs more than the machine has: its result (and, with ``checkpoints``,
     its checkpoints) beyond the free disk of ``out``, its memory beyond the free RAM, its run time
     beyond :data:`MAX_RUN_SECONDS`. :class:`ParameterError` naming the key to change, or with
     ``force`` a warning. ``written_bytes``: what a resumed run's streamed file already holds on
     that disk [bytes] (not needed again). ``topography``: the case's surface imports SurfaceTopography
-    (:func:`estimate`)."""
+    (:func:`estimate`; default ``problem.surface_topography``)."""
     est = estimate(problem, topography=topography)
     folder = Path(out).resolve().parent
     while not folder.exists() and folder != folder.parent:
