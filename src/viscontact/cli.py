@@ -448,10 +448,10 @@ def _run_locked(args: argparse.Namespace, started: float) -> int:
     from .guards import check_material
     from .resources import check_resources, describe
     from .results import open_result
-    from .streaming import partial_path
+    from .streaming import check_partial_path
 
     case = _prepare(args)
-    partial = partial_path(args.out)
+    partial = check_partial_path(args.out)  # a folder there is in the way, not an interrupted run's steps
     if partial.exists() and not (args.force or args.resume):
         raise FileExistsError(errno.EEXIST, "holds the steps of an interrupted run: --resume continues it (with its "
                               "checkpoint), --force starts over", str(partial))
