@@ -219,7 +219,8 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
         whole run).
     FileExistsError, IsADirectoryError
         ``out`` exists and neither ``force`` nor ``resume`` is given, or it is a folder, a file that
-        is no netCDF result or a file the case reads (even with ``force``).
+        is no netCDF result or a file the case reads (even with ``force``); or ``OUT.partial`` is a
+        folder or not a regular file (:func:`viscontact.streaming.check_partial_path`).
     OSError
         The result cannot be written: ``ENOSPC`` naming the file, the size needed and the space
         free (before the first step, or between two records with the steps done kept as below).
@@ -235,7 +236,7 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
     from .checkpoint import check_checkpoint_every, check_checkpoint_path, load_checkpoint
     from .output_files import check_output_path, link_target, output_lock
     from .records import records_from_arrays
-    from .streaming import ResultStream, is_complete_result, partial_path
+    from .streaming import ResultStream, check_partial_path, is_complete_result
 
     check_checkpoint_every(checkpoint_every)
     inputs: list[Path] = []
@@ -250,7 +251,7 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
     out = Path(out)
     with output_lock(out):
         check_output_path(out, force=force or resume, inputs=inputs)
-        partial, checkpoint = partial_path(out), checkpoint_path(out)
+        partial, checkpoint = check_partial_path(out), checkpoint_path(out)
         if not resume:  # removed once the streamed file is created: only an earlier run's checkpoint
             check_checkpoint_path(checkpoint)
         start, extra = None, {}

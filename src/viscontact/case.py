@@ -725,6 +725,7 @@ class Case(_Section):
             title=self.title,
             bulk_modulus=self.material.bulk_modulus,
             layer=None if self.layer is None else self.layer.build(),
+            surface_topography=self.indenter.uses_surface_topography,
         )
 
 

@@ -448,10 +448,10 @@ def _run_locked(args: argparse.Namespace, started: float) -> int:
     from .guards import check_material
     from .resources import check_resources, describe
     from .results import open_result
-    from .streaming import partial_path
+    from .streaming import check_partial_path
 
     case = _prepare(args)
-    partial = partial_path(args.out)
+    partial = check_partial_path(args.out)  # a folder there is in the way, not an interrupted run's steps
     if partial.exists() and not (args.force or args.resume):
         raise FileExistsError(errno.EEXIST, "holds the steps of an interrupted run: --resume continues it (with its "
                               "checkpoint), --force starts over", str(partial))
@@ -459,7 +459,7 @@ def _run_locked(args: argparse.Namespace, started: float) -> int:
     outline = case.problem_outline()  # the estimate's sizes, before any n x n array
     check_material(outline.material)  # the estimate reads its creep spectrum
     estimate = check_resources(outline, args.out, force=args.force, checkpoints=bool(args.checkpoint_every),
-                               written_bytes=written, topography=case.indenter.uses_surface_topography)
+                               written_bytes=written)  # the outline says whether SurfaceTopography makes its gap
     if args.dry_run:  # a run prepares its problem in run_to_file
         from .arrays import array_backend
         from .transient import validate

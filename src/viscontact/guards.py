@@ -45,7 +45,7 @@ from .problem import PiecewiseLinear, Problem, is_number
 from .schemes import stable_step_limit, step_coefficients
 
 __all__ = ["ContactEstimate", "check_material", "check_problem", "check_solution", "contact_estimate",
-           "flat_face_cells", "grid_suggestion", "peak_pressure_error", "time_step_error"]
+           "flat_face_cells", "flat_face_grid", "grid_suggestion", "peak_pressure_error", "time_step_error"]
 
 #: estimated relative errors of the peak pressure above which a run is refused / warned about
 ERROR_LIMIT, WARNING_LIMIT = 0.10, 0.05
@@ -212,12 +212,17 @@ def _check_flat_face(problem: Problem) -> None:
         return
     error = FLAT_FACE_LOAD_ERROR_PER_CELL / cells
     if error > WARNING_LIMIT:
-        # the face's width in cells is quantised: one cell more than the error's share
-        needed = math.ceil(problem.grid.n * (FLAT_FACE_LOAD_ERROR_PER_CELL / WARNING_LIMIT + 1.0) / cells)
         warn_caller(f"grid.n = {problem.grid.n}: the indenter's flat face is {2 * cells:.0f} cells across, so its "
                     f"rim (a singular pressure averaged over a cell) may put the load at a given approach off by "
-                    f"about {100 * error:.0f} % (Boussinesq; grid.n = {needed} would give less than "
-                    f"{100 * WARNING_LIMIT:.0f} %)")
+                    f"about {100 * error:.0f} % (Boussinesq; grid.n = {flat_face_grid(problem.grid.n, cells)} would "
+                    f"give less than {100 * WARNING_LIMIT:.0f} %)")
+
+
+def flat_face_grid(n: int, cells: float) -> int:
+    """The grid.n [-] at which a flat face ``cells`` across its half-width on n x n cells
+    (:func:`flat_face_cells`) has a rim load error (:data:`FLAT_FACE_LOAD_ERROR_PER_CELL` dx/a) under
+    :data:`WARNING_LIMIT`: the face's width in cells is quantised, one cell more than the error's share."""
+    return math.ceil(n * (FLAT_FACE_LOAD_ERROR_PER_CELL / WARNING_LIMIT + 1.0) / cells)
 
 
 def _check_device(problem: Problem) -> None:
@@ -253,11 +258,21 @@ def _check_space(problem: Problem, transient: bool) -> None:
 
             n, half_width = grid_suggestion(est, grid.n, grid.half_width)
             key, message = found[0]
+            # a gap of no given radius whose lowest cells are tied in a face of a few cells (a coarse
+            # flat punch, or a sphere's bottom on a grid node) was taken for the sphere of its curvature
+            face = None if problem.radius is not None else flat_face_cells(problem.gap)
+            punch = ""
+            if face is not None:
+                message = (f"the indenter's lowest cells are a flat face {2 * face:.0f} cells across, too few to "
+                           "tell a flat punch from a sphere's bottom, so it is taken for the sphere of radius "
+                           f"{est.sphere_radius:.3g} m that the gap's curvature gives (Hertz): {message}")
+                punch = (f" (if it is a flat punch, its contact is its face at any load: grid.n = "
+                         f"{flat_face_grid(grid.n, face)} resolves that face)")
             if _grid_problems(est, n, half_width):
                 raise ParameterError(key, f"{message}; no grid of up to {MAX_GRID_N}^2 cells can hold and resolve "
                                      f"a contact of radius {est.smallest:.3g} to {est.largest:.3g} m: check the "
-                                     "units of the moduli (Pa), the load (N) and indenter.radius (m)")
-            raise ParameterError(key, f"{message}; use grid.half_width = {half_width:.2g} m and grid.n = {n}")
+                                     f"units of the moduli (Pa), the load (N) and indenter.radius (m){punch}")
+            raise ParameterError(key, f"{message}; use grid.half_width = {half_width:.2g} m and grid.n = {n}{punch}")
         cells = est.smallest / grid.spacing
         if peak_pressure_error(cells) > WARNING_LIMIT:
             n, _ = grid_suggestion(est, grid.n, grid.half_width)

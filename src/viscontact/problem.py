@@ -266,9 +266,15 @@ class TangentialLoading:
         return self.mode == "partial_slip" and self.slip == "incremental"
 
     @property
+    def has_shear(self) -> bool:
+        """Whether this mode puts a shear traction q_x on the surface (``gross_sliding``,
+        ``partial_slip``); in ``none`` and ``frictionless_sliding`` q_x = 0 by definition."""
+        return self.mode in ("gross_sliding", "partial_slip")
+
+    @property
     def effective_friction(self) -> float:
         """mu_f acting in this mode: 0 for ``none`` and ``frictionless_sliding``."""
-        return self.friction_coefficient if self.mode in ("gross_sliding", "partial_slip") else 0.0
+        return self.friction_coefficient if self.has_shear else 0.0
 
 
 @dataclass(frozen=True)
@@ -427,6 +433,10 @@ class Problem:
     bulk_modulus: float | None = None
     #: the material is a layer on a substrate (None: a half-space)
     layer: LayerSettings | None = None
+    #: the gap was made by SurfaceTopography (a self-affine surface or roughness, a measured
+    #: topography; set by :meth:`viscontact.case.Case.to_problem`): a run of it imports that package,
+    #: which :func:`viscontact.resources.estimate` counts. It does not shape the solution.
+    surface_topography: bool = False
 
     def __post_init__(self) -> None:
         n = self.grid.n

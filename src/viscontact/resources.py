@@ -146,7 +146,7 @@ class Estimate:
         return self.result_bytes + (2 * self.checkpoint_bytes if checkpoints else 0)
 
 
-def estimate(problem: Problem, *, topography: bool = False, transform: float | None = None) -> Estimate:
+def estimate(problem: Problem, *, topography: bool | None = None, transform: float | None = None) -> Estimate:
     """Result size and peak memory of the transient run of ``problem``.
 
     Result: what :mod:`viscontact.streaming` claims on disk for it (:func:`stream_bytes`) plus the
@@ -165,9 +165,11 @@ def estimate(problem: Problem, *, topography: bool = False, transform: float | N
       last and of one more being built (with its crops), each side at most the box of the widest
       contact foreseen (:func:`window_cells`) and, with ``solver.mixed_precision``, the complex64
       spectra of the self kernels;
-    * with ``topography``, :data:`TOPOGRAPHY_IMPORT_MEMORY`;
-    * with ``output.subsurface_depths``, the subsurface stresses' padded transforms and their
-      chunked temporaries (:func:`viscontact.subsurface.working_bytes`), on top of it all (measured:
+    * with ``topography`` (default ``problem.surface_topography``: the problem of a case whose
+      surface SurfaceTopography makes), :data:`TOPOGRAPHY_IMPORT_MEMORY`;
+    * with ``output.subsurface_depths``, the subsurface stresses' padded transforms (the pressure's,
+      and q_x's where the mode has a shear traction) and their chunked temporaries
+      (:func:`viscontact.subsurface.working_bytes`), on top of it all (measured:
       the peak RSS of the shipped ``creep_subsurface_stress`` case grows by the stresses' own peak).
 
     Measured (``benchmarks/bench_memory.py``, ``viscontact run``'s VmHWM, 2026-11-28): creep
@@ -212,6 +214,8 @@ def estimate(problem: Problem, *, topography: bool = False, transform: float | N
         m = window_cells(problem)
         solver += (WINDOWS_KEPT + 1) * self_kernels * per_component * kernel_bytes(m) \
             + self_kernels * per_component * 4 * m * m * 8
+    if topography is None:
+        topography = problem.surface_topography
     if topography:  # the case's surface (self-affine, a measured topography) imports SurfaceTopography
         solver += TOPOGRAPHY_IMPORT_MEMORY
     state = (2 * modes + 8) * 8 * n * n + carried + slip
@@ -219,7 +223,7 @@ def estimate(problem: Problem, *, topography: bool = False, transform: float | N
     if depths:  # computed once the steps are done, from the recorded tractions: on top of the run's peak
         from .subsurface import working_bytes
 
-        solver += working_bytes(problem.grid, max(depths))
+        solver += working_bytes(problem.grid, max(depths), 2 if problem.tangential.has_shear else 1)
     if transform is None:
         transform = transform_seconds(problem)
     share = 1.0 if problem.grid.periodic else ((window_cells(problem) or n) / n) ** 2
@@ -295,14 +299,14 @@ def available_memory() -> int | None:
 
 
 def check_resources(problem: Problem, out: str | Path, *, force: bool = False, checkpoints: bool = False,
-                    written_bytes: int = 0, topography: bool = False) -> Estimate:
+                    written_bytes: int = 0, topography: bool | None = None) -> Estimate:
     """Refuse a run that needs more than the machine has: its result (and, with ``checkpoints``,
     its checkpoints) beyond the free disk of ``out``, its memory beyond the free RAM, its run time
     beyond :data:`MAX_RUN_SECONDS`. :class:`ParameterError` naming the key to change, or with
     ``force`` a warning; with ``solver.device = "gpu"`` the memory and the run time (the CPU run's,
     :func:`describe`) only warn. ``written_bytes``: what a resumed run's streamed file already holds on
     that disk [bytes] (not needed again). ``topography``: the case's surface imports SurfaceTopography
-    (:func:`estimate`)."""
+    (:func:`estimate`; default ``problem.surface_topography``)."""
     est = estimate(problem, topography=topography)
     folder = Path(out).resolve().parent
     while not folder.exists() and folder != folder.parent:

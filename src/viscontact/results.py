@@ -390,8 +390,8 @@ def subsurface_variables(records: Sequence[StepRecord], problem: Problem) -> tup
     stacks: dict[str, list[np.ndarray]] = {name: [] for name in SUBSURFACE_VARIABLES}
     for k in picks:
         rec = records[k]
-        sec = section_stresses(problem.grid, problem.material.poisson_ratio, depths, rec.pressure, rec.shear_x,
-                               workers=problem.solver.workers)
+        sec = section_stresses(problem.grid, problem.material.poisson_ratio, depths, rec.pressure,
+                               rec.shear_x if problem.tangential.has_shear else None, workers=problem.solver.workers)
         for c in ("xx", "yy", "zz", "xz"):
             stacks[f"stress_{c}"].append(sec.stress[c])
         stacks["von_mises_stress"].append(sec.von_mises)

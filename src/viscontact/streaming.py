@@ -57,7 +57,8 @@ from .problem import Problem
 from .records import StepRecord
 from .resources import recorded_steps, stream_bytes
 
-__all__ = ["FINGERPRINT", "ResultStream", "check_resumable", "is_complete_result", "layout_bytes", "partial_path"]
+__all__ = ["FINGERPRINT", "ResultStream", "check_partial_path", "check_resumable", "is_complete_result", "layout_bytes",
+           "partial_path"]
 
 #: what to do when the disk fills during a streamed run (the end of the error line)
 DISK_FULL_HINT = ("free some space or write elsewhere (--out); the steps done are kept (complete = 0) and "
@@ -74,6 +75,25 @@ def partial_path(out: str | Path) -> Path:
     target, and must stay on its filesystem)."""
     out = link_target(Path(out))
     return out.with_name(out.name + PARTIAL_SUFFIX)
+
+
+def check_partial_path(out: str | Path) -> Path:
+    """:func:`partial_path` of ``out``, refused where something other than a file stands there (a
+    folder, a FIFO, a device, a socket): a run could neither stream into it nor resume it, and
+    nothing there is touched.
+
+    Raises
+    ------
+    IsADirectoryError, FileExistsError
+        One line naming the path, saying what is in the way and what to do.
+    """
+    partial = partial_path(out)
+    if os.path.exists(partial) and not partial.is_file():
+        error, code, what = ((IsADirectoryError, errno.EISDIR, "a folder") if partial.is_dir() else
+                             (FileExistsError, errno.EEXIST, "not a regular file (a FIFO, device or socket)"))
+        raise error(code, f"is {what} in the way: a run streams its steps into this file beside "
+                    f"{Path(out).name}; move it away or choose another --out", str(partial))
+    return partial
 
 
 #: threads compressing the queued record's fields while the run computes the next step (zlib releases

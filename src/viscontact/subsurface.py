@@ -72,40 +72,49 @@ class SectionStresses:
 
 
 def _plane_mode_stresses(kx: np.ndarray, ky: np.ndarray, z: float, nu: float, p_hat: np.ndarray,
-                         tx_hat: np.ndarray, ty_hat: np.ndarray, periodic: bool = False) -> dict[str, np.ndarray]:
-    """Stress spectra at depth z [m] of surface traction spectra (module docstring); ``periodic``: the
-    q = 0 mode is the mean traction of a periodic surface, not the limit of an isolated load's."""
+                         tx_hat: np.ndarray | None, ty_hat: np.ndarray | None,
+                         periodic: bool = False) -> dict[str, np.ndarray]:
+    """Stress spectra at depth z [m] of surface traction spectra (module docstring); a shear spectrum
+    ``None`` is a zero traction, its terms left out; ``periodic``: the q = 0 mode is the mean traction
+    of a periodic surface, not the limit of an isolated load's."""
     k = np.hypot(kx, ky)
     zero = k == 0
     k_safe = np.where(zero, 1.0, k)
     c, s = np.where(zero, 1.0, kx / k_safe), np.where(zero, 0.0, ky / k_safe)
-    t_e = c * tx_hat + s * ty_hat
-    t_p = -s * tx_hat + c * ty_hat
+    t_e = _sum_of_terms((c, tx_hat), (s, ty_hat))
+    t_p = _sum_of_terms((-s, tx_hat), (c, ty_hat))
     decay = np.exp(-k * z)
     kz = k * z
-    big_p = -p_hat + 1j * t_e
-    big_a = -1j * t_e - (1 - 2 * nu) * big_p
+    big_p = -p_hat if t_e is None else -p_hat + 1j * t_e
+    big_a = -(1 - 2 * nu) * big_p if t_e is None else -1j * t_e - (1 - 2 * nu) * big_p
     s_zz = (big_a + kz * big_p + 2 * (1 - nu) * big_p) * decay
     s_ee = (-big_a - kz * big_p + 2 * nu * big_p) * decay
     s_ez = 1j * (-big_a - kz * big_p - (1 - 2 * nu) * big_p) * decay
     s_pp = 2 * nu * big_p * decay
-    s_zp = -t_p * decay
-    s_ep = 1j * t_p * decay
     out = {
-        "xx": s_ee * c**2 + s_pp * s**2 - 2 * s_ep * c * s,
-        "yy": s_ee * s**2 + s_pp * c**2 + 2 * s_ep * c * s,
+        "xx": s_ee * c**2 + s_pp * s**2,
+        "yy": s_ee * s**2 + s_pp * c**2,
         "zz": s_zz,
-        "xy": (s_ee - s_pp) * c * s + s_ep * (c**2 - s**2),
-        "xz": s_ez * c - s_zp * s,
-        "yz": s_ez * s + s_zp * c,
+        "xy": (s_ee - s_pp) * c * s,
+        "xz": s_ez * c,
+        "yz": s_ez * s,
     }
+    if t_p is not None:  # the anti-plane part
+        s_zp = -t_p * decay
+        s_ep = 1j * t_p * decay
+        out["xx"] -= 2 * s_ep * c * s
+        out["yy"] += 2 * s_ep * c * s
+        out["xy"] += s_ep * (c**2 - s**2)
+        out["xz"] -= s_zp * s
+        out["yz"] += s_zp * c
     # q = 0: a uniform traction; sigma_zz, sigma_xz, sigma_yz carry it at every depth (equilibrium).
     # periodic: the mean of a periodic traction, the half-space in uniaxial strain under its normal
     # part (sigma_xx = sigma_yy = nu/(1 - nu) sigma_zz) and in simple shear under its shear part.
     # isolated load (padded transform): the in-plane normal stresses take the average over the
     # directions of e of the k -> 0 limits (-p along e, -2 nu p across): -(1 + 2 nu) p / 2
     if np.any(zero):
-        p0, tx0, ty0 = p_hat[zero], tx_hat[zero], ty_hat[zero]
+        p0 = p_hat[zero]
+        tx0, ty0 = (0.0 * p0 if t is None else t[zero] for t in (tx_hat, ty_hat))
         in_plane = -nu / (1 - nu) * p0 if periodic else -(1 + 2 * nu) * p0 / 2
         for name, value in (("zz", -p0), ("xz", -tx0), ("yz", -ty0), ("xx", in_plane),
                             ("yy", in_plane), ("xy", 0.0 * p0)):
@@ -113,7 +122,22 @@ def _plane_mode_stresses(kx: np.ndarray, ky: np.ndarray, z: float, nu: float, p_
     return out
 
 
-def _symmetric_mode_stresses(qx: np.ndarray, qy: np.ndarray, z: float, nu: float, spectra: list[np.ndarray],
+def _sum_of_terms(*terms: tuple[np.ndarray, np.ndarray | None]) -> np.ndarray | None:
+    """The sum of the products ``factor * spectrum`` whose spectrum is not ``None`` (``None`` if none is)."""
+    total = None
+    for factor, spectrum in terms:
+        if spectrum is not None:
+            total = factor * spectrum if total is None else total + factor * spectrum
+    return total
+
+
+def _take(spectra: list[np.ndarray | None], index) -> list[np.ndarray | None]:
+    """``spectrum[index]`` of each spectrum, ``None`` (a zero traction) kept."""
+    return [None if sp is None else sp[index] for sp in spectra]
+
+
+def _symmetric_mode_stresses(qx: np.ndarray, qy: np.ndarray, z: float, nu: float,
+                             spectra: list[np.ndarray | None],
                              periodic: bool, nyquist: float | None) -> dict[str, np.ndarray]:
     """:func:`_plane_mode_stresses` on the half plane ``qx`` (>= 0) x ``qy`` with each Nyquist wavevector
     component (+-``nyquist``, one mode of the transform) the average of its two signs: the spectra
@@ -122,13 +146,13 @@ def _symmetric_mode_stresses(qx: np.ndarray, qy: np.ndarray, z: float, nu: float
     if nyquist is None:
         return fields
     if qx[-1] == nyquist:
-        other = _plane_mode_stresses(-qx[None, -1:], qy[:, None], z, nu, *(sp[:, -1:] for sp in spectra),
+        other = _plane_mode_stresses(-qx[None, -1:], qy[:, None], z, nu, *_take(spectra, np.s_[:, -1:]),
                                      periodic=periodic)
         for c in fields:
             fields[c][:, -1:] = 0.5 * (fields[c][:, -1:] + other[c])
     row = qy == -nyquist
     if np.any(row):
-        other = _symmetric_mode_stresses(qx, -qy[row], z, nu, [sp[row] for sp in spectra], periodic, nyquist)
+        other = _symmetric_mode_stresses(qx, -qy[row], z, nu, _take(spectra, row), periodic, nyquist)
         for c in fields:
             fields[c][row] = 0.5 * (fields[c][row] + other[c])
     return fields
@@ -136,8 +160,8 @@ def _symmetric_mode_stresses(qx: np.ndarray, qy: np.ndarray, z: float, nu: float
 
 #: the padded period (padding x the domain width) is at least this many times the deepest depth
 IMAGE_DISTANCE = 20.0
-#: the largest padded transform side :func:`automatic_padding` chooses (spectra of 3 x 4096 x 2049
-#: complex values: 400 MB)
+#: the largest padded transform side :func:`automatic_padding` chooses (spectra of up to 3 x 4096 x
+#: 2049 complex values: 400 MB)
 MAX_PADDED = 4096
 
 
@@ -165,19 +189,25 @@ def automatic_padding(grid: Grid, deepest: float, *, warn: bool = True) -> int:
     return min(padding, cap)
 
 
-def working_bytes(grid: Grid, deepest: float) -> int:
+def working_bytes(grid: Grid, deepest: float, tractions: int = 3) -> int:
     """The memory :func:`section_stresses` allocates at its peak [bytes] for stresses down to
-    ``deepest`` [m] (:func:`automatic_padding`): the three padded traction spectra (m x (m/2 + 1)
-    complex values, m the padded side) and, while one chunk of q_y rows is turned into stresses,
-    :data:`CHUNK_TEMPORARIES` arrays of that chunk's size; or the transforms' own peak, four spectra
-    (two done, the third and its zero-padded input), when it is higher. Within 3 % of the peak
-    measured with ``tracemalloc`` for the shipped ``creep_subsurface_stress`` case (13 depths down
-    to 1 mm, padding 5): 5.8, 22.3, 88.5, 139, 255 MiB at n = 32, 64, 128, 256, 512."""
+    ``deepest`` [m] (:func:`automatic_padding`) of ``tractions`` given tractions (1: the pressure
+    alone, 2 or 3 with q_x and q_y; only the given ones are transformed): their padded spectra
+    (m x (m/2 + 1) complex values, m the padded side) and, while one chunk of q_y rows is turned into
+    stresses, :data:`CHUNK_TEMPORARIES` (:data:`PRESSURE_CHUNK_TEMPORARIES` for the pressure alone)
+    arrays of that chunk's size; or the transforms' own peak, one spectrum more (the last one's
+    zero-padded input), when it is higher. Within 4 % of the peak measured with ``tracemalloc`` for
+    the shipped ``creep_subsurface_stress`` case (13 depths down to 1 mm, padding 5), pressure
+    alone: 4.3, 16.8, 66.3, 93.0, 131 MiB at n = 32, 64, 128, 256, 512; with q_x: 5.7, 21.9, 86.7,
+    127, 203 MiB (:data:`CHUNK_TEMPORARIES` measured with q_x and q_y: 5.9, 22.6, 89.8, 140, 253)."""
+    if tractions not in (1, 2, 3):
+        raise ValueError(f"tractions: the number of given surface tractions, 1 to 3; got {tractions}")
     m = grid.n if grid.periodic else automatic_padding(grid, deepest, warn=False) * grid.n
     half = m // 2 + 1
     spectrum = 16 * m * half
     chunk = 16 * half * min(m, max(1, _CHUNK // half))
-    return max(4 * spectrum, 3 * spectrum + CHUNK_TEMPORARIES * chunk)
+    temporaries = PRESSURE_CHUNK_TEMPORARIES if tractions == 1 else CHUNK_TEMPORARIES
+    return max((tractions + 1) * spectrum, tractions * spectrum + temporaries * chunk)
 
 
 def section_stresses(grid: Grid, poisson_ratio: float, depths: np.ndarray | list[float], pressure: np.ndarray,
@@ -196,7 +226,9 @@ def section_stresses(grid: Grid, poisson_ratio: float, depths: np.ndarray | list
     poisson_ratio
         nu of the half-space [-].
     pressure, shear_x, shear_y
-        Surface tractions on the solid: p into the solid, q_x and q_y along +x, +y [Pa].
+        Surface tractions on the solid: p into the solid, q_x and q_y along +x, +y [Pa]. A shear
+        ``None`` is zero and costs nothing: it is neither transformed nor carried through the
+        stresses (the same stresses as a zero array, to the bit).
     padding
         Zero-padding factor of the transform of an isolated load (>= 2); default
         :func:`automatic_padding` of the deepest depth; none on a periodic grid (``None`` only).
@@ -226,15 +258,16 @@ def section_stresses(grid: Grid, poisson_ratio: float, depths: np.ndarray | list
         if padding < 2:
             raise ValueError(f"padding must be >= 2, got {padding}")
         m = padding * n
-    zero = np.zeros((n, n))
-    # real tractions: half spectra along x (the stresses are real, their spectra Hermitian)
-    spectra = [scipy.fft.rfft2(t if t is not None else zero, s=(m, m), workers=workers)
+    # real tractions: half spectra along x (the stresses are real, their spectra Hermitian); a shear
+    # not given (None) is zero: neither transformed nor carried through the stresses' terms
+    spectra = [None if t is None else scipy.fft.rfft2(t, s=(m, m), workers=workers)
                for t in (pressure, shear_x, shear_y)]
     qy = 2.0 * np.pi * scipy.fft.fftfreq(m, dx)
     qx = 2.0 * np.pi * scipy.fft.rfftfreq(m, dx)
     footprint = np.sinc(qx[None, :] * dx / (2 * np.pi)) * np.sinc(qy[:, None] * dx / (2 * np.pi))
     for sp in spectra:  # in place: a product would hold six spectra at once
-        sp *= footprint
+        if sp is not None:
+            sp *= footprint
     del footprint
     # value at y = 0: the transform's row 0 is y_0 = grid.y[0]
     phase_y = np.exp(1j * qy * (0.0 - grid.y[0]))[:, None] / m
@@ -244,7 +277,7 @@ def section_stresses(grid: Grid, poisson_ratio: float, depths: np.ndarray | list
         sums = {c: np.zeros(qx.size, dtype=complex) for c in STRESS_COMPONENTS}
         for j in range(0, m, rows):
             part = slice(j, j + rows)
-            fields = _symmetric_mode_stresses(qx, qy[part], float(z), poisson_ratio, [sp[part] for sp in spectra],
+            fields = _symmetric_mode_stresses(qx, qy[part], float(z), poisson_ratio, _take(spectra, part),
                                               grid.periodic, np.pi / dx if m % 2 == 0 else None)
             for c in STRESS_COMPONENTS:
                 sums[c] += np.sum(fields[c] * phase_y[part], axis=0)
@@ -257,5 +290,8 @@ def section_stresses(grid: Grid, poisson_ratio: float, depths: np.ndarray | list
 _CHUNK = 1 << 18
 #: chunk-sized arrays alive at once while :func:`section_stresses` turns a chunk of spectra into
 #: stresses (:func:`_plane_mode_stresses`: the rotation, the potentials, the components and the
-#: expressions' temporaries; the real ones count half): 25.3 measured, see :func:`working_bytes`
+#: expressions' temporaries; the real ones count half) with a shear traction: 25.7 measured, see
+#: :func:`working_bytes`
 CHUNK_TEMPORARIES = 26
+#: the same for the pressure alone (no in-plane traction t_e, no anti-plane part): 20.2 measured
+PRESSURE_CHUNK_TEMPORARIES = 21

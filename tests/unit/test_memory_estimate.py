@@ -35,13 +35,42 @@ def test_the_windows_are_sized_by_the_contact_the_run_foresees():
 
 def test_a_surface_made_by_surface_topography_adds_its_import():
     """SurfaceTopography's import (self-affine and measured surfaces) is a term of its own; the
-    shipped rough case needs it, a sphere does not."""
-    rough = _case("rough_periodic_sliding")
+    shipped rough case needs it, a sphere does not. The problem of a case carries it
+    (``Problem.surface_topography``), so that ``estimate(problem)`` counts it by default, as
+    ``viscontact run`` does: it was left out without ``topography=True`` (95 MB short)."""
+    from viscontact.api import prepare
+
+    rough, sphere = _case("rough_periodic_sliding"), _case("creep_indentation")
     assert rough.indenter.uses_surface_topography
-    assert not _case("creep_indentation").indenter.uses_surface_topography
+    assert not sphere.indenter.uses_surface_topography
     outline = rough.problem_outline()
-    assert estimate(outline, topography=True).peak_memory_bytes \
-        - estimate(outline).peak_memory_bytes == int(TOPOGRAPHY_IMPORT_MEMORY)
+    assert outline.surface_topography and not sphere.problem_outline().surface_topography
+    assert prepare(rough)[0].surface_topography and not prepare(sphere)[0].surface_topography
+    assert estimate(outline).peak_memory_bytes \
+        - estimate(outline, topography=False).peak_memory_bytes == int(TOPOGRAPHY_IMPORT_MEMORY)
+    assert estimate(outline).peak_memory_bytes == estimate(outline, topography=True).peak_memory_bytes
+    assert estimate(prepare(rough)[0], transform=1e-3).peak_memory_bytes \
+        == estimate(outline, transform=1e-3).peak_memory_bytes
+    sphere_outline = sphere.problem_outline()
+    assert estimate(sphere_outline, topography=True).peak_memory_bytes \
+        - estimate(sphere_outline).peak_memory_bytes == int(TOPOGRAPHY_IMPORT_MEMORY)
+
+
+def test_the_subsurface_stresses_add_the_transforms_of_the_tractions_the_mode_makes():
+    """The subsurface stresses (on top of the run's peak) cost working_bytes of the pressure alone
+    where the mode makes no shear traction (q_x = 0: not transformed), of p and q_x in gross sliding."""
+    import dataclasses
+
+    from viscontact.subsurface import working_bytes
+
+    for mode, tractions in (("none", 1), ("frictionless_sliding", 1), ("gross_sliding", 2)):
+        moving = {"tangential.sliding_speed": 0.01} if mode != "none" else {}
+        problem = _case("creep_subsurface_stress", **{"tangential.mode": mode, **moving}).problem_outline()
+        depths = problem.output.subsurface_depths
+        bare = dataclasses.replace(problem, output=dataclasses.replace(problem.output, subsurface_depths=()))
+        added = estimate(problem).peak_memory_bytes - estimate(bare).peak_memory_bytes
+        assert added == working_bytes(problem.grid, max(depths), tractions)
+    assert working_bytes(problem.grid, max(depths), 1) < 0.85 * working_bytes(problem.grid, max(depths), 2)
 
 
 def test_the_arrays_scale_with_the_cells_above_a_constant_base():

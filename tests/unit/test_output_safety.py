@@ -616,3 +616,31 @@ def test_a_long_symbolic_link_name_checkpoints_beside_its_target(tmp_path, capsy
     assert link.is_symlink() and sorted(p.name for p in tmp_path.iterdir()) == sorted([target.name, link.name])
     with xr.open_dataset(target) as ds:
         assert ds.attrs["complete"] == 1
+
+
+@pytest.mark.parametrize("options", [(), ("--force",), ("--resume",), ("--dry-run",)])
+def test_a_folder_named_like_the_streamed_file_is_in_the_way(tmp_path, capsys, options):
+    """A folder r.nc.partial is no interrupted run's steps (the message said "--resume continues it"):
+    whatever the options, one line saying it is a folder in the way, exit 2, and nothing touched."""
+    out = tmp_path / "r.nc"
+    folder = tmp_path / "r.nc.partial"
+    folder.mkdir()
+    (folder / "kept.txt").write_text("mine")
+    code = cli.main(["run", str(CREEP), "--out", str(out), *options, *SMALL, "--quiet"])
+    err = _err_lines(capsys)
+    assert code == 2 and len(err) == 1, err
+    assert err[0] == (f"viscontact: error: {folder}: is a folder in the way: a run streams its steps into this "
+                      "file beside r.nc; move it away or choose another --out")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.nc.partial"]
+    assert [p.name for p in folder.iterdir()] == ["kept.txt"] and (folder / "kept.txt").read_text() == "mine"
+
+
+def test_run_to_file_refuses_a_folder_named_like_the_streamed_file(tmp_path):
+    import viscontact as vc
+
+    folder = tmp_path / "r.nc.partial"
+    folder.mkdir()
+    case = vc.load_case(CREEP).with_overrides({"grid.n": 32, "time.t_end": 0.01})
+    with pytest.raises(IsADirectoryError, match="is a folder in the way"):
+        vc.run_to_file(case, tmp_path / "r.nc", force=True)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.nc.partial"] and not any(folder.iterdir())

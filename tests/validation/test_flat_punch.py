@@ -114,3 +114,24 @@ def test_only_a_face_counts_as_one():
     assert flat_face_cells(x**2) is None  # a cylinder: two tied columns across the domain
     assert flat_face_cells(np.zeros((n, n))) is None
     assert flat_face_cells((x - 0.3) ** 2 + (y - 0.2) ** 2) is None
+
+
+@pytest.mark.parametrize("control", ["displacement", "load"])
+def test_a_face_too_coarse_to_tell_from_a_sphere_is_named_in_the_refusal(control):
+    """At n = 12 the punch's face is its 2 x 2 lowest cells, as a sphere's bottom on a grid node is: the
+    gap's curvature makes it a sphere of 0.85 mm whose Hertz contact (0.16 cells) is refused. The
+    refusal said only that (a contact radius of 55 um for a face 0.67 mm wide); it names the face and
+    the sphere it was taken for, and the grid that resolves the face as a punch: there the run is
+    not refused, does not warn, and carries Boussinesq's load within the guards' 5 %."""
+    with pytest.raises(vc.ParameterError) as refused:
+        _run(12, control)
+    message = str(refused.value)
+    assert "flat face 2 cells across" in message and "sphere of radius 0.000852 m" in message, message
+    assert "\n" not in message
+    suggested = int(re.search(r"grid.n = (\d+) resolves that face", message).group(1))
+    assert suggested > 12
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ViscontactWarning)
+        ds, a_eff, _, _ = _run(suggested, control)
+    load, approach = float(ds["load"][-1]), float(ds["delta_z"][-1])
+    assert abs(load / (2 * a_eff * E_STAR * approach) - 1) < WARNING_LIMIT

@@ -213,3 +213,48 @@ def test_automatic_padding_is_capped_with_a_warning():
     assert automatic_padding(grid, 0.0) == 2 and automatic_padding(grid, 0.3e-3) == 3
     with pytest.warns(ViscontactWarning, match="capped at 64 x the domain"):
         assert automatic_padding(grid, 0.1) == 64
+
+
+def _hertz_tractions(n: int, periodic: bool = False):
+    grid = Grid(n, 2e-3, periodic=periodic)
+    x, y = grid.mesh()
+    p = 2e5 * np.sqrt(np.clip(1 - (x**2 + y**2) / 0.6e-3**2, 0, None))
+    return grid, p, 0.3 * p * x / 0.6e-3   # a shear q_x of both signs
+
+
+@pytest.mark.parametrize("periodic", [False, True])
+def test_a_missing_shear_is_a_zero_one_to_the_bit(periodic):
+    """A shear left out (``None``: neither transformed nor carried through the terms) gives the stresses
+    of a zero array through the full formulas, to the bit: q_y missing with a q_x, and both missing."""
+    grid, p, qx = _hertz_tractions(32, periodic)
+    depths = [0.0, 0.2e-3, 1e-3]
+    zero = np.zeros_like(p)
+    for given, zeros in (((p, qx, None), (p, qx, zero)), ((p, None, None), (p, zero, zero))):
+        lean, full = (section_stresses(grid, NU, depths, *t) for t in (given, zeros))
+        for c in full.stress:
+            np.testing.assert_array_equal(lean.stress[c], full.stress[c], err_msg=c)
+    assert np.max(np.abs(lean.stress["zz"])) > 1e4
+
+
+@pytest.mark.parametrize("with_shear", [False, True])
+def test_working_bytes_is_the_traced_peak_and_a_missing_shear_saves_its_spectrum(with_shear):
+    """``working_bytes`` of 1 (pressure) or 2 (with q_x) tractions against the peak traced by
+    ``tracemalloc`` (the shipped creep_subsurface_stress case's depths, padding 5): within 5 %; and
+    leaving the zero q_y (and q_x) out lowers the traced peak by at least the spectra not made."""
+    import tracemalloc
+
+    from viscontact.subsurface import working_bytes
+
+    grid, p, qx = _hertz_tractions(64)
+    depths = np.linspace(0.0, 1e-3, 13)
+    shear = qx if with_shear else None
+    peaks = []
+    for tractions in ((p, shear, None), (p, qx if with_shear else np.zeros_like(p), np.zeros_like(p))):
+        tracemalloc.start()
+        section_stresses(grid, NU, depths, *tractions, workers=1)
+        peaks.append(tracemalloc.get_traced_memory()[1])
+        tracemalloc.stop()
+    count = 2 if with_shear else 1
+    assert working_bytes(grid, depths[-1], count) == pytest.approx(peaks[0], rel=0.05)
+    spectrum = 16 * 320 * 161   # padding 5: m = 320
+    assert peaks[1] - peaks[0] > (3 - count) * spectrum * 0.9
