@@ -77,7 +77,7 @@ class ArrayBackend:
     to_host: Callable[[Any], np.ndarray]
     #: The smallest transform length >= its argument that this backend transforms fast and plans
     #: cheaply: the padded side 2m of a support window (:func:`viscontact.support_window.window_side`).
-    #: On the CPU every 2^a 3^b 5^c 7^d 11^e length (:func:`cpu_fast_length`); on a GPU the coarse
+    #: On the CPU every 2^a 3^b 5^c length (:func:`cpu_fast_length`); on a GPU the coarse
     #: ladder of :func:`device_fast_length`, so that a creeping contact re-plans its transforms seldom.
     fast_length: Callable[[int], int] = cpu_fast_length
 

@@ -14,6 +14,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 import pytest
@@ -157,10 +158,18 @@ def test_the_device_ladder_is_the_next_power_of_two_or_three_times_one():
     ladder = sorted({2**k for k in range(14)} | {3 * 2**k for k in range(13)})
     for length in range(1, 6000):
         assert device_fast_length(length) == next(rung for rung in ladder if rung >= length), length
+    def five_smooth(length: int) -> bool:  # pocketfft's fast real lengths
+        for factor in (2, 3, 5):
+            while length % factor == 0:
+                length //= factor
+        return length == 1
+
     for extent in range(1, 400):  # a window side on the ladder holds the support and both margins
+        least = extent + 2 * max(support_window.MARGIN_CELLS, math.ceil(support_window.MARGIN_FRACTION * extent))
         m = support_window.window_side(extent, 1024, device_fast_length)
-        assert m is None or (2 * m in ladder and m >= extent + 2 * support_window.MARGIN_CELLS)
-        assert support_window.window_side(extent, 1024) == support_window.window_side(extent, 1024, cpu_fast_length)
+        assert m == next(rung // 2 for rung in ladder if rung >= 2 * least)
+        # the CPU's side (the default) is the smallest holding them with 2m 5-smooth, as before the ladder
+        assert support_window.window_side(extent, 1024) == next(k for k in range(least, 2000) if five_smooth(2 * k))
 
 
 def test_a_creeping_contact_on_the_device_ladder_keeps_its_window_longer(monkeypatch):
