@@ -13,7 +13,7 @@ wall time and the child's own peak RSS (VmHWM), and the ratios against the first
 pressures of every tree are compared with the first's (max difference / peak).
 
 Cases (``--case``), both the seed material (Zener, G(0) = 1.93 MPa, G(0)/G(inf) = 10, 10 ms, nu = 0.3),
-sphere R = 10 mm, default time scheme (linear), through :func:`viscontact.transient.steps` (no records kept: the solver alone):
+sphere R = 10 mm, default time scheme (linear), through :func:`viscontact.solvers.transient.steps` (no records kept: the solver alone):
 
 ``creep``   W = 0.15 N held, +-1.5 mm, 0.2 ms steps (``compare_tamaas.py``'s case), ``--steps`` steps;
 ``table1``  seed Table 1: frictionless sliding at v = 0.8 a0/tau, +-2.56 a0, W = 0.148 N, one cell
@@ -60,7 +60,7 @@ def problem(case: str, n: int, steps: int | None):
 def child(args: argparse.Namespace) -> None:
     import warnings
 
-    from viscontact import transient
+    from viscontact.solvers import transient
 
     pb = problem(args.case, args.n, args.steps)
     wall = time.perf_counter()

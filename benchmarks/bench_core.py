@@ -24,14 +24,14 @@ import warnings
 
 import numpy as np
 
-from viscontact.grid import Grid
-from viscontact.history import DirectHistory, PronyHistory
-from viscontact.schemes import step_coefficients
-from viscontact.materials import Material
-from viscontact.problem import (NormalLoading, OutputSettings, PiecewiseLinear, Problem, TangentialLoading,
+from viscontact.numerics.grid import Grid
+from viscontact.numerics.history import DirectHistory, PronyHistory
+from viscontact.numerics.schemes import step_coefficients
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import (NormalLoading, OutputSettings, PiecewiseLinear, Problem, TangentialLoading,
                                 TimeStepping)
-from viscontact.steady import solve_steady
-from viscontact.transient import simulate
+from viscontact.solvers.steady import solve_steady
+from viscontact.running.loop import simulate
 
 A0, TAU, R = 588.7e-6, 0.01, 0.01
 MATERIAL = Material.zener(1.93e6, 0.193e6, TAU, 0.3)

@@ -5,7 +5,7 @@ cuFFT) at large grids, alternated in one process.
     .venv/bin/python benchmarks/bench_device.py --n 512 --steps 6 --cases creep
 
 Cases (the seed material: Zener, G(0) = 1.93 MPa, G(0)/G(inf) = 10, 10 ms, nu = 0.3; sphere
-R = 10 mm; through :func:`viscontact.transient.steps`, each step's record brought to the host):
+R = 10 mm; through :func:`viscontact.solvers.transient.steps`, each step's record brought to the host):
 
 ``creep``   W = 0.15 N held on +-1.5 mm (``compare_tamaas.py``'s case), 0.2 ms steps;
 ``table1``  seed Table 1: frictionless sliding at v = 0.8 a0/tau on +-2.56 a0, W = 0.148 N, one cell
@@ -31,12 +31,12 @@ import warnings
 
 import numpy as np
 
-from viscontact.arrays import CPU, ArrayBackend, cpu_fast_length, cupy_backend
-from viscontact.grid import Grid
-from viscontact.materials import Material
-from viscontact.problem import NormalLoading, PiecewiseLinear, Problem, TangentialLoading, TimeStepping
-from viscontact.substrate import substrate_for
-from viscontact.transient import steps
+from viscontact.numerics.arrays import CPU, ArrayBackend, cpu_fast_length, cupy_backend
+from viscontact.numerics.grid import Grid
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import NormalLoading, PiecewiseLinear, Problem, TangentialLoading, TimeStepping
+from viscontact.bodies.body import substrate_for
+from viscontact.solvers.transient import steps
 
 A0, TAU, RADIUS = 588.7e-6, 0.01, 0.01
 MATERIAL = Material.zener(1.93e6, 0.193e6, TAU, 0.3)
@@ -78,7 +78,7 @@ def main() -> None:
     parser.add_argument("--cases", default="creep,table1")
     parser.add_argument("--scipy-lengths", action="store_true",
                         help="also run the GPU with the CPU's window sides (scipy.fft.next_fast_len) instead of "
-                             "the device ladder (viscontact.arrays.device_fast_length)")
+                             "the device ladder (viscontact.numerics.arrays.device_fast_length)")
     args = parser.parse_args()
 
     try:

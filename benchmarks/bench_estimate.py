@@ -1,6 +1,6 @@
 """How good is the run time that ``viscontact run --dry-run`` prints? The shipped cases, each run as
 ``viscontact run`` does it (``run_to_file``, a fresh process), against the estimate of
-:func:`viscontact.resources.estimate`.
+:func:`viscontact.running.resources.estimate`.
 
     .venv/bin/python benchmarks/bench_estimate.py              # the cases at 128^2 (the small ones as shipped)
     .venv/bin/python benchmarks/bench_estimate.py --n 256      # the seed cases at 256^2
@@ -9,7 +9,7 @@
 Columns: the case and its grid, steps and tangential mode; the estimate; the measured wall time of the
 process (imports included), split into the start (imports, kernels, result layout: up to the first
 step's end, less one step) and the steps (their median time); the transform pair timed for the estimate
-(:func:`viscontact.resources.transform_seconds`); the measured step, less its mode's ``STEP_SECONDS``, in
+(:func:`viscontact.running.resources.transform_seconds`); the measured step, less its mode's ``STEP_SECONDS``, in
 transform pairs, which is what a mode's counts (``FULL_TRANSFORMS`` + ``WINDOW_TRANSFORMS`` x the window's share) should give; and measured / estimated.
 """
 from __future__ import annotations
@@ -43,7 +43,7 @@ def child(case: str, n: int | None, out: str) -> None:
     import numpy as np
 
     import viscontact as vc
-    from viscontact.case import load_case
+    from viscontact.io.case import load_case
 
     imported = time.perf_counter()
     loaded = load_case(ROOT / "cases" / f"{case}.toml")
@@ -73,8 +73,8 @@ def main() -> None:
         child(case, None if n == "-" else int(n), out)
         return
 
-    from viscontact.case import load_case
-    from viscontact.resources import STEP_SECONDS, estimate, transform_seconds
+    from viscontact.io.case import load_case
+    from viscontact.running.resources import STEP_SECONDS, estimate, transform_seconds
 
     names = args.cases.split(",") if args.cases else list(DEFAULT_CASES)
     print(f"# --dry-run's run time against viscontact run, {platform.processor() or platform.machine()}, "

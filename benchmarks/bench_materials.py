@@ -35,16 +35,16 @@ from contextlib import contextmanager
 import numpy as np
 
 from viscontact import steady
-from viscontact.grid import Grid
-from viscontact.history import PronyHistory
-from viscontact.kernels import history_kernels
-from viscontact.materials import Material
-from viscontact.problem import (NormalLoading, OutputSettings, PiecewiseLinear, Problem, TangentialLoading,
+from viscontact.numerics.grid import Grid
+from viscontact.numerics.history import PronyHistory
+from viscontact.physics.kernels import history_kernels
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import (NormalLoading, OutputSettings, PiecewiseLinear, Problem, TangentialLoading,
                                 TimeStepping)
-from viscontact.schemes import step_coefficients
-from viscontact.steady_kernels import SteadyKernelBuilder
-from viscontact.substrate import HalfSpace
-from viscontact.transient import steps
+from viscontact.numerics.schemes import step_coefficients
+from viscontact.physics.steady_kernels import SteadyKernelBuilder
+from viscontact.bodies.half_space import HalfSpace
+from viscontact.solvers.transient import steps
 
 G0, NU, R = 1.93e6, 0.3, 0.01
 

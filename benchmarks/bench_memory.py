@@ -1,6 +1,6 @@
 """How good is the peak memory that ``viscontact run --dry-run`` prints? ``viscontact run`` (streamed,
 the case's own output) of a few shipped cases at a few grids, each in a fresh process, its own peak
-resident memory (VmHWM of /proc/self/status) against :func:`viscontact.resources.estimate`.
+resident memory (VmHWM of /proc/self/status) against :func:`viscontact.running.resources.estimate`.
 
     .venv/bin/python benchmarks/bench_memory.py                          # 128^2 .. 1024^2, 6 steps
     .venv/bin/python benchmarks/bench_memory.py --sizes 512 --steps 6,41  # memory against the steps
@@ -27,7 +27,8 @@ def child(argv: list[str]) -> None:
     """``viscontact run`` with ``argv``, then this process's VmHWM and the estimate [bytes] on stdout's
     last line (the estimate made in the run's process, as ``viscontact run`` makes it: after the case's
     own imports)."""
-    from viscontact import cli, resources
+    from viscontact import cli
+    from viscontact.running import resources
 
     made = []
     check = resources.check_resources
@@ -56,8 +57,8 @@ def main() -> None:
         child(args.child)
         return
 
-    from viscontact import api
-    from viscontact.case import load_case
+    from viscontact.running import api
+    from viscontact.io.case import load_case
 
     print(f"# --dry-run's peak memory against viscontact run, {platform.processor() or platform.machine()}, "
           f"{os.cpu_count()} cores, {time.strftime('%Y-%m-%d %H:%M')}, load {os.getloadavg()[0]:.1f}")

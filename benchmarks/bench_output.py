@@ -6,7 +6,7 @@ creep and seed Table 1 problems of ``bench_core.py``, streamed to a file in a te
 
 Columns: the run's wall time; the time its own thread spends handing records to the stream
 (``StreamWriter.keep``: writing the record queued before, queueing this one; the fields' compression
-runs on the stream's thread meanwhile, :mod:`viscontact.streaming`), in total and per record; the
+runs on the stream's thread meanwhile, :mod:`viscontact.io.streaming`), in total and per record; the
 size of the file. To compare two trees, run the script with ``PYTHONPATH=<tree>/src``, alternately.
 """
 from __future__ import annotations
@@ -22,8 +22,8 @@ import numpy as np
 
 import viscontact as vc
 from bench_core import A0, TAU, sphere
-from viscontact import observers
-from viscontact.problem import TangentialLoading
+from viscontact.running import observers
+from viscontact.problem.problem import TangentialLoading
 
 
 def problems(n: int) -> dict[str, vc.Problem]:

@@ -22,10 +22,10 @@ from pathlib import Path
 
 import numpy as np
 
-from viscontact import transient
-from viscontact.case import load_case
-from viscontact.periodic import periodic_influence_coefficients
-from viscontact.steady import solve_steady
+from viscontact.solvers import transient
+from viscontact.io.case import load_case
+from viscontact.physics.periodic import periodic_influence_coefficients
+from viscontact.solvers.steady import solve_steady
 
 CASE = Path(__file__).resolve().parents[1] / "cases" / "rough_periodic_sliding.toml"
 

@@ -6,7 +6,7 @@ streamed to a result file as ``viscontact run`` does.
 
 Prints the time of the first step (it includes building the kernels and their spectra), the time per
 later step (median), the peak resident memory of the process, the size of the streamed file, and
-the dry-run estimates of ``viscontact.resources`` (memory, and run time of the whole 4 tau run) to
+the dry-run estimates of ``viscontact.running.resources`` (memory, and run time of the whole 4 tau run) to
 compare with.
 """
 from __future__ import annotations
@@ -22,8 +22,8 @@ from pathlib import Path
 import numpy as np
 
 import viscontact as vc
-from viscontact import api
-from viscontact.resources import estimate
+from viscontact.running import api
+from viscontact.running.resources import estimate
 
 CASE = Path(__file__).resolve().parents[1] / "cases" / "seed_table1_v0.8.toml"
 

@@ -36,8 +36,8 @@ def _cpu() -> float:
 
 
 def child(case: str, n: int, steps: int, result: str) -> None:
-    from viscontact import transient
-    from viscontact.substrate import substrate_for
+    from viscontact.solvers import transient
+    from viscontact.bodies.body import substrate_for
 
     if case == "sliding":
         from alternate import problem as sliding_problem

@@ -8,7 +8,7 @@ both alike. Prints a table.
 
 Rows
 ----
-table1 v      ``viscontact.api.run_steady`` on ``cases/seed_table1_v{v}.toml`` at n^2 (default 256),
+table1 v      ``viscontact.running.api.run_steady`` on ``cases/seed_table1_v{v}.toml`` at n^2 (default 256),
               in process (what ``viscontact steady`` does after its imports, without writing the file).
 cli v0.8      the ``viscontact steady`` command on the v = 0.8 a0/tau case, wall time of the process
               (imports and the netCDF file included).
@@ -49,9 +49,9 @@ def worker(row: str, n: int) -> dict:
     """One measurement in this process: wall time [s] and the results."""
     import numpy as np
 
-    from viscontact.api import prepare
-    from viscontact.case import load_case
-    from viscontact.steady import solve_steady, speed_sweep
+    from viscontact.running.api import prepare
+    from viscontact.io.case import load_case
+    from viscontact.solvers.steady import solve_steady, speed_sweep
 
     def problem(name: str, n_cells: int, **overrides):
         case = load_case(ROOT / "cases" / f"{name}.toml").with_overrides({"grid.n": n_cells, **overrides})

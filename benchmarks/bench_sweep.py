@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 import tomllib
 
-from viscontact import api
+from viscontact.running import api
 from viscontact.errors import ViscontactWarning
 from viscontact.sweep import default_workers, load_sweep, local_cluster, plan, sweep
 

@@ -10,11 +10,11 @@ of which only the (n, n) physical block is kept. Candidates:
 ``numpy``        ``numpy.fft`` (pocketfft, one thread)
 ``fftw``         pyFFTW, planned (FFTW_MEASURE) 2-D real transforms on pre-allocated aligned buffers,
                  padding zeros kept in the input buffer (only the block is copied in), threads 1 / 2
-``scipy-zb``     ``viscontact.fftbackends.ZeroBlockTransforms``: forward = real FFT of the n non-zero
+``scipy-zb``     ``viscontact.numerics.fftbackends.ZeroBlockTransforms``: forward = real FFT of the n non-zero
                  rows (length 2n) then the complex FFT of length 2n down the n + 1 columns; inverse =
                  the complex inverse down the columns, then the inverse real FFT of the n kept rows
                  only (half of the row transforms both ways)
-``fftw-zb``      ``viscontact.fftbackends.FFTWTransforms``: the same scheme, planned pyFFTW transforms on
+``fftw-zb``      ``viscontact.numerics.fftbackends.FFTWTransforms``: the same scheme, planned pyFFTW transforms on
                  pre-allocated buffers
 
 Each candidate is checked against ``scipy`` (max relative difference printed) and timed over
@@ -32,7 +32,7 @@ from typing import Callable
 import numpy as np
 import scipy.fft
 
-from viscontact.fftbackends import FFTWTransforms, ZeroBlockTransforms
+from viscontact.numerics.fftbackends import FFTWTransforms, ZeroBlockTransforms
 
 
 def scipy_pair(n: int, workers: int) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
@@ -52,7 +52,7 @@ def numpy_pair(n: int) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
 
 
 def module_pair(transforms) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
-    """A pair through :mod:`viscontact.fftbackends` (the zero-block transforms the solver uses)."""
+    """A pair through :mod:`viscontact.numerics.fftbackends` (the zero-block transforms the solver uses)."""
     return lambda field, kernel_hat: transforms.convolve(kernel_hat, field)
 
 

@@ -8,7 +8,7 @@ Prints (all from one run unless said otherwise):
 * cProfile by category: FFTs (count, shapes, time), the rest of the constrained CG (numpy element
   work), the hereditary history, per-step bookkeeping, records; and the top functions by own time;
 * CG iterations per step (first step, mean, max) and FFT pairs per step;
-* with ``--line``: line_profiler of :func:`viscontact.constrained.constrained_cg` (needs the
+* with ``--line``: line_profiler of :func:`viscontact.numerics.constrained.constrained_cg` (needs the
   ``bench`` extra); with ``--pyinstrument``: pyinstrument's call tree (``bench`` extra);
 * ``--memory``: peak RSS of the same run at two lengths (fresh subprocesses), i.e. its growth per
   step, and tracemalloc's peak within one step.
@@ -33,7 +33,8 @@ import scipy.fft
 
 import viscontact as vc
 from compare_tamaas import peak_rss_mib
-from viscontact import transient
+from viscontact.solvers import transient
+from viscontact.running import loop
 
 HALF_WIDTH, RADIUS, LOAD, DT = 1.5e-3, 0.01, 0.15, 2e-4
 
@@ -51,7 +52,7 @@ def creep_problem(n: int, steps: int) -> vc.Problem:
 def run(problem: vc.Problem) -> list:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return list(transient.simulate(problem))
+        return list(loop.simulate(problem))
 
 
 class FFTCensus:
@@ -199,7 +200,7 @@ def main() -> None:
     if args.line:
         from line_profiler import LineProfiler
 
-        from viscontact import constrained
+        from viscontact.numerics import constrained
 
         lp = LineProfiler(constrained.constrained_cg)
         lp.enable()

@@ -1,8 +1,8 @@
 """Sphinx configuration of the viscontact documentation (``make docs``).
 
 Generated at build time, never by hand: the API reference (one page per public module, found by
-walking the package), the case-key reference (from the pydantic models of ``viscontact.case``), the
-result-variable table (from ``viscontact.results``), the command-line help (from the ``viscontact``
+walking the package), the case-key reference (from the pydantic models of ``viscontact.io.case``), the
+result-variable table (from ``viscontact.io.results``), the command-line help (from the ``viscontact``
 command itself) and the gallery (the scripts in ``examples/``, run by sphinx-gallery).
 """
 from __future__ import annotations

@@ -16,7 +16,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import viscontact as vc
-from viscontact.reference import lee_radok_creep
+from viscontact.physics.reference import lee_radok_creep
 
 case = vc.load_case(vc.shipped_case("creep_indentation")).with_overrides({"grid.n": 64})
 ds = vc.run(case)

@@ -25,8 +25,8 @@ import numpy as np
 
 import viscontact as vc
 from viscontact.plotting.result import speed_curve_figure
-from viscontact.reference import hertz_from_approach
-from viscontact.results import material_dataset
+from viscontact.physics.reference import hertz_from_approach
+from viscontact.io.results import material_dataset
 
 CURVES = {"pu_elastomer_master_curve": ("PU elastomer", np.logspace(-10, 8, 19)),
           "pmma_master_curve": ("PMMA", np.logspace(-17, 2, 20))}

@@ -28,7 +28,7 @@ import numpy as np
 import scipy.fft
 from numpy.lib.mixins import NDArrayOperatorsMixin
 
-from viscontact.arrays import ArrayBackend
+from viscontact.numerics.arrays import ArrayBackend
 
 #: functions that take a ``where`` keyword on the device (the reductions do not)
 _WHERE_ALLOWED = {"copyto", "where"}

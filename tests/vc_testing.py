@@ -2,9 +2,9 @@
 (no case files involved), and the seed's material as case-file text."""
 from __future__ import annotations
 
-from viscontact.grid import Grid
-from viscontact.materials import Material
-from viscontact.problem import (NormalLoading, OutputSettings, PiecewiseLinear, Problem, SolverSettings,
+from viscontact.numerics.grid import Grid
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import (NormalLoading, OutputSettings, PiecewiseLinear, Problem, SolverSettings,
                                 TangentialLoading, TimeStepping)
 
 #: the seed's material and contact: G(0) = 1.93 MPa (the seed's mu = 2G),
@@ -67,8 +67,8 @@ def periodic_elastic_contact(grid: Grid, gap, shear_modulus: float, poisson_rati
     PeriodicConvolver + Polonsky-Keer. Returns (pressure [Pa], approach [m], u_z [m], iterations)."""
     import numpy as np
 
-    from viscontact.constrained import constrained_cg
-    from viscontact.periodic import PeriodicConvolver
+    from viscontact.numerics.constrained import constrained_cg
+    from viscontact.physics.periodic import PeriodicConvolver
 
     conv = PeriodicConvolver.for_grid(grid, poisson_ratio, components=("zz",))
     sol = constrained_cg(lambda p: conv.apply("zz", p) / shear_modulus, -gap, np.zeros_like(gap), 0.0, np.inf,

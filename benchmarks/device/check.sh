@@ -87,10 +87,10 @@ for dist in ("numpy", "scipy", "xarray", "h5py", "h5netcdf", "pydantic", "Surfac
         print(f"{dist} {md.version(dist)}")
     except md.PackageNotFoundError:
         print(f"{dist}: not installed")
-import viscontact.case, viscontact.streaming  # pydantic, h5netcdf on import
+import viscontact.io.case, viscontact.io.streaming  # pydantic, h5netcdf on import
 from SurfaceTopography.Generation import fourier_synthesis  # the rough case's surface
 print("viscontact", viscontact.__file__)
-from viscontact.arrays import cupy_backend
+from viscontact.numerics.arrays import cupy_backend
 try:
     gpu = cupy_backend()
 except ImportError as exc:
@@ -107,7 +107,7 @@ PY
 }
 
 has_device() {
-    "$PYTHON" -c "from viscontact.arrays import cupy_backend; cupy_backend()" > /dev/null 2>&1
+    "$PYTHON" -c "from viscontact.numerics.arrays import cupy_backend; cupy_backend()" > /dev/null 2>&1
 }
 
 export PYTHON SITE

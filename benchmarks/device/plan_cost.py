@@ -1,5 +1,5 @@
 """What a new transform length costs on the device: the zero-block DC-FFT convolution of an m x m
-field (padded length 2m; :class:`viscontact.fftbackends.ZeroBlockTransforms`, four 1-D transforms)
+field (padded length 2m; :class:`viscontact.numerics.fftbackends.ZeroBlockTransforms`, four 1-D transforms)
 after a kernel spectrum's forward transform, the first time a length is seen (CuPy makes and caches
 its cuFFT plans) against later calls.
 
@@ -8,7 +8,7 @@ its cuFFT plans) against later calls.
 
 A creeping contact's support window grows by a few cells a step; with ``scipy.fft.next_fast_len``
 lengths every step has a new length (864, 900, 960, 972, 1000 at 1024^2: ``bench_device.py``'s
-creep), on the device ladder (:func:`viscontact.arrays.device_fast_length`) a new one only when the
+creep), on the device ladder (:func:`viscontact.numerics.arrays.device_fast_length`) a new one only when the
 contact grows by a third. Prints one row per length: the first call, the median of later calls [ms],
 and whether the length is on the ladder.
 """
@@ -19,8 +19,8 @@ import time
 
 import numpy as np
 
-from viscontact.arrays import cupy_backend, device_fast_length
-from viscontact.fftbackends import ZeroBlockTransforms
+from viscontact.numerics.arrays import cupy_backend, device_fast_length
+from viscontact.numerics.fftbackends import ZeroBlockTransforms
 
 
 def main() -> None:

@@ -12,10 +12,10 @@ pytest, pytest-xdist, hypothesis and cupy-cuda13x, and what pip installed with t
 The pins are the versions the test suite runs with here. What needs them, at import:
 
 * pydantic (+ pydantic-core, annotated-types, typing-inspection, typing-extensions): case files
-  (``viscontact.case``; the seam tests load the shipped rough case);
+  (``viscontact.io.case``; the seam tests load the shipped rough case);
 * h5netcdf: result files (the seam's streamed run);
 * SurfaceTopography (+ NuMPI, array-api-compat, primefac and its readers' packages): the
-  self-affine surface of the rough periodic case (``viscontact.topography``).
+  self-affine surface of the rough periodic case (``viscontact.problem.topography``).
 
 dask and distributed are not carried: only ``viscontact sweep`` imports them (results.py does where
 present); neither the seam tests nor ``benchmarks/bench_device.py`` need them.

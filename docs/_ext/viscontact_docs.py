@@ -1,13 +1,13 @@
 """Sphinx directives that generate reference pages from the package itself.
 
 ``.. case-keys::``
-    Every case-file key, section by section, from the pydantic models of :mod:`viscontact.case`:
+    Every case-file key, section by section, from the pydantic models of :mod:`viscontact.io.case`:
     key, type or allowed values, unit (``json_schema_extra["unit"]`` of the field), default,
     allowed range (the field's ``gt``/``ge``/``lt``/``le`` constraints) and description (the
     field's ``description``; the section's docstring above each table).
 ``.. result-variables::``
-    The variables of a result file, from :data:`viscontact.results.VARIABLES` and
-    :data:`viscontact.results.SCALES`, then its coordinates (:data:`viscontact.results.COORDINATES`).
+    The variables of a result file, from :data:`viscontact.io.results.VARIABLES` and
+    :data:`viscontact.io.results.SCALES`, then its coordinates (:data:`viscontact.io.results.COORDINATES`).
 Docstrings
     Absolute values written as in the numerics, ``|q|``, ``|sigma_z - sigma_r|``, are kept as text
     (reST would read them as substitutions) outside inline literals and literal blocks.
@@ -177,12 +177,12 @@ def case_key_lines(root: type[BaseModel]) -> list[str]:
 
 
 class CaseKeys(SphinxDirective):
-    """``.. case-keys::`` — the case-file key reference, generated from :class:`viscontact.case.Case`."""
+    """``.. case-keys::`` — the case-file key reference, generated from :class:`viscontact.io.case.Case`."""
 
     has_content = False
 
     def run(self) -> list[nodes.Node]:
-        from viscontact.case import Case
+        from viscontact.io.case import Case
 
         return self._parse(case_key_lines(Case))
 
@@ -199,7 +199,7 @@ class ResultVariables(CaseKeys):
     """``.. result-variables::`` — the variables a result file may hold, with units."""
 
     def run(self) -> list[nodes.Node]:
-        from viscontact import results
+        from viscontact.io import results
 
         rows = [".. list-table::", "   :header-rows: 1", "   :widths: 25 10 65", "",
                 "   * - variable", "     - unit", "     - meaning"]

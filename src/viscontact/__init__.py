@@ -13,24 +13,27 @@ from importlib import import_module as _import_module
 #: public name -> module defining it; imported on first use, so that ``viscontact.cli`` starts at once
 #: (and handles SIGINT from its first moment) without loading xarray and the solvers
 _EXPORTS = {
-    "run": "api", "run_steady": "api", "run_to_file": "api", "Written": "api", "Case": "case", "load_case": "case",
-    "ConvergenceError": "errors",
-    "NumericalGuardError": "errors", "ParameterError": "errors", "ViscontactError": "errors",
-    "ViscontactWarning": "errors", "Grid": "grid", "Material": "materials", "NormalLoading": "problem",
-    "OutputSettings": "problem", "PiecewiseLinear": "problem", "Problem": "problem", "SolverSettings": "problem",
-    "TangentialLoading": "problem", "TimeStepping": "problem", "StepRecord": "records", "open_result": "results",
-    "to_dataset": "results", "write_netcdf": "results", "shipped_case": "shipped",
+    "run": "running.api", "run_steady": "running.api", "run_to_file": "running.api", "Written": "running.api",
+    "Case": "io.case", "load_case": "io.case",
+    "ConvergenceError": "errors", "NumericalGuardError": "errors", "ParameterError": "errors",
+    "ViscontactError": "errors", "ViscontactWarning": "errors",
+    "Grid": "numerics.grid", "Material": "physics.materials",
+    "NormalLoading": "problem.problem", "OutputSettings": "problem.problem", "PiecewiseLinear": "problem.problem",
+    "Problem": "problem.problem", "SolverSettings": "problem.problem", "TangentialLoading": "problem.problem",
+    "TimeStepping": "problem.problem", "StepRecord": "problem.records",
+    "open_result": "io.netcdf", "to_dataset": "io.results", "write_netcdf": "io.netcdf",
+    "shipped_case": "io.shipped",
 }
 
 
 def __getattr__(name: str):
     """The public names, imported lazily (PEP 562); ``steady`` is the steady-state solver module."""
     if name == "steady":
-        return _import_module(".steady", __name__)
+        return _import_module(".solvers.steady", __name__)
     if name == "__version__":
-        from importlib.metadata import version
+        from viscontact.version import package_version
 
-        globals()[name] = version("viscontact")
+        globals()[name] = package_version()
         return globals()[name]
     if name in _EXPORTS:
         value = getattr(_import_module(f".{_EXPORTS[name]}", __name__), name)

@@ -1,14 +1,14 @@
 """The ``viscontact`` console command. Its first act is to make SIGINT during start-up (importing the
 command line and its libraries takes a noticeable fraction of a second) one line and exit status
 130 instead of a traceback; :func:`viscontact.cli.main` handles it from then on. Its second is the
-allocator setting of :mod:`viscontact.allocator`."""
+allocator setting of :mod:`viscontact.numerics.allocator`."""
 from __future__ import annotations
 
 import os
 import signal
 import sys
 
-from .errors import EXIT_INTERRUPTED, raised_by_interrupt
+from viscontact.errors import EXIT_INTERRUPTED, raised_by_interrupt
 
 
 def _interrupted_at_start_up(signum: int, frame: object) -> None:  # noqa: ARG001
@@ -22,11 +22,11 @@ def _interrupted_at_start_up(signum: int, frame: object) -> None:  # noqa: ARG00
 def main() -> int:
     """Entry point of the ``viscontact`` console script."""
     previous = signal.signal(signal.SIGINT, _interrupted_at_start_up)
-    from .allocator import tune_allocator
+    from viscontact.numerics.allocator import tune_allocator
 
     tune_allocator()  # glibc settings for the solvers' temporaries (opt-out: VISCONTACT_MALLOC=default)
     try:
-        from .cli import main as cli_main
+        from viscontact.cli import main as cli_main
     except ImportError as exc:  # an extension module's start-up interrupted: its ImportError is the SIGINT
         # (a guard: the handler above exits without raising, so this takes a handler that raises)
         if raised_by_interrupt(exc):

@@ -1,4 +1,4 @@
-"""``viscontact`` command line: a thin shell over :mod:`viscontact.api`.
+"""``viscontact`` command line: a thin shell over :mod:`viscontact.running.api`.
 
 Bad input (an option, case file, missing file, existing result) prints one line
 ``viscontact: error: <key>: <message>`` and exits with status 2 (argparse's own errors too:
@@ -7,9 +7,9 @@ on a periodic domain, keeps the steps done and says where); a failed solve (no c
 numerical guard) exits with status 1, keeping the steps done in the result file (``complete = 0``).
 SIGINT / SIGTERM stop a run after its current step, keep the steps done (``complete = 0``) and
 exit with 130 / 143. ``run`` streams its records to ``RESULT.nc.partial`` and renames it to
-``RESULT.nc`` when it ends (:mod:`viscontact.streaming`); after a kill the steps done are in
+``RESULT.nc`` when it ends (:mod:`viscontact.io.streaming`); after a kill the steps done are in
 ``RESULT.nc.partial``. ``run``, ``steady`` and ``sweep`` lock their result file
-(:func:`viscontact.output_files.output_lock`) before checking it: a second command writing the same
+(:func:`viscontact.io.output_files.output_lock`) before checking it: a second command writing the same
 file is refused in one line (should the lock file be removed under a run and another run replace
 its ``RESULT.nc.partial``, the first renames nothing, keeps its own file as
 ``RESULT.nc.orphan-PID.nc`` and exits with status 1). Every sub-command takes ``--quiet`` (no
@@ -33,8 +33,16 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, NoReturn
 
-from .errors import (EXIT_INTERRUPTED, ConvergenceError, NumericalGuardError, OutputReplacedError, ParameterError,
-                     RunInterrupted, ViscontactWarning, raised_by_interrupt)
+from viscontact.errors import (
+    EXIT_INTERRUPTED,
+    ConvergenceError,
+    NumericalGuardError,
+    OutputReplacedError,
+    ParameterError,
+    RunInterrupted,
+    ViscontactWarning,
+    raised_by_interrupt,
+)
 
 PROG = "viscontact"
 EXIT_FAILED, EXIT_USAGE, EXIT_TERMINATED = 1, 2, 143
@@ -43,9 +51,9 @@ log = logging.getLogger("viscontact")
 
 
 def _version() -> str:
-    from . import __version__
+    from viscontact.version import package_version
 
-    return __version__
+    return package_version()
 
 
 # --- the parser: one ``_add_<command>`` per sub-command, each setting its ``_cmd_<command>`` handler --
@@ -94,7 +102,7 @@ def _set_argument(p: argparse.ArgumentParser, what: str = "a case-file key") -> 
 
 def _figure_arguments(p: argparse.ArgumentParser) -> None:
     """``--format`` and ``--dpi`` of the figures a command writes."""
-    from .plotting.base import DPI, FORMATS
+    from viscontact.plotting.base import DPI, FORMATS
 
     p.add_argument("--format", default="png", choices=FORMATS, dest="fmt", help="file format of the figures")
     p.add_argument("--dpi", type=int, default=None, metavar="N", help=f"resolution of the figures (default {DPI})")
@@ -154,7 +162,9 @@ def _add_plot(sub: Any) -> None:
 
 
 def _add_sweep(sub: Any) -> None:
-    from .resources import available_cores  # not the sweep's modules: the parser is built for every command
+    from viscontact.running.resources import (
+        available_cores,  # not the sweep's modules: the parser is built for every command
+    )
 
     p = sub.add_parser("sweep", help="a parameter sweep on a dask cluster (resumable)",
                        description="Run the Cartesian product of the values in SWEEP.toml. "
@@ -173,7 +183,7 @@ def _add_sweep(sub: Any) -> None:
 
 
 def _add_reproduce(sub: Any) -> None:
-    from .reproduce.figures import FIGURES
+    from viscontact.reproduce.figures import FIGURES
 
     p = sub.add_parser("reproduce", help="rerun the seed's cases and draw one of its figures")
     p.add_argument("figure", choices=list(FIGURES), help="seed figure to reproduce")
@@ -330,8 +340,8 @@ def _check_figures(args: argparse.Namespace, option: str = "--plots", files: Seq
     """Before any computing: the figure options are valid, matplotlib imports and the folder of the
     figures, given by ``option`` (``--plots`` of the commands that have one, ``--out`` of ``plot``),
     can be made and is none of ``files`` (default: the result file ``--out``)."""
-    from .output_files import check_output_folder
-    from .plotting import check_format, pyplot
+    from viscontact.io.output_files import check_output_folder
+    from viscontact.plotting import check_format, pyplot
 
     check_format(args.fmt, args.dpi)
     pyplot()
@@ -342,7 +352,7 @@ def _check_figures(args: argparse.Namespace, option: str = "--plots", files: Seq
 
 def _load(args: argparse.Namespace) -> Any:
     """The case file ``args.case`` with the ``--set`` overrides applied."""
-    from .case import load_case
+    from viscontact.io.case import load_case
 
     case = load_case(args.case)
     overrides = _overrides(args.overrides)
@@ -352,9 +362,9 @@ def _load(args: argparse.Namespace) -> Any:
 @contextmanager
 def _writing(out: str, derived: Sequence[str] = ()) -> Iterator[None]:
     """While the body runs, this process alone writes the result file ``out`` (a ``*.nc`` name):
-    :func:`viscontact.output_files.output_lock`, which first checks the names of the files
+    :func:`viscontact.io.output_files.output_lock`, which first checks the names of the files
     ``derived`` (suffixes) written beside it. Enter it before ``out`` is checked."""
-    from .output_files import output_lock
+    from viscontact.io.output_files import output_lock
 
     _check_result_name(out)
     with output_lock(out, derived):
@@ -364,7 +374,7 @@ def _writing(out: str, derived: Sequence[str] = ()) -> Iterator[None]:
 def _prepare(args: argparse.Namespace) -> Any:
     """The case with its overrides, after checking (before any computing) that the result file may
     be written and that plotting is available (inside :func:`_writing`)."""
-    from .output_files import check_output_path
+    from viscontact.io.output_files import check_output_path
 
     case = _load(args)
     check_output_path(args.out, force=args.force or getattr(args, "resume", False),
@@ -382,7 +392,7 @@ def _check_result_name(out: str) -> None:
 
 def _parse_positive(text: str, option: str, unit: str, example: str) -> list[float]:
     """Comma-separated finite numbers > 0, each once (``--speeds``, ``--times``)."""
-    from .guards import positive_values
+    from viscontact.running.guards import positive_values
 
     try:
         values = [float(s) for s in text.split(",") if s.strip()]
@@ -393,7 +403,7 @@ def _parse_positive(text: str, option: str, unit: str, example: str) -> list[flo
 
 def _finish(ds: Any, args: argparse.Namespace, started: float) -> None:
     """Write the result ``ds`` of a command computed in memory, then :func:`_report`."""
-    from .results import write_netcdf
+    from viscontact.io.netcdf import write_netcdf
 
     ds.attrs["history"] = f"{ds.attrs.get('history', '')} {_history_note(args)}".strip()
     write_netcdf(ds, args.out, force=args.force)
@@ -421,7 +431,7 @@ def _report(ds: Any, records: int, args: argparse.Namespace, started: float) -> 
     """Draw the figures of the result ``ds`` (with ``--plots``) and print what was written."""
     written = [Path(args.out)]
     if args.plots:
-        from .plotting import plot_any  # imported before the run by _prepare when --plots is given
+        from viscontact.plotting import plot_any  # imported before the run by _prepare when --plots is given
 
         written += plot_any(ds, args.plots, fmt=args.fmt, dpi=args.dpi)
     if not args.quiet:
@@ -430,10 +440,10 @@ def _report(ds: Any, records: int, args: argparse.Namespace, started: float) -> 
 
 def _cmd_run(args: argparse.Namespace) -> int:
     """The records are streamed to RESULT.nc.partial as the run goes and renamed to RESULT.nc at the
-    end (:func:`viscontact.api.run_to_file`): memory does not grow with the number of steps."""
-    from .api import CHECKPOINT_SUFFIX
-    from .checkpoint import check_checkpoint_every
-    from .streaming import PARTIAL_SUFFIX
+    end (:func:`viscontact.running.api.run_to_file`): memory does not grow with the number of steps."""
+    from viscontact.io.checkpoint import check_checkpoint_every
+    from viscontact.io.streaming import PARTIAL_SUFFIX
+    from viscontact.running.api import CHECKPOINT_SUFFIX
 
     started = time.perf_counter()
     check_checkpoint_every(args.checkpoint_every, "--checkpoint-every")
@@ -444,11 +454,11 @@ def _cmd_run(args: argparse.Namespace) -> int:
 def _run_locked(args: argparse.Namespace, started: float) -> int:
     """``viscontact run`` once this process alone writes ``--out`` (:func:`_writing`): an
     ``OUT.partial`` there is the steps of an interrupted run, not of a run going on."""
-    from . import api
-    from .guards import check_material
-    from .resources import check_resources, describe
-    from .results import open_result
-    from .streaming import check_partial_path
+    from viscontact.io.netcdf import open_result
+    from viscontact.io.streaming import check_partial_path
+    from viscontact.running import api
+    from viscontact.running.guards import check_material
+    from viscontact.running.resources import check_resources, describe
 
     case = _prepare(args)
     partial = check_partial_path(args.out)  # a folder there is in the way, not an interrupted run's steps
@@ -461,8 +471,8 @@ def _run_locked(args: argparse.Namespace, started: float) -> int:
     estimate = check_resources(outline, args.out, force=args.force, checkpoints=bool(args.checkpoint_every),
                                written_bytes=written)  # the outline says whether SurfaceTopography makes its gap
     if args.dry_run:  # a run prepares its problem in run_to_file
-        from .arrays import array_backend
-        from .transient import validate
+        from viscontact.numerics.arrays import array_backend
+        from viscontact.solvers.transient import validate
 
         problem, _ = api.prepare(case)
         validate(problem)
@@ -470,7 +480,7 @@ def _run_locked(args: argparse.Namespace, started: float) -> int:
         print(describe(problem, estimate))
         return 0
     if args.resume:  # what the killed run's writes left half way
-        from .output_files import remove_temporaries
+        from viscontact.io.output_files import remove_temporaries
 
         remove_temporaries(args.out)
         remove_temporaries(api.checkpoint_path(args.out))
@@ -496,11 +506,11 @@ class _StopSignals:
         self.finishing = False
 
     def should_stop(self) -> str | None:
-        """The ``should_stop`` callable of :func:`viscontact.api.run_to_file`."""
+        """The ``should_stop`` callable of :func:`viscontact.running.api.run_to_file`."""
         return self.received[0] if self.received else None
 
     def finish(self) -> None:
-        """The ``finishing`` callable of :func:`viscontact.api.run_to_file`: the result is being written."""
+        """The ``finishing`` callable of :func:`viscontact.running.api.run_to_file`: the result is being written."""
         self.finishing = True
 
     def handle(self, signum: int, frame: Any) -> None:  # noqa: ARG002
@@ -522,7 +532,7 @@ def _stop_on_signals() -> Iterator[_StopSignals]:
 
 
 def _cmd_steady(args: argparse.Namespace) -> int:
-    from . import api
+    from viscontact.running import api
 
     started = time.perf_counter()
     speeds = _parse_positive(args.speeds, "--speeds", "m/s", "0.01,0.1,1") if args.speeds is not None else None
@@ -533,7 +543,7 @@ def _cmd_steady(args: argparse.Namespace) -> int:
 
 
 def _cmd_material(args: argparse.Namespace) -> int:
-    from .results import material_dataset
+    from viscontact.io.results import material_dataset
 
     case = _load(args)
     if args.plots:
@@ -545,7 +555,7 @@ def _cmd_material(args: argparse.Namespace) -> int:
     if problem.bulk_modulus is None:
         nu = f"poisson_ratio = {material.poisson_ratio:g}"
     else:  # nu(t) from G(t) and K
-        from .poisson import BulkElasticMaterial
+        from viscontact.bodies.bulk_elastic import BulkElasticMaterial
 
         bulk = BulkElasticMaterial(material, problem.bulk_modulus)
         nu = (f"bulk_modulus K = {problem.bulk_modulus:.6g} Pa: poisson ratio nu(t) from "
@@ -561,7 +571,7 @@ def _cmd_material(args: argparse.Namespace) -> int:
     print("relaxation times [s]: " + (" ".join(f"{x:.4g}" for x in sorted(material.tau)) or "none"))
     print("retardation times [s]: " + (" ".join(f"{x:.4g}" for x in c.retardation_times) or "none"))
     if args.plots:
-        from .plotting import plot_material
+        from viscontact.plotting import plot_material
 
         for path in plot_material(material_dataset(material), args.plots, fmt=args.fmt, dpi=args.dpi):
             print(f"wrote {path}")
@@ -569,8 +579,8 @@ def _cmd_material(args: argparse.Namespace) -> int:
 
 
 def _cmd_plot(args: argparse.Namespace) -> int:
-    from .plotting import plot_any
-    from .results import open_result
+    from viscontact.io.netcdf import open_result
+    from viscontact.plotting import plot_any
 
     times = _parse_positive(args.times, "--times", "s", "0.005,0.02") if args.times is not None else None
     _check_figures(args, "--out", [args.result])
@@ -583,7 +593,7 @@ def _cmd_plot(args: argparse.Namespace) -> int:
 def _cmd_sweep(args: argparse.Namespace) -> int:
     """0 when every run succeeded, 1 when some failed (the sweep file is written all the same), 130
     when interrupted (the finished runs are kept)."""
-    from .sweep import load_sweep, planned, runs_dir, sweep
+    from viscontact.sweep import load_sweep, planned, runs_dir, sweep
 
     started = time.perf_counter()
     if args.workers is not None and args.scheduler:
@@ -615,7 +625,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
             client.close()
     written = [Path(args.out)]
     if args.plots:
-        from .plotting import plot_sweep
+        from viscontact.plotting import plot_sweep
 
         written += plot_sweep(ds, args.plots, fmt=args.fmt, dpi=args.dpi)
     if not args.quiet:
@@ -627,7 +637,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
 
 
 def _cmd_reproduce(args: argparse.Namespace) -> int:
-    from .reproduce import reproduce
+    from viscontact.reproduce import reproduce
 
     started = time.perf_counter()
     _check_figures(args)

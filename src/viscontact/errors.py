@@ -35,7 +35,7 @@ class NumericalGuardError(ViscontactError, RuntimeError):
 
 class RunInterrupted(ViscontactError):
     """A run was asked to stop (SIGINT, SIGTERM) and did so after finishing its current step.
-    ``reason`` says why; ``partial`` (set by :func:`viscontact.api.run`) holds the steps done."""
+    ``reason`` says why; ``partial`` (set by :func:`viscontact.running.api.run`) holds the steps done."""
 
     def __init__(self, reason: str) -> None:
         self.reason = reason
@@ -65,8 +65,8 @@ _PACKAGE_PREFIX = os.path.dirname(os.path.abspath(__file__)) + os.sep
 
 def warn_caller(message: str) -> None:
     """``warnings.warn(message, ViscontactWarning)`` attributed to the first frame outside the package: the
-    user's line that called the API (:func:`viscontact.api.run`, :func:`~viscontact.api.run_to_file`, a
-    generator such as :func:`viscontact.transient.simulate` where it is iterated), however deep in the
+    user's line that called the API (:func:`viscontact.running.api.run`, :func:`~viscontact.running.api.run_to_file`, a
+    generator such as :func:`viscontact.running.loop.simulate` where it is iterated), however deep in the
     package the warning is raised. A fixed ``stacklevel`` is right for one call path only. Python
     >= 3.12 skips the package's frames itself (``skip_file_prefixes``); before, they are counted here."""
     if sys.version_info >= (3, 12):

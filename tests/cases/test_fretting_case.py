@@ -7,10 +7,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from viscontact.api import run
-from viscontact.case import load_case
-from viscontact.problem import PHASE_PARTIAL_SLIP
-from viscontact.reference import cattaneo_mindlin
+from viscontact.running.api import run
+from viscontact.io.case import load_case
+from viscontact.problem.problem import PHASE_PARTIAL_SLIP
+from viscontact.physics.reference import cattaneo_mindlin
 
 CASE = Path(__file__).resolve().parents[2] / "cases" / "fretting_zener.toml"
 AMPLITUDE, MU, W, R = 8e-6, 0.3, 0.15, 0.01
@@ -66,8 +66,8 @@ def test_the_result_states_the_displacement_history(result):
     before, only the case text held it, and a Problem's run lost it."""
     from vc_testing import sphere_problem
 
-    from viscontact.materials import Material
-    from viscontact.problem import PiecewiseLinear
+    from viscontact.physics.materials import Material
+    from viscontact.problem.problem import PiecewiseLinear
 
     history = load_case(CASE).to_problem().tangential.displacement_history
     np.testing.assert_array_equal(result.attrs["displacement_history_times"], history.times)
@@ -85,9 +85,9 @@ def test_a_thinned_output_keeps_the_turning_points(tmp_path):
     kept anyway, 130 is the last) fall between the kept ones: before, the records turned at +-7.2 um instead of +-8 um, and the loop
     figure's tips were cut. They are recorded too (Problem.recorded), in memory and streamed, and
     the streamed file holds as many records as resources.recorded_steps claimed (disk space)."""
-    from viscontact import resources
-    from viscontact.api import run_to_file
-    from viscontact.results import open_result
+    from viscontact.running import resources
+    from viscontact.running.api import run_to_file
+    from viscontact.io.netcdf import open_result
 
     case = load_case(CASE).with_overrides({"grid.n": 16, "output.every": 7})
     problem = case.to_problem()

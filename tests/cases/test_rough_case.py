@@ -23,8 +23,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from viscontact.api import run, run_steady
-from viscontact.case import load_case
+from viscontact.running.api import run, run_steady
+from viscontact.io.case import load_case
 from viscontact.errors import ViscontactWarning
 
 CASE = Path(__file__).resolve().parents[2] / "cases" / "rough_periodic_sliding.toml"

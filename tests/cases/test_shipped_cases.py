@@ -21,10 +21,10 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from viscontact.api import run
-from viscontact.case import load_case
+from viscontact.running.api import run
+from viscontact.io.case import load_case
 from viscontact.errors import ViscontactWarning
-from viscontact.reference import hertz_from_load
+from viscontact.physics.reference import hertz_from_load
 
 CASES = Path(__file__).resolve().parents[2] / "cases"
 TAU = 0.01                   # s, the seed's tau (retardation time)

@@ -1,4 +1,4 @@
-"""viscontact.allocator: the glibc settings for the solvers' temporaries, their opt-out and their effect
+"""viscontact.numerics.allocator: the glibc settings for the solvers' temporaries, their opt-out and their effect
 (page faults of repeated DC-FFT convolutions, counted by the kernel), each in a fresh interpreter."""
 from __future__ import annotations
 
@@ -16,8 +16,8 @@ GLIBC = sys.platform.startswith("linux") and platform.libc_ver()[0] == "glibc"
 SCRIPT = """
 import resource, sys
 import numpy as np
-from viscontact.allocator import tune_allocator
-from viscontact.fftbackends import ZeroBlockTransforms
+from viscontact.numerics.allocator import tune_allocator
+from viscontact.numerics.fftbackends import ZeroBlockTransforms
 tuned = False
 if sys.argv[1] == "tune":
     tuned = tune_allocator()

@@ -8,14 +8,14 @@ import pytest
 from test_results import fake_records, make_problem  # tests/unit is on sys.path
 
 import viscontact as vc
-from viscontact import transient
+from viscontact.solvers import transient
 from viscontact.errors import ConvergenceError
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_steady_is_the_solver_module_and_run_steady_the_api() -> None:
-    from viscontact.steady import solve_steady  # noqa: F401
+    from viscontact.solvers.steady import solve_steady  # noqa: F401
 
     assert callable(vc.run_steady) and vc.steady.solve_steady is solve_steady
 
@@ -25,7 +25,7 @@ def test_run_accepts_a_path(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> 
     (tmp_path / "case.toml").write_text(text)
     seen = []
 
-    def fake(problem, *, progress=None, state=None):
+    def fake(problem, *, progress=None, state=None, substrate=None):
         seen.append(problem.grid.n)
         for k, rec in enumerate(fake_records(make_problem(), (0, 0))):
             if progress:
@@ -41,7 +41,7 @@ def test_run_accepts_a_path(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> 
 
 
 def test_failure_keeps_the_steps_done(monkeypatch: pytest.MonkeyPatch) -> None:
-    def failing(problem, *, progress=None, state=None):
+    def failing(problem, *, progress=None, state=None, substrate=None):
         for rec in fake_records(problem, (0, 1)):
             yield None, rec
         raise ConvergenceError("normal contact", 10, 1e-3, 1e-8)
@@ -56,7 +56,7 @@ def test_failure_keeps_the_steps_done(monkeypatch: pytest.MonkeyPatch) -> None:
 def test_steady_layouts(monkeypatch: pytest.MonkeyPatch) -> None:
     import sys
 
-    steady = sys.modules["viscontact.steady"]
+    steady = sys.modules["viscontact.solvers.steady"]
     problem = make_problem("gross_sliding")
     record = fake_records(problem, (2,))[0]
     monkeypatch.setattr(steady, "solve_steady", lambda p, speed=None: record)

@@ -1,6 +1,7 @@
-"""The shape of the package, read from its source: private names stay in their module, matplotlib
-is imported by the one pyplot helper, and data flows one way (sweep and reproduce use plotting,
-plotting uses neither); and what a run loads: no xarray, pandas, dask or matplotlib."""
+"""The shape of the package, read from its source: the layers and their one-way imports (imports made
+inside functions counted), no import cycle, private names stay in their module, matplotlib is imported
+by the one pyplot helper, and data flows one way (sweep and reproduce use plotting, plotting uses
+neither); and what a run loads: no xarray, pandas, dask or matplotlib."""
 from __future__ import annotations
 
 import ast
@@ -20,11 +21,24 @@ def _module_name(path: Path) -> str:
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
 
 
-def _imports(path: Path) -> list[tuple[str, list[str]]]:
-    """(absolute module, imported names) of every import in ``path``."""
-    package = _module_name(path) if path.name == "__init__.py" else _module_name(path).rpartition(".")[0]
+def _nodes(tree: ast.AST):
+    """Every node of ``tree`` but those of ``if TYPE_CHECKING:`` bodies (they never run)."""
+    yield tree
+    for child in ast.iter_child_nodes(tree):
+        if isinstance(child, ast.If) and "TYPE_CHECKING" in ast.unparse(child.test):
+            for node in child.orelse:
+                yield from _nodes(node)
+            continue
+        yield from _nodes(child)
+
+
+def _imports(path: Path, package: str | None = None) -> list[tuple[str, list[str]]]:
+    """(absolute module, imported names) of every import in ``path``, those inside functions too;
+    ``package``: the one relative imports start from (by default, that of ``path`` in the source)."""
+    if package is None:
+        package = _module_name(path) if path.name == "__init__.py" else _module_name(path).rpartition(".")[0]
     out = []
-    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+    for node in _nodes(ast.parse(path.read_text(encoding="utf-8"))):
         if isinstance(node, ast.ImportFrom):
             base = package.split(".")
             if node.level:
@@ -36,6 +50,120 @@ def _imports(path: Path) -> list[tuple[str, list[str]]]:
         elif isinstance(node, ast.Import):
             out.extend((a.name, []) for a in node.names)
     return out
+
+
+#: the layers, lowest first: a module may import its own layer's modules and those of the layers
+#: below, never above (docs/architecture.md). Each entry: the layer's name and its module prefixes.
+LAYERS = (
+    ("foundation", ("viscontact.errors", "viscontact.version")),
+    ("numerics", ("viscontact.numerics",)),
+    ("physics", ("viscontact.physics",)),
+    ("bodies", ("viscontact.bodies",)),
+    ("problem", ("viscontact.problem",)),
+    ("solvers", ("viscontact.solvers",)),
+    ("io", ("viscontact.io",)),
+    ("running", ("viscontact.running",)),
+    ("plotting", ("viscontact.plotting",)),
+    ("edges", ("viscontact.reproduce", "viscontact.sweep")),
+    ("command line", ("viscontact.cli", "viscontact._entry", "viscontact.__main__", "viscontact.sweep.__main__")),
+    ("package", ("viscontact",)),
+)
+
+
+def layer_of(module: str) -> int:
+    """Index in :data:`LAYERS` of ``module`` (the longest matching prefix)."""
+    best = max(((len(prefix), i) for i, (_, prefixes) in enumerate(LAYERS) for prefix in prefixes
+                if module == prefix or module.startswith(prefix + ".")), default=None)
+    assert best is not None, f"{module} is in no layer of LAYERS"
+    return best[1]
+
+
+def _package_modules() -> set[str]:
+    return {_module_name(p) for p in MODULES}
+
+
+def _target(name: str, modules: set[str]) -> str | None:
+    """The module of the package that importing ``name`` loads last (``a.b.c`` of ``from a.b import c``
+    where c is a module, else ``a.b``)."""
+    parts = name.split(".")
+    for k in range(len(parts), 0, -1):
+        if ".".join(parts[:k]) in modules:
+            return ".".join(parts[:k])
+    return None
+
+
+def import_graph() -> dict[str, set[str]]:
+    """module -> the package modules it imports (at module level and inside functions)."""
+    modules = _package_modules()
+    graph: dict[str, set[str]] = {m: set() for m in modules}
+    for path in MODULES:
+        me = _module_name(path)
+        for module, names in _imports(path):
+            if not module.startswith("viscontact"):
+                continue
+            for target in {_target(f"{module}.{n}", modules) for n in names} | ({_target(module, modules)}
+                                                                                  if not names else set()):
+                if target and target != me:
+                    graph[me].add(target)
+    return graph
+
+
+def test_every_module_is_in_a_layer():
+    for module in _package_modules():
+        layer_of(module)
+
+
+def test_imports_follow_the_layers():
+    """No import, inside functions included, from a layer above the importer's."""
+    bad = [f"{m} ({LAYERS[layer_of(m)][0]}) imports {t} ({LAYERS[layer_of(t)][0]})"
+           for m, targets in sorted(import_graph().items()) for t in sorted(targets)
+           if layer_of(t) > layer_of(m) and not t == "viscontact" and not m.startswith("viscontact.__init__")]
+    bad += [f"{m} imports the package itself" for m, targets in import_graph().items()
+            if "viscontact" in targets and m != "viscontact"]
+    assert not bad, "\n".join(bad)
+
+
+def test_no_import_cycle():
+    """The import graph (imports inside functions counted) is acyclic: Tarjan's strongly connected
+    components are single modules."""
+    graph = import_graph()
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    cycles = []
+
+    def visit(v: str) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        for w in graph[v]:
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                cycles.append(sorted(component))
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    assert not cycles, cycles
+
+
+def test_the_layer_check_sees_an_import_inside_a_function(tmp_path):
+    """The walker counts an import made inside a function and skips ``if TYPE_CHECKING:`` bodies."""
+    path = tmp_path / "probe.py"
+    path.write_text("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import hidden\n"
+                    "def f():\n    from viscontact.cli import main\n")
+    names = [m for m, _ in _imports(path, "viscontact")]
+    assert "viscontact.cli" in names and "hidden" not in names
 
 
 def _private(name: str) -> bool:
@@ -105,7 +233,7 @@ def test_a_run_loads_no_xarray_pandas_dask_or_matplotlib(tmp_path):
 
 #: what building the command line's parser may not load: the case layer, the solvers' FFTs and the
 #: sweeps (their import took 0.44 s of every command's start, ``viscontact --help`` 0.5 s in all)
-PARSER_MUST_NOT_LOAD = ("pydantic", "scipy", "viscontact.case", "viscontact.sweep", "dask")
+PARSER_MUST_NOT_LOAD = ("pydantic", "scipy", "viscontact.io.case", "viscontact.sweep", "dask")
 HELP_IN_A_FRESH_PROCESS = textwrap.dedent("""
     import contextlib, io, json, sys
     from viscontact.cli import main

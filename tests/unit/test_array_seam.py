@@ -1,4 +1,4 @@
-"""The array seam (viscontact.arrays): the transient on a device array library.
+"""The array seam (viscontact.numerics.arrays): the transient on a device array library.
 
 Every transient mode and body (half-space on DC-FFT and periodic grids, layers, nu(t)) runs on an
 emulated device (tests/emulated_device.py: numpy behind CuPy's rules, so a host array leaking into
@@ -22,19 +22,19 @@ import scipy.fft
 
 import emulated_device
 from emulated_device import DeviceArray, HostArrayError
-from viscontact.arrays import CPU, cupy_backend
-from viscontact.constrained import constrained_cg
-from viscontact.convolution import Convolver, FourierPreconditioner
+from viscontact.numerics.arrays import CPU, cupy_backend
+from viscontact.numerics.constrained import constrained_cg
+from viscontact.numerics.convolution import Convolver, FourierPreconditioner
 from viscontact.errors import ParameterError
-from viscontact.grid import Grid
-from viscontact.kernels import influence_coefficients
-from viscontact.case import load_case
-from viscontact.checkpoint import load_checkpoint, save_checkpoint
-from viscontact.problem import LayerSettings, SolverSettings
-from viscontact.shipped import shipped_case
-from viscontact.substrate import substrate_for
-from viscontact import transient
-from viscontact.transient import steps
+from viscontact.numerics.grid import Grid
+from viscontact.physics.kernels import influence_coefficients
+from viscontact.io.case import load_case
+from viscontact.io.checkpoint import load_checkpoint, save_checkpoint
+from viscontact.problem.problem import LayerSettings, SolverSettings
+from viscontact.io.shipped import shipped_case
+from viscontact.bodies.body import substrate_for
+from viscontact.solvers import transient
+from viscontact.solvers.transient import steps
 from vc_testing import SEED_A0, SEED_RADIUS, SEED_TAU, seed_material, sphere_problem
 
 
@@ -387,8 +387,10 @@ def test_a_step_after_the_first_moves_no_field_to_the_device(mode):
 def test_the_steady_active_set_moves_no_field_to_the_device(body, monkeypatch):
     """The steady solver moves its kernels and the gap once; its active set and Krylov iterations copy
     nothing as large as a grid row to the device."""
-    from viscontact import steady, steady_periodic, substrate
-    from viscontact.steady import solve_steady
+    from viscontact import steady
+    from viscontact.solvers import steady_periodic
+    from viscontact.bodies import body as substrate
+    from viscontact.solvers.steady import solve_steady
 
     problem = _steady(body)
     monkeypatch.setattr(substrate, "array_backend", lambda device: emulated_device.BACKEND)
@@ -437,7 +439,9 @@ def test_a_streamed_run_stopped_and_resumed_on_the_device_equals_the_cpu_run(bac
     device as the backend of ``solver.device``."""
     import xarray as xr
 
-    from viscontact import api, checkpoint, substrate
+    from viscontact.running import api
+    from viscontact.io import checkpoint
+    from viscontact.bodies import body as substrate
     from viscontact.errors import RunInterrupted
 
     problem = dataclasses.replace(_transient("frictionless_sliding"),  # a dt the command's guards accept
@@ -484,8 +488,10 @@ def _steady(body: str):
                                   "bulk_modulus"])
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_the_steady_state_on_the_device_equals_numpy(backend, body, monkeypatch):
-    from viscontact import steady, steady_periodic, substrate
-    from viscontact.steady import solve_steady
+    from viscontact import steady
+    from viscontact.solvers import steady_periodic
+    from viscontact.bodies import body as substrate
+    from viscontact.solvers.steady import solve_steady
 
     problem = _solved_to_round_off(_steady(body), backend)
     reference = solve_steady(problem)

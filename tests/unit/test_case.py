@@ -6,9 +6,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from viscontact.case import Case, load_case
+from viscontact.io.case import Case, load_case
 from viscontact.errors import ParameterError
-from viscontact.problem import Problem, TangentialLoading
+from viscontact.problem.problem import Problem, TangentialLoading
 
 ROOT = Path(__file__).resolve().parents[2]
 CASES = sorted((ROOT / "cases").glob("*.toml"))
@@ -156,7 +156,7 @@ def test_case_keys_list_every_material_type() -> None:
     take it."""
     import typing
 
-    from viscontact.case import MATERIALS, case_keys
+    from viscontact.io.case import MATERIALS, case_keys
 
     keys = case_keys()
     assert typing.get_args(keys["material.type"].annotation) == tuple(MATERIALS) == ("zener", "prony", "elastic")
@@ -219,8 +219,8 @@ def test_a_sliding_speed_beside_a_displacement_history_is_refused_by_the_run(tmp
     (transient.validate, what viscontact run and the sweeps' checks call) refuses it in one line keyed
     tangential.sliding_speed - before, it was accepted silently and written to the result's
     attributes as if the indenter had slid. (viscontact steady refuses the history itself.)"""
-    from viscontact.shipped import shipped_case
-    from viscontact.transient import validate
+    from viscontact.io.shipped import shipped_case
+    from viscontact.solvers.transient import validate
 
     case = load_case(shipped_case("fretting_zener")).with_overrides({"grid.n": 16})
     validate(case.to_problem())

@@ -10,10 +10,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from viscontact.case import Case
+from viscontact.io.case import Case
 from viscontact.errors import ParameterError
-from viscontact.grid import Grid
-from viscontact.topography import gap_from_heights, self_affine_heights, sphere_heights
+from viscontact.numerics.grid import Grid
+from viscontact.problem.topography import gap_from_heights, self_affine_heights, sphere_heights
 
 ROOT = Path(__file__).resolve().parents[2]
 ROUGH = (ROOT / "cases" / "rough_periodic_sliding.toml").read_text()

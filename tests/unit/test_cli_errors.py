@@ -298,7 +298,7 @@ def test_steady_of_a_fretting_case_is_refused_in_one_line(tmp_path: Path, capsys
     sliding at the speed given, which the case never reaches; a steady sweep of such runs is refused
     before any run (check_run)."""
     from viscontact import cli
-    from viscontact.case import load_case
+    from viscontact.io.case import load_case
     from viscontact.errors import ParameterError
     from viscontact.sweep.spec import check_run
 

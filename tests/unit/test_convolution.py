@@ -10,9 +10,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from viscontact.convolution import Convolver, coupled_displacements, direct_convolution
-from viscontact.grid import Grid
-from viscontact.kernels import COMPONENTS, influence_coefficients
+from viscontact.numerics.convolution import coupled_displacements, direct_convolution
+from viscontact.numerics.grid import Grid
+from viscontact.physics.kernels import COMPONENTS, half_space_convolver, influence_coefficients
 
 N = 12
 GRID = Grid(N, 0.5e-3)
@@ -21,7 +21,7 @@ GRID = Grid(N, 0.5e-3)
 @pytest.fixture(scope="module")
 def setup():
     nu = 0.3
-    return Convolver.for_grid(GRID, nu, workers=1), influence_coefficients(GRID, nu)
+    return half_space_convolver(GRID, nu, workers=1), influence_coefficients(GRID, nu)
 
 
 def _close(a: np.ndarray, b: np.ndarray, tol: float = 1e-12) -> None:
@@ -69,7 +69,7 @@ def test_combine_and_coupled_displacements(setup):
 
 def test_odd_grid_size():
     grid = Grid(7, 1.0)
-    conv = Convolver.for_grid(grid, 0.0, workers=1)
+    conv = half_space_convolver(grid, 0.0, workers=1)
     ics = influence_coefficients(grid, 0.0)
     field = np.random.default_rng(0).standard_normal((7, 7))
     for c in COMPONENTS:

@@ -15,16 +15,20 @@ import numpy as np
 import pytest
 
 from viscontact import steady
-from viscontact.checkpoint import state_arrays, state_from_arrays
+from viscontact.io.checkpoint import state_arrays, state_from_arrays
 from viscontact.errors import ConvergenceError, ParameterError
-from viscontact.grid import Grid
-from viscontact.problem import SolverSettings
-from viscontact.steady import solve_contact_active_set, solve_steady
-from viscontact.convolution import Convolver, FourierPreconditioner
-from viscontact.history import shift_material
-from viscontact.kernels import influence_coefficients
-from viscontact.substrate import Term, TermSubstrate, substrate_for
-from viscontact.transient import init, simulate, step
+from viscontact.numerics.grid import Grid
+from viscontact.problem.problem import SolverSettings
+from viscontact.numerics import active_set
+from viscontact.numerics.active_set import solve_contact_active_set
+from viscontact.solvers.steady import solve_steady
+from viscontact.numerics.convolution import Convolver, FourierPreconditioner
+from viscontact.numerics.history import shift_material
+from viscontact.physics.kernels import influence_coefficients
+from viscontact.bodies.compliance import Term, TermSubstrate
+from viscontact.bodies.body import substrate_for
+from viscontact.solvers.transient import init, step
+from viscontact.running.loop import simulate
 
 from vc_testing import SEED_A0, SEED_RADIUS, SEED_TAU, seed_material, sphere_problem
 
@@ -124,7 +128,7 @@ def test_steady_iterations_are_krylov_iterations(monkeypatch):
     """``iterations`` is the number of GMRES iterations, counted here by wrapping the solver's gmres
     (n = 24: below the coarse-grid start, every iteration is on this grid)."""
     calls = []
-    real = steady.gmres
+    real = active_set.gmres
 
     def counting(*args, callback=None, **kwargs):
         def cb(value):
@@ -133,7 +137,7 @@ def test_steady_iterations_are_krylov_iterations(monkeypatch):
                 callback(value)
         return real(*args, callback=cb, **kwargs)
 
-    monkeypatch.setattr(steady, "gmres", counting)
+    monkeypatch.setattr(active_set, "gmres", counting)
     pb = sphere_problem(seed_material(), 24, 3.0 * SEED_A0, mode="frictionless_sliding", speed=SEED_A0 / SEED_TAU)
     record = solve_steady(pb)
     assert record.iterations == len(calls) > 0
@@ -173,7 +177,7 @@ def test_relaxation_weight_converges_the_rotation_the_coupling_makes():
     """The coupling's fixed point x <- b - A x with A = gamma [[0, -1], [1, 0]] (the skew form mu_f K_zx
     takes relative to K_zz) diverges for gamma > 1; relaxed with the weight read off the observed
     ratio it converges to the solution of (I + A) x = b (numpy's), at gamma / sqrt(1 + gamma^2) a pass."""
-    from viscontact.transient import relaxation_weight
+    from viscontact.solvers.transient import relaxation_weight
 
     gamma = 3.0
     a = gamma * np.array([[0.0, -1.0], [1.0, 0.0]])
@@ -200,7 +204,7 @@ def test_gross_sliding_with_a_coupling_too_strong_for_the_fixed_point():
     The step is now solved with the coupling in the operator. Truths: Coulomb (F = mu_f W), the load,
     and the steady solver (an elastic body has no history: the steady state at any speed is the
     transient's), which assembles its operator from its own kernels."""
-    from viscontact.materials import Material
+    from viscontact.physics.materials import Material
 
     pb = sphere_problem(Material.elastic(1.93e6, 0.0), 32, 1.2e-3, mode="gross_sliding", friction=2.5,
                         speed=0.075, t_end=3 * 75e-6)
@@ -222,7 +226,7 @@ def test_bounded_cg_releases_points_at_any_length_scale(scale):
     lengths (an AFM tip, a stiff polymer) the point stayed on its bound and the solve converged off
     the optimum (shear 5 % to 250 % off at s = 1e-6, gradients pointing inwards on the bounds).
     Truth: the same solve at s = 1 (to 1e-12) and the optimality conditions."""
-    from viscontact.constrained import constrained_cg
+    from viscontact.numerics.constrained import constrained_cg
 
     def solves(s):
         grid = Grid(32, 1e-3 * s)

@@ -2,7 +2,7 @@
 
 ``solver.device = "gpu"`` is made to mean the emulated device (tests/emulated_device.py: numpy behind
 CuPy's rules, a host array leaking into the device path raises) with the GPU backend's window sides
-(:func:`viscontact.arrays.device_fast_length`): :func:`viscontact.arrays.cupy_backend` returns it, and
+(:func:`viscontact.numerics.arrays.device_fast_length`): :func:`viscontact.numerics.arrays.cupy_backend` returns it, and
 ``SolverSettings``' check that CuPy is installed finds it. The command line runs in this process
 (``cli.main``), so the substitution holds there too.
 """
@@ -16,9 +16,10 @@ import numpy as np
 import pytest
 
 import emulated_device
-from viscontact import arrays, cli
+from viscontact import cli
+from viscontact.numerics import arrays
 from viscontact.errors import ParameterError
-from viscontact.problem import SolverSettings
+from viscontact.problem.problem import SolverSettings
 
 ROOT = Path(__file__).resolve().parents[2]
 CASES = ROOT / "cases"
@@ -62,7 +63,7 @@ def test_the_reference_sum_on_a_gpu_is_one_line_before_anything_is_written(gpu, 
 
 def _stopped_run(case, out: Path, after: int) -> None:
     """``viscontact run --checkpoint-every 3`` of ``case`` stopped after ``after`` steps (as by SIGINT)."""
-    from viscontact import api
+    from viscontact.running import api
     from viscontact.errors import RunInterrupted
 
     done: list[int] = []
@@ -84,9 +85,9 @@ def test_a_run_checkpointed_on_one_device_resumes_on_the_other(gpu, monkeypatch,
     the CPU's window sides equal to the uninterrupted CPU run bit for bit."""
     import xarray as xr
 
-    from viscontact import api
-    from viscontact.case import load_case
-    from viscontact.shipped import shipped_case
+    from viscontact.running import api
+    from viscontact.io.case import load_case
+    from viscontact.io.shipped import shipped_case
 
     monkeypatch.setattr(arrays, "cupy_backend", lambda: emulated_device.BACKEND)  # numpy's windows: bit for bit
     case = load_case(shipped_case(name)).with_overrides(sets)
@@ -115,7 +116,7 @@ def test_the_cpu_runs_memory_and_time_estimates_only_warn_on_a_gpu(gpu, tmp_path
     neither its own (the GPU is 5-11 times faster from 1024^2, its fields in device memory): the only
     way on was --force, which also drops the disk claim. With the device they warn, saying whose they
     are; the CPU run is still refused."""
-    from viscontact import resources
+    from viscontact.running import resources
 
     out = tmp_path / "r.nc"
     creep = [str(CASES / "creep_indentation.toml"), "--out", str(out), "--set", "grid.n=32"]

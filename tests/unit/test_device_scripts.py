@@ -91,7 +91,7 @@ def test_the_device_scripts_are_valid_bash():
 @pytest.mark.slow
 def test_check_sh_without_a_cuda_device_skips_the_device_tests_and_succeeds(tmp_path):
     try:
-        from viscontact.arrays import cupy_backend
+        from viscontact.numerics.arrays import cupy_backend
 
         cupy_backend()
         pytest.skip("CuPy finds a CUDA device here")

@@ -1,4 +1,4 @@
-"""Zero-block DC-FFT transforms (viscontact.fftbackends) against independent truth.
+"""Zero-block DC-FFT transforms (viscontact.numerics.fftbackends) against independent truth.
 
 * the literal O(n^4) aperiodic sum (``direct_convolution``): agreement to round-off, 1e-12
   relative to the largest value (a transform that dropped a non-zero block, or that wrapped the
@@ -15,12 +15,12 @@ import numpy as np
 import pytest
 from vc_testing import seed_material, sphere_problem
 
-from viscontact.case import load_case
-from viscontact.convolution import direct_convolution
+from viscontact.io.case import load_case
+from viscontact.numerics.convolution import direct_convolution
 from viscontact.errors import ParameterError
-from viscontact.fftbackends import BACKENDS, dcfft_transforms
-from viscontact.problem import SolverSettings
-from viscontact.transient import simulate
+from viscontact.numerics.fftbackends import BACKENDS, dcfft_transforms
+from viscontact.problem.problem import SolverSettings
+from viscontact.running.loop import simulate
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -122,7 +122,7 @@ def test_pyfftw_run_equals_scipy_run() -> None:
 def test_default_workers_are_one_thread_up_to_512_squared() -> None:
     """workers = -1 is one thread up to SINGLE_THREAD_SIZE cells (threads are slower there), all cores
     above; an explicit count is kept; the transforms use the resolved count."""
-    from viscontact.fftbackends import SINGLE_THREAD_SIZE, ZeroBlockTransforms, fft_threads
+    from viscontact.numerics.fftbackends import SINGLE_THREAD_SIZE, ZeroBlockTransforms, fft_threads
 
     assert SINGLE_THREAD_SIZE == 512 * 512
     assert fft_threads(-1, 256 * 256) == 1

@@ -20,7 +20,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from viscontact import cli
-from viscontact.case import Case
+from viscontact.io.case import Case
 from viscontact.errors import ParameterError
 
 ROOT = Path(__file__).resolve().parents[2]

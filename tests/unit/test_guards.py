@@ -1,4 +1,4 @@
-"""Guards against silent wrong answers (viscontact.guards): resolution, domain, small strain, time step.
+"""Guards against silent wrong answers (viscontact.running.guards): resolution, domain, small strain, time step.
 
 Each crafted case is one that used to run to exit 0 with a wrong answer (issue 14 item 3); the
 estimates are checked against independent truth: the Hertz and Lee & Radok solutions, runs of the
@@ -18,13 +18,14 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from viscontact import cli, guards
-from viscontact.case import load_case
+from viscontact import cli
+from viscontact.running import guards
+from viscontact.io.case import load_case
 from viscontact.errors import ParameterError, ViscontactWarning
-from viscontact.materials import Material
-from viscontact.problem import PiecewiseLinear, TimeStepping
-from viscontact.reference import hertz_from_load
-from viscontact.transient import simulate
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import PiecewiseLinear, TimeStepping
+from viscontact.physics.reference import hertz_from_load
+from viscontact.running.loop import simulate
 
 from vc_testing import seed_material, sphere_problem, observed_order
 
@@ -231,7 +232,7 @@ def test_extreme_moduli_are_one_line(capsys, sets):
 
 def test_guard_runs_for_api_users_too():
     with pytest.raises(ParameterError, match="grid.n"):
-        from viscontact import api
+        from viscontact.running import api
 
         api.prepare(load_case(CREEP).with_overrides({"grid.n": 8, "grid.half_width": 5e-3}))
     assert math.isfinite(guards.contact_estimate(_problem(CREEP)).largest)
@@ -252,7 +253,7 @@ def test_equivalent_radius_of_a_measured_rough_sphere():
     curvature at its lowest cell, the roughness's, gave R = 0.2 mm and a/R = 0.76. The fitted
     paraboloid gives the sphere's radius (truth: 10 mm; exact for the smooth paraboloid), the case
     passes the checks and a0 is Hertz's; a tilted plane has none."""
-    from viscontact.results import equivalent_radius, hertz_scale
+    from viscontact.problem.scales import equivalent_radius, hertz_scale
 
     smooth = sphere_problem(Material.elastic(1.93e6, 0.3), 64, 1.2e-3, t_end=1e-3, dt=5e-4)
     noise = np.random.default_rng(3).standard_normal(smooth.gap.shape) * 1e-6
@@ -273,7 +274,7 @@ def test_equivalent_radius_is_measured_on_the_scale_of_the_contact():
     (G = 50 MPa, 0.15 N) the first alone touches (Hertz: delta = 6.7 um < 10 um, a = 0.12 mm), so
     the truth is 2 mm; the first fit, over half the half-width (1.5 mm), reaches the other asperity
     and gives about 3.9 mm. Refitted over two contact radii it gives the 2 mm."""
-    from viscontact.results import equivalent_radius
+    from viscontact.problem.scales import equivalent_radius
 
     pb = sphere_problem(Material.elastic(50e6, 0.3), 128, 3e-3, t_end=1e-3, dt=5e-4)
     x, y = pb.grid.mesh()
@@ -297,7 +298,7 @@ def test_a_flat_punch_has_no_equivalent_radius():
     R = 64 mm, 9.3 mm, 0.56 mm for walls of 20 um, 100 um, 1 mm at n = 64 under load (a0 = 0.55 to
     0.11 mm), which the guards then took for the contact's scale. NaN now for every wall, grid and
     control, and with noise of 10 nm or 0.1 um rms on it (walls of 100 um): no a0, p0, no estimate."""
-    from viscontact.results import equivalent_radius, hertz_scale
+    from viscontact.problem.scales import equivalent_radius, hertz_scale
 
     for n in (64, 128):
         for control, value in (("load", 0.01), ("displacement", 3.5e-6)):
@@ -315,7 +316,7 @@ def test_equivalent_radius_of_lines_offset_spheres_flat_tips_and_quantised_heigh
     nodes, an ellipsoid of 1 : 10 (its laplacian's 2 R1 R2 / (R1 + R2)), and, within 3 %, a 10 mm
     sphere whose tip is a flat of 0.1 mm radius (against a contact of 0.59 mm) or whose heights are
     rounded to 0.1 um (a bottom level 63 um across)."""
-    from viscontact.results import equivalent_radius
+    from viscontact.problem.scales import equivalent_radius
 
     pb = sphere_problem(Material.elastic(1.93e6, 0.3), 128, 1.2e-3, t_end=1e-3, dt=5e-4)
     x, y = pb.grid.mesh()
@@ -338,8 +339,8 @@ def test_a_flat_punch_under_displacement_control_passes_the_checks(tmp_path, n):
     advice that could not work (n = 64: 0.71 cells across the contact, use n = 256; n = 128: use
     n = 1024; n = 256, 512: a/R = 0.55, 0.74), all from the fit about its rim. It passes now, warned
     of nothing with walls of 100 um; with walls of 1 mm only of their rms slope (2.0 at n = 64)."""
-    from viscontact.api import prepare
-    from viscontact.case import Case
+    from viscontact.running.api import prepare
+    from viscontact.io.case import Case
 
     x = -2e-3 + (np.arange(n) + 0.5) * 4e-3 / n
     inside = np.add.outer(x**2, x**2) <= 0.5e-3**2
@@ -442,7 +443,7 @@ def test_a_gpu_run_on_a_small_grid_warns_that_the_cpu_is_likely_faster(monkeypat
     the guard's, not the device's)."""
     import importlib.util
 
-    from viscontact.problem import SolverSettings
+    from viscontact.problem.problem import SolverSettings
 
     real_find_spec = importlib.util.find_spec
     monkeypatch.setattr(importlib.util, "find_spec",

@@ -1,5 +1,5 @@
 """Recursive hereditary sum (one internal field per retardation time) against the literal sum of
-seed Eq. 5 (viscontact.history).
+seed Eq. 5 (viscontact.numerics.history).
 
 Three implementations are compared on random traction histories, with and without frame shifts:
 
@@ -31,11 +31,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from viscontact.history import DirectHistory, PronyHistory, shift_material
-from viscontact.materials import Material
-from viscontact.problem import PiecewiseLinear, SolverSettings
-from viscontact.schemes import step_coefficients
-from viscontact.transient import simulate
+from viscontact.numerics.history import DirectHistory, PronyHistory, shift_material
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import PiecewiseLinear, SolverSettings
+from viscontact.numerics.schemes import step_coefficients
+from viscontact.running.loop import simulate
 
 from vc_testing import SEED_LOAD, seed_material, sphere_problem
 

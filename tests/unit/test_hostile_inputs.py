@@ -116,7 +116,7 @@ def stopped_run(tmp_path, capsys):
     case = tmp_path / "case.toml"
     case.write_text(CREEP_TEXT)
     out = tmp_path / "r.nc"
-    from viscontact import api
+    from viscontact.running import api
 
     calls = []
 

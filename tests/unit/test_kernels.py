@@ -1,4 +1,4 @@
-"""Closed-form influence coefficients of a uniformly loaded rectangle (viscontact.kernels).
+"""Closed-form influence coefficients of a uniformly loaded rectangle (viscontact.physics.kernels).
 
 Reference: adaptive 2-D quadrature (``scipy.integrate.dblquad``, epsrel 1e-11) of the
 Boussinesq-Cerruti point-force solutions over the rectangle, at field points off the loaded cell,
@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 from scipy.integrate import dblquad
 
-from viscontact.grid import Grid
-from viscontact.kernels import (
+from viscontact.numerics.grid import Grid
+from viscontact.physics.kernels import (
     COMPONENTS,
     influence_coefficients,
     point_force_displacement,

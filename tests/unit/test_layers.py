@@ -1,4 +1,4 @@
-"""Layer on a substrate (viscontact.layers): Fourier compliance and kernels against independent truths.
+"""Layer on a substrate (viscontact.bodies.layer): Fourier compliance and kernels against independent truths.
 
 * Fourier space: the classical closed form of the bonded layer on a rigid base (A_zz), a substrate
   identical to the layer (exactly the half-space, every component), k h -> inf (half-space), k h -> 0
@@ -12,7 +12,7 @@
   domain much wider than h equals the non-periodic one near the origin (two different splits). Their
   spectrum at low wavevectors is the alias sum of the exact compliance times the cell footprint
   (fourier_compliance, independent of the kernel construction); a layer many periods thick is the
-  exact periodic half-space (viscontact.periodic, Ewald) plus its uniform mode h/M.
+  exact periodic half-space (viscontact.physics.periodic, Ewald) plus its uniform mode h/M.
 """
 from __future__ import annotations
 
@@ -22,11 +22,11 @@ import scipy.fft
 from scipy.special import jv
 
 from viscontact.errors import ParameterError
-from viscontact.grid import Grid
-from viscontact.kernels import rectangle_influence
-from viscontact.layers import (Layer, anti_plane_compliance, fourier_compliance, in_plane_compliance,
+from viscontact.numerics.grid import Grid
+from viscontact.physics.kernels import rectangle_influence
+from viscontact.bodies.layer import (Layer, anti_plane_compliance, fourier_compliance, in_plane_compliance,
                                influence_coefficients, periodic_spectra)
-from viscontact.periodic import periodic_influence_coefficients
+from viscontact.physics.periodic import periodic_influence_coefficients
 
 G, NU = 1.0e6, 0.3
 K = np.logspace(-3, 1.5, 19)  # k h from 1e-3 to 30 with h = 1
@@ -206,7 +206,7 @@ def test_periodic_spectra_are_the_alias_sum_of_the_compliance(layer_kind):
 def test_thick_periodic_layer_is_the_periodic_half_space():
     """A layer h = 10 periods L thick on a rigid base samples k h >= 2 pi h/L = 63: it is the
     half-space to exp(-126), so its periodic kernels are the exact periodic half-space kernels of its
-    material (viscontact.periodic, Ewald) plus the uniform modes h/M and h/G. Measured (n = 32):
+    material (viscontact.physics.periodic, Ewald) plus the uniform modes h/M and h/G. Measured (n = 32):
     within 4e-15 of the largest value, every component; tolerance 1e-12. (The former split smoothed
     the half-space to depth 2h, twenty periods, and summed its near part over 3 periodic images:
     1.2e-3 (zz, xx) and 4.6e-2 (xz, zx). At h = L the layer itself differs from the half-space by
@@ -256,7 +256,7 @@ def test_modulus_poles_reproduce_the_compliance(interface, key):
     the near-degenerate layer basis: they differ by up to 5e-6 there.)"""
     from dataclasses import replace
 
-    from viscontact.layers import modulus_poles
+    from viscontact.bodies.layer import modulus_poles
 
     layer = Layer(1e-3, G, NU, "elastic", interface, 2 * G, 0.2)
     k = np.logspace(1, 5, 9)
@@ -275,8 +275,8 @@ def test_viscoelastic_modes_on_an_elastic_substrate():
     at s is the elastic compliance with G~(s) (correspondence principle), every component."""
     from dataclasses import replace
 
-    from viscontact.layers import viscoelastic_periodic_modes
-    from viscontact.materials import Material
+    from viscontact.bodies.layer import viscoelastic_periodic_modes
+    from viscontact.physics.materials import Material
 
     shear = Material.prony(1e5, [1e6, 4e5], [1e-3, 3e-2], NU)
     grid = Grid(12, 1e-3)
@@ -323,8 +323,8 @@ def test_rigid_base_terms_factor_the_creep_compliance():
     """Unit-modulus kernels do not depend on the G the layer was given; the response is J(t)."""
     from dataclasses import replace
 
-    from viscontact.layers import rigid_base_terms
-    from viscontact.materials import Material
+    from viscontact.bodies.layer import rigid_base_terms
+    from viscontact.physics.materials import Material
 
     shear = Material.zener(2e6, 2e5, 0.01, NU)
     grid = Grid(8, 1e-3)
@@ -350,9 +350,9 @@ def test_elastic_substrate_terms_follow_the_correspondence_principle(periodic):
     domain widths: tolerance 5e-4 there, 2e-5 elsewhere."""
     from dataclasses import replace
 
-    from viscontact.compliance_terms import carson_transform
-    from viscontact.layers import elastic_substrate_terms, shift_nodes, unit_kernels
-    from viscontact.materials import Material
+    from viscontact.numerics.exponentials import carson_transform
+    from viscontact.bodies.layer import elastic_substrate_terms, shift_nodes, unit_kernels
+    from viscontact.physics.materials import Material
 
     shear = Material.prony(1e5, [1e6, 4e5], [1e-3, 3e-2], NU)
     grid = Grid(12, 1e-3, periodic)
@@ -377,12 +377,12 @@ def test_elastic_substrate_terms_of_a_thick_periodic_layer_are_the_half_space():
     """A viscoelastic layer 10 periods thick on an elastic substrate (layers.elastic_substrate_terms,
     periodic grid): the substrate and the shift nodes are invisible at k h >= 63 (the nodes' spectra
     vanish beyond k h = 18), so the Carson transform of the summed response is the periodic
-    half-space kernel of the layer material at G~(s) (viscontact.periodic), zero mean (the rigid-base
+    half-space kernel of the layer material at G~(s) (viscontact.physics.periodic), zero mean (the rigid-base
     term's h/M cancelled by the u = 1 node). Measured (n = 16): within 2e-15 of the largest value;
     tolerance 1e-12 (the former periodic kernels: 2.5e-3 (zz, xx), 8.7e-2 (xz, zx))."""
-    from viscontact.compliance_terms import carson_transform
-    from viscontact.layers import elastic_substrate_terms
-    from viscontact.materials import Material
+    from viscontact.numerics.exponentials import carson_transform
+    from viscontact.bodies.layer import elastic_substrate_terms
+    from viscontact.physics.materials import Material
 
     shear = Material.prony(1e5, [1e6, 4e5], [1e-3, 3e-2], NU)
     grid = Grid(16, 1e-3, True)

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from viscontact import cli
-from viscontact.materials import Material, wlf_shift_factor
-from viscontact.results import material_dataset
+from viscontact.physics.materials import Material, wlf_shift_factor
+from viscontact.io.results import material_dataset
 
 ROOT = Path(__file__).resolve().parents[2]
 SCRIPT = Path(sys.executable).with_name("viscontact")

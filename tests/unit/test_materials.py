@@ -1,4 +1,4 @@
-"""Prony materials and their exact creep spectra (viscontact.materials).
+"""Prony materials and their exact creep spectra (viscontact.physics.materials).
 
 The creep compliance is not fitted: it follows from J^(s) G^(s) = 1/s^2 (seed Eq. 3), i.e. the
 Volterra identity  int_0^t G(t - s) dJ(s) = 1  for every t. We check it by adaptive quadrature of
@@ -21,7 +21,7 @@ import pytest
 from scipy.integrate import quad
 
 from viscontact.errors import ParameterError
-from viscontact.materials import Material
+from viscontact.physics.materials import Material
 
 from vc_testing import SEED_G0, SEED_GINF, SEED_NU, SEED_TAU
 

@@ -5,11 +5,11 @@ import math
 
 import pytest
 
-from viscontact.case import load_case
-from viscontact.resources import (PADDED_TEMPORARIES, TOPOGRAPHY_IMPORT_MEMORY, estimate, kernel_bytes,
+from viscontact.io.case import load_case
+from viscontact.running.resources import (PADDED_TEMPORARIES, TOPOGRAPHY_IMPORT_MEMORY, estimate, kernel_bytes,
                                   window_cells)
-from viscontact.shipped import shipped_case
-from viscontact.support_window import FULL_FRACTION, window_side
+from viscontact.io.shipped import shipped_case
+from viscontact.numerics.support_window import FULL_FRACTION, window_side
 
 
 def _case(name: str, **overrides):
@@ -21,7 +21,7 @@ def test_the_windows_are_sized_by_the_contact_the_run_foresees():
     the crept compliance, guards.contact_estimate): smaller than the grid for the shipped creep case,
     larger for a longer hold (more creep), and FULL_FRACTION of the grid where no contact is foreseen
     (a rough period: none is made there, being periodic, but the bound stays)."""
-    from viscontact.guards import contact_estimate
+    from viscontact.running.guards import contact_estimate
 
     short = _case("creep_indentation", **{"time.t_end": 0.0025}).problem_outline()
     long = _case("creep_indentation").problem_outline()
@@ -38,7 +38,7 @@ def test_a_surface_made_by_surface_topography_adds_its_import():
     shipped rough case needs it, a sphere does not. The problem of a case carries it
     (``Problem.surface_topography``), so that ``estimate(problem)`` counts it by default, as
     ``viscontact run`` does: it was left out without ``topography=True`` (95 MB short)."""
-    from viscontact.api import prepare
+    from viscontact.running.api import prepare
 
     rough, sphere = _case("rough_periodic_sliding"), _case("creep_indentation")
     assert rough.indenter.uses_surface_topography
@@ -61,7 +61,7 @@ def test_the_subsurface_stresses_add_the_transforms_of_the_tractions_the_mode_ma
     where the mode makes no shear traction (q_x = 0: not transformed), of p and q_x in gross sliding."""
     import dataclasses
 
-    from viscontact.subsurface import working_bytes
+    from viscontact.physics.subsurface import working_bytes
 
     for mode, tractions in (("none", 1), ("frictionless_sliding", 1), ("gross_sliding", 2)):
         moving = {"tangential.sliding_speed": 0.01} if mode != "none" else {}
@@ -90,7 +90,7 @@ def test_the_run_time_scales_with_the_transform_time_of_the_machine():
     estimates: injecting a transform time twice as long doubles the transform-bound part; for the same
     grid and steps partial slip > gross sliding > frictionless sliding > indentation, and a
     smaller support window costs less."""
-    from viscontact import resources
+    from viscontact.running import resources
 
     problem = _case("seed_table1_v0.8").problem_outline()
     steps, mode = problem.time.n_steps, problem.tangential.mode
@@ -109,7 +109,7 @@ def test_the_run_time_scales_with_the_transform_time_of_the_machine():
 def test_a_huge_grid_is_timed_at_a_bounded_side():
     """A dry run of a grid above TIMED_SIDE_LIMIT times the transforms there and scales them by
     n^2 log2(2n): no huge field is made."""
-    from viscontact import resources
+    from viscontact.running import resources
 
     big = _case("creep_indentation", **{"grid.n": 4 * resources.TIMED_SIDE_LIMIT}).problem_outline()
     limit = resources.TIMED_SIDE_LIMIT

@@ -24,8 +24,10 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from viscontact import cli, output_files, resources
-from viscontact.results import write_netcdf
+from viscontact import cli
+from viscontact.io import output_files
+from viscontact.running import resources
+from viscontact.io.netcdf import write_netcdf
 
 ROOT = Path(__file__).resolve().parents[2]
 CREEP = ROOT / "cases" / "creep_indentation.toml"
@@ -170,7 +172,7 @@ def test_disk_filling_while_the_result_is_created_is_one_line_and_leaves_nothing
 
 def test_disk_filling_during_a_streamed_run_cannot_take_its_claimed_space(mount_point, tmp_path):
     """Another program fills the disk while the run streams its records: the space of every record was
-    claimed before the first step (viscontact.output_files.SpaceClaim), so the run completes."""
+    claimed before the first step (viscontact.io.output_files.SpaceClaim), so the run completes."""
     folder = mount_point("claimed", "size=2m")
     out = folder / "r.nc"
     proc, flag = _slow_writer(tmp_path, CREEP, "--out", out, "--quiet", *SMALL, slow=APPEND)
@@ -256,8 +258,8 @@ def test_full_disk_at_a_checkpoint_names_the_file_the_size_and_the_remedy(tmp_pa
 
 
 def test_pre_run_disk_check_counts_the_checkpoints(tmp_path, capsys, monkeypatch):
-    est = resources.estimate(resources_problem := __import__("viscontact.api", fromlist=["prepare"]).prepare(
-        __import__("viscontact.case", fromlist=["load_case"]).load_case(CREEP))[0])
+    est = resources.estimate(resources_problem := __import__("viscontact.running.api", fromlist=["prepare"]).prepare(
+        __import__("viscontact.io.case", fromlist=["load_case"]).load_case(CREEP))[0])
     # the checkpoint holds the solver state only (the records are streamed to the result)
     assert 0 < est.checkpoint_bytes < est.result_bytes and resources_problem.grid.n == 128
     free = est.result_bytes + est.checkpoint_bytes  # enough for the result, not for two checkpoints beside it
@@ -273,10 +275,10 @@ def test_pre_run_disk_check_counts_the_checkpoints(tmp_path, capsys, monkeypatch
 def test_pre_run_disk_check_of_a_resume_counts_only_what_is_still_to_write(tmp_path, capsys, monkeypatch):
     """A run stopped by a full disk, resumed after some space was freed: the streamed file already
     holds its first records, so the check asks only for the rest (it asked for the whole result)."""
-    from viscontact.streaming import partial_path
+    from viscontact.io.streaming import partial_path
 
-    problem = __import__("viscontact.api", fromlist=["prepare"]).prepare(
-        __import__("viscontact.case", fromlist=["load_case"]).load_case(CREEP))[0]
+    problem = __import__("viscontact.running.api", fromlist=["prepare"]).prepare(
+        __import__("viscontact.io.case", fromlist=["load_case"]).load_case(CREEP))[0]
     need = resources.estimate(problem).result_bytes
     free = need // 3  # a third of the result free; two thirds already streamed
     monkeypatch.setattr(shutil, "disk_usage", lambda path: shutil._ntuple_diskusage(10**12, 10**12 - free, free))
@@ -322,8 +324,8 @@ SLOW_WRITE = textwrap.dedent("""
 """)
 #: what the slow writer slows down: the creation of the streamed result file (before its layout is
 #: written), its first record, or its finishing (the final write of a streamed run)
-CREATE, APPEND, FINISH = ("viscontact.streaming:ResultStream:create", "viscontact.streaming:ResultStream:append",
-                          "viscontact.streaming:ResultStream:finish")
+CREATE, APPEND, FINISH = ("viscontact.io.streaming:ResultStream:create", "viscontact.io.streaming:ResultStream:append",
+                          "viscontact.io.streaming:ResultStream:finish")
 
 
 def _slow_writer(tmp_path: Path, *args: str | Path, slow: str = CREATE) -> tuple[subprocess.Popen, Path]:
@@ -379,7 +381,7 @@ SCRIPT = Path(sys.executable).with_name("viscontact")
 
 
 @pytest.mark.skipif(not SCRIPT.exists(), reason="the viscontact console script is not installed")
-@pytest.mark.parametrize("module", ["viscontact.plotting.base", "viscontact.results"])
+@pytest.mark.parametrize("module", ["viscontact.plotting.base", "viscontact.io.netcdf"])
 def test_sigint_at_start_up_is_one_line(tmp_path, module):
     """SIGINT while the command is still importing (the parser's figure options, then the solvers and
     xarray: about half a second): one line, status 130. The moment is the import of ``module``,
@@ -510,7 +512,7 @@ def test_resume_removes_what_a_killed_write_left(tmp_path):
 # --- one writer per output (red team item 3), names that fit (item 12) ---------------------------
 HOLD_LOCK = """
 import sys, time
-from viscontact.output_files import output_lock
+from viscontact.io.output_files import output_lock
 with output_lock(sys.argv[1]):
     print("locked", flush=True)
     time.sleep(120)
@@ -558,7 +560,7 @@ def test_the_lock_is_released_and_its_file_removed_at_the_end(tmp_path, capsys):
 
 
 #: the slow writer slowing down the final rename of a streamed run (after its file is finished)
-PUBLISH = "viscontact.streaming:ResultStream:publish"
+PUBLISH = "viscontact.io.streaming:ResultStream:publish"
 
 
 @pytest.mark.parametrize("slow", [FINISH, PUBLISH])

@@ -1,4 +1,4 @@
-"""Periodic influence coefficients and the periodic convolver (viscontact.periodic).
+"""Periodic influence coefficients and the periodic convolver (viscontact.physics.periodic).
 
 Independent truths:
 * the Ewald split is exact only if its two halves (real-space closed form minus quadrature, and the
@@ -18,9 +18,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from viscontact.grid import Grid
-from viscontact.kernels import COMPONENTS, rectangle_influence
-from viscontact.periodic import PeriodicConvolver, half_space_compliance, periodic_influence_coefficients
+from viscontact.numerics.grid import Grid
+from viscontact.physics.kernels import COMPONENTS, rectangle_influence
+from viscontact.physics.periodic import PeriodicConvolver, half_space_compliance, periodic_influence_coefficients
 from vc_testing import observed_order
 
 NU = 0.3
@@ -166,7 +166,7 @@ def test_full_contact_by_constrained_cg_with_the_exact_preconditioner():
     mode by mode (exact). With its exact Fourier preconditioner Polonsky-Keer converges in one
     iteration; the next one must not divide round-off by round-off (it used to return p = 0 for a
     few of these surfaces and warm starts)."""
-    from viscontact.constrained import constrained_cg
+    from viscontact.numerics.constrained import constrained_cg
 
     grid = Grid(16, 0.5e-3)
     x, y = grid.mesh()
@@ -199,7 +199,7 @@ def test_a_step_along_the_null_space_ends_the_full_contact_solve(monkeypatch):
     Here the gradient is exactly constant (dyadic values), each mean 1e-13 off and the mode's
     curvature 1e-12 of the compliance: the solve must stop at the solution (the old one ended 104 %
     off after 17 iterations)."""
-    from viscontact import constrained
+    from viscontact.numerics import constrained
 
     grid = Grid(32, 0.5e-3)
     x, _ = grid.mesh()
@@ -230,7 +230,7 @@ def test_partial_contact_grows_from_a_warm_start_with_the_exact_preconditioner()
     """Warm-started from the contact of a smaller load, the free set converges at once (exact
     preconditioner) and the points outside it whose gap would be negative must still be released:
     the result is the cold-started one, with no interpenetration."""
-    from viscontact.constrained import constrained_cg
+    from viscontact.numerics.constrained import constrained_cg
 
     grid = Grid(16, 0.5e-3)
     _, y = grid.mesh()

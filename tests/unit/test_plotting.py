@@ -11,8 +11,8 @@ from test_results import N, fake_records, make_problem  # tests/unit is on sys.p
 from viscontact.plotting import phase_name, profile
 from viscontact.plotting.result import profiles_figure
 from viscontact.plotting.seed import frictional_figure
-from viscontact.problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_NAMES, PHASE_PARTIAL_SLIP
-from viscontact.results import to_dataset
+from viscontact.problem.problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_NAMES, PHASE_PARTIAL_SLIP
+from viscontact.io.results import to_dataset
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -107,9 +107,9 @@ def test_a_held_load_gets_no_panel_and_creep_is_drawn_with_lee_radok(tmp_path):
     with Lee & Radok's curve for the result's own material and times."""
     from vc_testing import SEED_LOAD, SEED_RADIUS, seed_material, sphere_problem
 
-    from viscontact.api import run
+    from viscontact.running.api import run
     from viscontact.plotting.result import contact_history_figure
-    from viscontact.reference import lee_radok_creep
+    from viscontact.physics.reference import lee_radok_creep
 
     problem = sphere_problem(seed_material(), 16, 1.6e-3, t_end=0.01, dt=2.5e-3, scheme="linear", title="creep")
     ds = run(problem)
@@ -129,8 +129,8 @@ def test_a_held_load_gets_no_panel_and_creep_is_drawn_with_lee_radok(tmp_path):
 
 
 def test_a_steady_state_is_drawn_as_one_state(tmp_path):
-    from viscontact.api import run_steady
-    from viscontact.case import load_case
+    from viscontact.running.api import run_steady
+    from viscontact.io.case import load_case
     from viscontact.plotting import plot_result
 
     case = load_case(ROOT / "cases" / "seed_table1_v0.8.toml").with_overrides({"grid.n": 16})
@@ -145,7 +145,7 @@ def test_a_steady_state_is_drawn_as_one_state(tmp_path):
 
 def test_speed_curve_panels_against_deborah_number_and_speed(result):
     from viscontact.plotting.result import speed_curve_figure
-    from viscontact.results import sweep_dataset
+    from viscontact.io.results import sweep_dataset
 
     problem = make_problem()
     sweep = sweep_dataset(fake_records(problem)[:3], [0.01, 0.1, 1.0], problem)
@@ -161,7 +161,7 @@ def test_speed_curve_panels_against_deborah_number_and_speed(result):
                                        (["--times", "0,1"], "--times")])
 def test_plot_options_are_checked_in_one_line(tmp_path, capsys, result, args, key):
     from viscontact import cli
-    from viscontact.results import write_netcdf
+    from viscontact.io.netcdf import write_netcdf
 
     write_netcdf(result, tmp_path / "r.nc")
     assert cli.main(["plot", str(tmp_path / "r.nc"), "--out", str(tmp_path / "figs"), *args]) == 2
@@ -172,7 +172,7 @@ def test_plot_options_are_checked_in_one_line(tmp_path, capsys, result, args, ke
 
 def test_plot_maps_at_chosen_times_in_pdf(tmp_path, capsys, result):
     from viscontact import cli
-    from viscontact.results import write_netcdf
+    from viscontact.io.netcdf import write_netcdf
 
     write_netcdf(result, tmp_path / "r.nc")
     assert cli.main(["plot", str(tmp_path / "r.nc"), "--out", str(tmp_path / "figs"), "--times", "0.001,0.003",
@@ -189,11 +189,11 @@ def rough(tmp_path_factory):
     saved and reopened (figures read saved results)."""
     import warnings
 
-    from viscontact.api import run
-    from viscontact.case import load_case
+    from viscontact.running.api import run
+    from viscontact.io.case import load_case
     from viscontact.errors import ViscontactWarning
-    from viscontact.results import open_result, write_netcdf
-    from viscontact.shipped import shipped_case
+    from viscontact.io.netcdf import open_result, write_netcdf
+    from viscontact.io.shipped import shipped_case
 
     case = load_case(shipped_case("rough_periodic_sliding")).with_overrides({"grid.n": 32, "time.t_end": 0.07})
     with warnings.catch_warnings():
@@ -289,7 +289,7 @@ def _creep_result(overrides: dict, material: str | None = None):
     """A 3-step creep run of the shipped case at 16^2 with ``overrides`` and, when given, its
     ``[material]`` table replaced by ``material`` in the case text (which the result keeps)."""
     import viscontact as vc
-    from viscontact.case import Case
+    from viscontact.io.case import Case
 
     text = (ROOT / "cases" / "creep_indentation.toml").read_text()
     if material is not None:
@@ -410,7 +410,7 @@ def test_tangential_loop_divides_by_the_load_of_each_step_under_a_held_approach(
     sliding, where Q = mu_f W(t). Now Q(t)/(mu_f W(t)) reaches 1 there; a step without load has no
     ratio; the elastic Cattaneo-Mindlin curve of the held approach is drawn (any G gives it)."""
     from viscontact.plotting.result import tangential_loop_figure
-    from viscontact.reference import cattaneo_mindlin, hertz_from_approach
+    from viscontact.physics.reference import cattaneo_mindlin, hertz_from_approach
 
     ds = result
     mu, load = ds.attrs["friction_coefficient"], np.array([0.0, 0.15, 0.06, 0.02, 0.015])
@@ -478,9 +478,9 @@ def test_the_pressure_animation_title_fits_its_frames(result):
 def test_the_material_figure_labels_do_not_overlap():
     """J(t)'s axis label ran into the middle panel's "[Pa]" (2 px apart at 100 dpi), the title into
     the middle panel's (3.7 px)."""
-    from viscontact.materials import Material
+    from viscontact.physics.materials import Material
     from viscontact.plotting.material import material_figure
-    from viscontact.results import material_dataset
+    from viscontact.io.results import material_dataset
 
     fig = material_figure(material_dataset(Material.zener(1.93e6, 0.193e6, 0.01, 0.3)))
     fig.canvas.draw()
@@ -496,7 +496,7 @@ def test_tau_is_given_in_a_unit_that_suits_it_and_said_to_be_the_shortest(result
     10 retardation times without saying so."""
     from viscontact.plotting.base import format_duration, scales_line
     from viscontact.plotting.result import speed_curve_figure
-    from viscontact.results import sweep_dataset
+    from viscontact.io.results import sweep_dataset
 
     assert [format_duration(t) for t in (0.01, 1.368063495551196e-07, 2.5, 3600.0, 4e-6)] == \
         ["10 ms", "136.8 ns", "2.5 s", "3600 s", "4 µs"]
@@ -512,8 +512,8 @@ def test_tau_is_given_in_a_unit_that_suits_it_and_said_to_be_the_shortest(result
 def test_an_elastic_material_is_compared_with_hertz(tmp_path):
     from vc_testing import SEED_G0, SEED_NU, sphere_problem
 
-    from viscontact.api import run
-    from viscontact.materials import Material
+    from viscontact.running.api import run
+    from viscontact.physics.materials import Material
     from viscontact.plotting.result import contact_history_figure
 
     problem = sphere_problem(Material.elastic(SEED_G0, SEED_NU), 16, 1.6e-3, control="displacement", value=3e-5,
@@ -549,7 +549,7 @@ def _plot_one_line(capsys, path: Path, out: Path) -> str:
 def test_plot_of_a_run_killed_before_its_first_record_is_one_line(tmp_path, capsys):
     """The streamed file a kill -9 leaves before the first record is a valid result without a
     record: `plot` says so in one line (it raised ValueError: max() arg is an empty sequence)."""
-    from viscontact.streaming import ResultStream
+    from viscontact.io.streaming import ResultStream
 
     partial = tmp_path / "r.nc.partial"
     ResultStream.create(partial, make_problem(), case_text="title = 'x'", require_space=False).close()
@@ -559,14 +559,15 @@ def test_plot_of_a_run_killed_before_its_first_record_is_one_line(tmp_path, caps
 @pytest.mark.parametrize("drop", ["contact_area", "delta_x"])
 def test_plot_of_a_result_without_a_variable_its_figures_draw_is_one_line(tmp_path, capsys, result, drop):
     """A result rewritten without a history its figures read names it (it raised KeyError)."""
-    from viscontact.results import write_netcdf
+    from viscontact.io.netcdf import write_netcdf
 
     write_netcdf(result.drop_vars(drop), tmp_path / "r.nc")
     assert f"has no variable '{drop}'" in _plot_one_line(capsys, tmp_path / "r.nc", tmp_path / "figs")
 
 
 def test_plot_of_a_speed_curve_without_mu_app_is_one_line(tmp_path, capsys, result):
-    from viscontact.results import sweep_dataset, write_netcdf
+    from viscontact.io.results import sweep_dataset
+    from viscontact.io.netcdf import write_netcdf
 
     problem = make_problem("frictionless_sliding")
     curve = sweep_dataset(fake_records(problem, (0, 1)), [0.01, 0.1], problem)
@@ -578,7 +579,7 @@ def test_plot_of_an_incomplete_run_warns_that_its_figures_stop_early(tmp_path, c
     """A run stopped half way (complete = 0) was drawn without a word: its friction and contact
     histories could pass for a whole run's."""
     from viscontact import cli
-    from viscontact.results import write_netcdf
+    from viscontact.io.netcdf import write_netcdf
 
     stopped = result.copy()
     stopped.attrs.update(complete=0, stopped_by="SIGINT")
@@ -597,10 +598,10 @@ def test_the_tangential_loop_of_a_reversing_history_draws_the_whole_path():
     (mu_f W) against the indenter's delta_x at every record, both signs (not clipped at delta_x >= 0
     nor at Q >= 0 as for a ramp), with the elastic Mindlin-Deresiewicz loops of G(0) and G(inf) at
     the run's amplitude, each closing at (+-delta_a, +-Q_a / (mu_f W))."""
-    from viscontact.api import run
-    from viscontact.case import load_case
+    from viscontact.running.api import run
+    from viscontact.io.case import load_case
     from viscontact.plotting.result import tangential_loop_figure
-    from viscontact.reference import cattaneo_mindlin
+    from viscontact.physics.reference import cattaneo_mindlin
 
     ds = run(load_case(ROOT / "cases" / "fretting_zener.toml").with_overrides({"grid.n": 16, "time.t_end": 0.0125}))
     ax = tangential_loop_figure(ds).axes[0]

@@ -1,15 +1,15 @@
-"""Time-dependent Poisson ratio (viscontact.poisson): computed creep spectra of the influence factors.
+"""Time-dependent Poisson ratio (viscontact.bodies.bulk_elastic): computed creep spectra of the influence factors.
 
 Independent truths used:
 
-* the polynomial-root creep spectrum of :class:`viscontact.materials.Material` (another algorithm)
+* the polynomial-root creep spectrum of :class:`viscontact.physics.materials.Material` (another algorithm)
   for small spectra, where it is accurate;
 * the Volterra identity int_0^t (G(t - s) + c) dC(s) = 1 (time domain, adaptive quadrature) for a
   24-term spectrum over 10 decades, where the polynomial route fails;
 * the Carson-domain definition of each factor with nu~(s) = (3K - 2G~)/(2(3K + G~)), evaluated
   directly at s over 14 decades (checks the partial fractions and the residues);
 * the elastic factors with (G(0), nu(0)) at t = 0 and (G(inf), nu(inf)) as t -> inf;
-* the constant-nu influence coefficients of viscontact.kernels (elastic shear, K finite).
+* the constant-nu influence coefficients of viscontact.physics.kernels (elastic shear, K finite).
 """
 from __future__ import annotations
 
@@ -17,12 +17,12 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from viscontact.compliance_terms import carson_transform
+from viscontact.numerics.exponentials import carson_transform
 from viscontact.errors import ParameterError
-from viscontact.grid import Grid
-from viscontact.kernels import influence_coefficients
-from viscontact.materials import Material
-from viscontact.poisson import FACTORS, BulkElasticMaterial, half_space_terms, prony_creep_spectrum
+from viscontact.numerics.grid import Grid
+from viscontact.physics.kernels import influence_coefficients
+from viscontact.physics.materials import Material
+from viscontact.bodies.bulk_elastic import FACTORS, BulkElasticMaterial, half_space_terms, prony_creep_spectrum
 
 PRONY3 = Material.prony(1.0e5, [1.0e6, 5.0e5, 2.0e5], [1e-3, 1e-2, 1e-1], 0.25)
 SEED = Material.zener(1.93e6, 0.193e6, 0.01, 0.3)
@@ -118,7 +118,7 @@ def test_incompressible_limit():
 
 
 def test_constant_nu_kernels_reproduced():
-    """Elastic shear, finite K: the terms sum to IC(nu)/G of viscontact.kernels (and, with a Prony
+    """Elastic shear, finite K: the terms sum to IC(nu)/G of viscontact.physics.kernels (and, with a Prony
     shear modulus, at every time to IC(nu(t)) of the factors: checked through the Carson test)."""
     g, k = 2.0e6, 5.0e6
     bm = BulkElasticMaterial(Material.elastic(g, 0.3), k)
@@ -183,7 +183,7 @@ def test_kernels_at_zero_and_infinity():
 def test_lee_radok_with_bulk_modulus():
     """Lee-Radok creep radius: a(t)^3 proportional to the normal creep function; t = 0 and inf give
     Hertz with (G(0), nu(0)) and (G(inf), nu(inf)); an elastic shear modulus gives Hertz with its nu."""
-    from viscontact.reference import hertz_from_load, lee_radok_creep
+    from viscontact.physics.reference import hertz_from_load, lee_radok_creep
 
     bm = BulkElasticMaterial(SEED, 5e6)
     creep = lee_radok_creep(0.15, 0.01, bm, np.array([0.0, 1e6]))
@@ -199,8 +199,8 @@ def test_lee_radok_with_bulk_modulus():
 def test_term_substrate_of_an_elastic_shear_modulus_is_the_half_space():
     """The core seam: the nu(t) terms with an elastic shear modulus give the HalfSpace substrate's
     operators with nu = nu(0) (normal and tangential self operators, coupling)."""
-    from viscontact.compliance_terms import term_substrate
-    from viscontact.substrate import HalfSpace
+    from viscontact.bodies.compliance import term_substrate
+    from viscontact.bodies.half_space import HalfSpace
 
     g, k = 2.0e6, 5.0e6
     bm = BulkElasticMaterial(Material.elastic(g, 0.3), k)

@@ -1,4 +1,4 @@
-"""A :class:`~viscontact.problem.Problem` built in a script is checked as a case file is: every bad
+"""A :class:`~viscontact.problem.problem.Problem` built in a script is checked as a case file is: every bad
 value is a :class:`~viscontact.errors.ParameterError` naming the case key, never a deep numpy error
 (a step of zero divided by zero) or a silent wrong answer (an unsorted load history interpolated as
 if sorted, ``output.every = -1`` or a misspelt field accepted, an unknown normal control run as
@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 import viscontact as vc
-from viscontact.grid import Grid
-from viscontact.problem import NormalLoading, OutputSettings, PiecewiseLinear, TangentialLoading, TimeStepping
+from viscontact.numerics.grid import Grid
+from viscontact.problem.problem import NormalLoading, OutputSettings, PiecewiseLinear, TangentialLoading, TimeStepping
 
 
 def _problem() -> vc.Problem:

@@ -1,4 +1,4 @@
-"""Prony tables from files (viscontact.prony_table) and the WLF shift (viscontact.materials).
+"""Prony tables from files (viscontact.io.prony_table) and the WLF shift (viscontact.physics.materials).
 
 Truths: the same series typed in the case file (the reader must give the same material and the
 same steady state, shear and tensile); G = E / (2 (1 + nu)) and G_inf = E_0 (1 - sum alpha_i)
@@ -15,11 +15,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from viscontact.case import Case, load_case
+from viscontact.io.case import Case, load_case
 from viscontact.errors import ParameterError
-from viscontact.materials import Material, wlf_shift_factor
-from viscontact.results import global_attrs
-from viscontact.steady import solve_steady
+from viscontact.physics.materials import Material, wlf_shift_factor
+from viscontact.io.results import global_attrs
+from viscontact.solvers.steady import solve_steady
 
 SCRIPT = Path(sys.executable).with_name("viscontact")
 COMMAND = [str(SCRIPT)] if SCRIPT.exists() else [sys.executable, "-m", "viscontact.cli"]

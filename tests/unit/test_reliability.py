@@ -17,10 +17,12 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from viscontact import cli, resources, streaming
-from viscontact.results import open_result
+from viscontact import cli
+from viscontact.running import resources
+from viscontact.io import streaming
+from viscontact.io.netcdf import open_result
 from viscontact.errors import NumericalGuardError
-from viscontact.guards import check_solution
+from viscontact.solvers.checks import check_solution
 
 from vc_testing import SEED_A0, SEED_MATERIAL_TOML, SEED_TAU, seed_material, sphere_problem
 
@@ -75,7 +77,7 @@ def test_kill_9_then_resume_equals_uninterrupted(tmp_path):
     proc.communicate()
     assert not part.exists()  # no result file until the run completes
     assert not list(tmp_path.glob("*.tmp"))
-    # the steps done are in the streamed file (viscontact.streaming), readable with complete = 0; a
+    # the steps done are in the streamed file (viscontact.io.streaming), readable with complete = 0; a
     # kill inside HDF5's (not atomic) flush can tear the record being flushed: open_result reads the
     # records_flushed whole ones (the raw file showed the last step as 0 in about one run of ten)
     streamed = open_result(streaming.partial_path(part))
@@ -144,7 +146,7 @@ def test_a_run_too_big_is_refused_before_its_problem_is_built(tmp_path, capsys, 
     """At n = 16384 the problem alone (gap, checks) took 8.5 GB and 28 s before the estimate that
     refuses the run was made; the estimate now comes from the case's outline, so the problem is
     never built (Case.to_problem would raise here)."""
-    from viscontact.case import Case
+    from viscontact.io.case import Case
 
     def built(self):
         raise AssertionError("the problem was built before the estimate")
@@ -205,7 +207,7 @@ def _guard_run(tmp_path, capsys, half_width=1.5e-3, mode="none", speed=0.05, t_e
 
 
 def test_guard_contact_beyond_the_domain_suggests_a_half_width(tmp_path, capsys):
-    # refused before the run (viscontact.guards), no longer at the first step (exit 1)
+    # refused before the run (viscontact.running.guards), no longer at the first step (exit 1)
     code, err = _guard_run(tmp_path, capsys, half_width=3e-4)
     assert code == 2 and len(err) == 1 and err[0].startswith("viscontact: error: grid.half_width:")
     assert "use grid.half_width = " in err[0]
@@ -226,7 +228,7 @@ def test_steady_state_cut_off_by_the_domain_edge_is_refused():
     """The steady solver checks its answer as a transient step is checked: at v tau / a0 = 1 the
     steady contact of the seed's material (about 2 a0 long) does not fit in +-2 a0; it used to be
     returned with the pressure at the edge equal to its peak. On +-3 a0 it fits."""
-    from viscontact.steady import solve_steady
+    from viscontact.solvers.steady import solve_steady
 
     def problem(half_width: float):
         return sphere_problem(seed_material(), 24, half_width, mode="frictionless_sliding", speed=SEED_A0 / SEED_TAU)
@@ -255,7 +257,7 @@ def test_warning_coarse_time_step_is_one_line(tmp_path, capsys):
 
 
 def test_too_coarse_time_step_is_refused(tmp_path, capsys):
-    # dt = 5 ms used to run with a warning only: the estimate is 33 % (viscontact.guards)
+    # dt = 5 ms used to run with a warning only: the estimate is 33 % (viscontact.running.guards)
     code, err = _guard_run(tmp_path, capsys, dt="dt = 5e-3", t_end=0.02, scheme="linear")
     assert code == 2 and len(err) == 1 and err[0].startswith("viscontact: error: time.dt:")
 

@@ -8,13 +8,13 @@ import numpy as np
 import pytest
 
 from viscontact import cli
-from viscontact.case import load_case
+from viscontact.io.case import load_case
 from viscontact.errors import ParameterError
-from viscontact.guards import TIME_WARNING_LIMIT, time_step_error
-from viscontact.problem import PHASE_GROSS_SLIDING
+from viscontact.running.guards import TIME_WARNING_LIMIT, time_step_error
+from viscontact.problem.problem import PHASE_GROSS_SLIDING
 from viscontact.reproduce import FIGURES, find_cases_dir, load_seed_case, record_every, run_seed_cases, time_scale
-from viscontact.results import open_result
-from viscontact.schemes import amplification, stable_step_limit
+from viscontact.io.netcdf import open_result
+from viscontact.numerics.schemes import amplification, stable_step_limit
 
 from vc_testing import SEED_G0, SEED_GINF, SEED_NU
 
@@ -57,7 +57,7 @@ def test_elastic_material_has_no_time_scale():
 def tiny_cases(tmp_path_factory) -> Path:
     """The cases of fig10 (and the marker case) at n = 16 with the linear scheme (the seed's constant
     scheme is unstable at the coarse dt = dx/v of so small a grid) and two steps per cell (one misses
-    the creep by 23 %: refused by viscontact.guards)."""
+    the creep by 23 %: refused by viscontact.running.guards)."""
     folder = tmp_path_factory.mktemp("cases")
     for name in ("seed_table1_v0.8", *FIGURES["fig10"].cases):
         text = (CASES / f"{name}.toml").read_text().replace("\nn = 256", "\nn = 16")
@@ -127,7 +127,7 @@ def test_previews_keep_the_seed_scheme_well_inside_its_stability_limit(n):
             assert case.tangential.steps_per_cell > 1
         else:
             assert case.tangential.steps_per_cell == 1
-        # and the time-step guard (viscontact.guards) neither refuses nor warns about the preview
+        # and the time-step guard (viscontact.running.guards) neither refuses nor warns about the preview
         assert time_step_error(case.to_problem()) <= TIME_WARNING_LIMIT, name
     assert "seed_table1_v0.4" in adapted                        # dt = 4 ms (n = 32), 2 ms (n = 64)
     # the linear scheme is stable for any dt: only the accuracy of the step can adapt it

@@ -10,10 +10,11 @@ import pytest
 
 from vc_testing import SEED_A0, SEED_G0, SEED_LOAD, SEED_NU, SEED_P0, SEED_RADIUS, seed_material, sphere_problem
 
-from viscontact.problem import NormalLoading, PiecewiseLinear, Problem
-from viscontact.records import StepRecord
-from viscontact.reference import hertz_from_load
-from viscontact.results import open_result, sweep_dataset, to_dataset, write_netcdf
+from viscontact.problem.problem import NormalLoading, PiecewiseLinear, Problem
+from viscontact.problem.records import StepRecord
+from viscontact.physics.reference import hertz_from_load
+from viscontact.io.netcdf import open_result, write_netcdf
+from viscontact.io.results import sweep_dataset, to_dataset
 
 CONTRACT_VARIABLES = ("pressure", "shear_x", "stick", "load", "delta_z", "delta_x", "sliding_distance",
                       "contact_area", "stick_ratio", "phase", "friction_force", "hysteresis_force", "mu_app")
@@ -21,7 +22,7 @@ N = 32
 
 
 def make_problem(mode: str = "partial_slip", fields: tuple[str, ...] = ("pressure", "shear_x", "stick")) -> Problem:
-    return sphere_problem(seed_material(), N, 2e-3,  # holds and resolves the contact (viscontact.guards)
+    return sphere_problem(seed_material(), N, 2e-3,  # holds and resolves the contact (viscontact.running.guards)
                           mode=mode, friction=0.3, rate=0.01, speed=0.05, t_end=0.004,
                           dt=1e-3, fields=fields, title="fake")
 
@@ -147,7 +148,7 @@ def test_every_coordinate_is_described() -> None:
     """The coordinates of a transient (with subsurface output) and of a speed curve are those of
     results.COORDINATES, which the documentation's result-variable table lists (``deborah`` was in
     no table), with its units and long names."""
-    from viscontact.results import COORDINATES
+    from viscontact.io.results import COORDINATES
 
     problem = make_problem()
     problem = dataclasses.replace(problem, output=dataclasses.replace(problem.output, subsurface_depths=(1e-4,)))
@@ -165,9 +166,9 @@ def test_every_coordinate_is_described() -> None:
 def test_source_names_the_convolutions_of_the_domain() -> None:
     """A periodic result's ``source`` says periodic FFTs (it said DC-FFT, the zero-padded ones of an
     isolated contact, on every result)."""
-    from viscontact.case import load_case
-    from viscontact.results import global_attrs
-    from viscontact.shipped import shipped_case
+    from viscontact.io.case import load_case
+    from viscontact.io.results import global_attrs
+    from viscontact.io.shipped import shipped_case
 
     for name, expected in (("rough_periodic_sliding", "periodic FFT convolutions"),
                            ("creep_indentation", "DC-FFT convolutions")):
@@ -197,7 +198,7 @@ def test_scales_are_variables_with_units(tmp_path: Path) -> None:
 def test_cf_flags_on_stick_and_phase(tmp_path: Path) -> None:
     """CF flag_values / flag_meanings: one meaning per value, every stored value is a flag, and the
     meanings follow the phase numbering of the solver."""
-    from viscontact.problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP
+    from viscontact.problem.problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP
 
     problem = make_problem()
     path = write_netcdf(to_dataset(fake_records(problem), problem), tmp_path / "r.nc")

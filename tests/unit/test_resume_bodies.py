@@ -13,8 +13,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from viscontact import api
-from viscontact.case import load_case
+from viscontact.running import api
+from viscontact.io.case import load_case
 from viscontact.errors import ParameterError, RunInterrupted, ViscontactWarning
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -101,7 +101,7 @@ def test_resume_of_the_incremental_slip_carries_its_slip_and_refuses_the_total_o
     its last save, step 3 of 4 here, gross sliding from step 7); a checkpoint of the total slip is refused by the incremental one
     and the other way round (tangential.slip enters the fingerprint away from its default, so the
     total slip's fingerprint, and the checkpoints written before the setting, stay as they were)."""
-    from viscontact.checkpoint import load_checkpoint, problem_fingerprint
+    from viscontact.io.checkpoint import load_checkpoint, problem_fingerprint
 
     incremental = BODIES["incremental slip"]
     total = {**incremental, "tangential.slip": "total"}
@@ -128,7 +128,7 @@ def test_the_displacement_history_enters_the_fingerprint_and_leaves_the_others_a
     changed) is refused; and the fingerprints of the problems without a history are those written
     before the key came (pinned: computed by the version before it for seed_fig10_case3 at n = 16,
     total and incremental slip), so their checkpoints still resume."""
-    from viscontact.checkpoint import load_checkpoint, problem_fingerprint
+    from viscontact.io.checkpoint import load_checkpoint, problem_fingerprint
 
     fretting = BODIES["fretting"]
     ckpt = tmp_path / "r.nc.checkpoint.npz"
@@ -155,9 +155,9 @@ def test_memory_estimate_counts_the_histories_and_kernels_of_the_body():
     (Zener: M = 1, 9 nodes at the default tolerance), less the half-space's response history
     (M + 1 fields in the old and the new state), which a body of several kernels does not carry
     (substrate.TermSubstrate.initial_response)."""
-    from viscontact.layers import shift_nodes
-    from viscontact.resources import estimate, kernel_bytes, window_cells
-    from viscontact.substrate import WINDOWS_KEPT
+    from viscontact.bodies.layer import shift_nodes
+    from viscontact.running.resources import estimate, kernel_bytes, window_cells
+    from viscontact.bodies.compliance import WINDOWS_KEPT
 
     half = case({"grid.n": 64}).to_problem()
     layer = case({"grid.n": 64, **ON_ELASTIC}).to_problem()

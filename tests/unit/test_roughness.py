@@ -1,4 +1,4 @@
-"""Rough-contact outputs (viscontact.roughness).
+"""Rough-contact outputs (viscontact.problem.roughness).
 
 Patch counts are checked on drawn patterns whose answer is known by construction (a patch cut by
 each edge, one cut by a corner, diagonal neighbours) and against an independent algorithm: a plain
@@ -11,7 +11,7 @@ from collections import deque
 import numpy as np
 import pytest
 
-from viscontact.roughness import contact_patches, roughness_metrics
+from viscontact.problem.roughness import contact_patches, roughness_metrics
 
 
 def _flood_fill_count(contact: np.ndarray, periodic: bool) -> int:

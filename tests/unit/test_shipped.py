@@ -11,7 +11,7 @@ import pytest
 import viscontact
 from viscontact import load_case, shipped_case
 from viscontact.errors import ParameterError
-from viscontact.shipped import shipped_case_names, shipped_cases_dir
+from viscontact.io.shipped import shipped_case_names, shipped_cases_dir
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -1,4 +1,4 @@
-"""Stability of the hereditary time schemes (viscontact.schemes, TimeScheme.amplification).
+"""Stability of the hereditary time schemes (viscontact.numerics.schemes, TimeScheme.amplification).
 
 For a Zener material the seed's piecewise-constant scheme amplifies a traction disturbance by
 z = A - (J_1/J_0)(1 - A), A = exp(-dt/lambda), per step: unstable once dt > -lambda ln(1 - 2 G(inf)/G(0))
@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from viscontact.errors import ParameterError
-from viscontact.schemes import amplification, stable_step_limit
-from viscontact.materials import Material
-from viscontact.transient import init
+from viscontact.numerics.schemes import amplification, stable_step_limit
+from viscontact.physics.materials import Material
+from viscontact.solvers.transient import init
 
 from vc_testing import SEED_TAU, seed_material, sphere_problem
 
@@ -42,8 +42,8 @@ def _brute_force_growth(spectrum, dt: float, scheme: str, steps: int = 3000) -> 
     """Iterate the recursion itself (PronyHistory, a held zero displacement after a unit traction
     step at t = 0): e_k = -r_k / J_inst. Returns max |e| over the last 100 steps over max |e| over
     steps 100..200 (>> 1: the disturbance grows)."""
-    from viscontact.history import PronyHistory
-    from viscontact.schemes import step_coefficients
+    from viscontact.numerics.history import PronyHistory
+    from viscontact.numerics.schemes import step_coefficients
 
     hist = PronyHistory.zeros(spectrum.retardation_times.size, 1)
     hist = hist.advanced(np.ones((1, 1)), step_coefficients(spectrum, dt, scheme, True), 0.0)

@@ -1,4 +1,4 @@
-"""The all-modes steady kernel (viscontact.steady_kernels) against two independent truths.
+"""The all-modes steady kernel (viscontact.physics.steady_kernels) against two independent truths.
 
 1. Adaptive quadrature (scipy ``quad``, rtol 1e-13) of F(d) = int_0^inf exp(-xi/L)/L IC(d + xi) dxi
    at entries of the singular row dy = 0 next to the cell edge and elsewhere: the product
@@ -16,9 +16,9 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from viscontact.grid import Grid
-from viscontact.kernels import history_kernels, influence_coefficients, rectangle_influence
-from viscontact.steady_kernels import SteadyKernelBuilder, product_weights
+from viscontact.numerics.grid import Grid
+from viscontact.physics.kernels import history_kernels, influence_coefficients, rectangle_influence
+from viscontact.physics.steady_kernels import SteadyKernelBuilder, product_weights
 
 GRID = Grid(12, 1e-3)
 NU = 0.3

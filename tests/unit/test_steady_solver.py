@@ -5,11 +5,12 @@ import numpy as np
 import pytest
 
 from viscontact import steady
-from viscontact.kernels import lattice_rectangle_influence, rectangle_influence
-from viscontact.krylov import gmres
-from viscontact.problem import SolverSettings
-from viscontact.steady import solve_contact_active_set, solve_steady, steady_convolver, steady_preconditioner
-from viscontact.substrate import substrate_for
+from viscontact.physics.kernels import lattice_rectangle_influence, rectangle_influence
+from viscontact.numerics.krylov import gmres
+from viscontact.problem.problem import SolverSettings
+from viscontact.numerics.active_set import solve_contact_active_set
+from viscontact.solvers.steady import solve_steady, steady_convolver, steady_preconditioner
+from viscontact.bodies.body import substrate_for
 
 from vc_testing import SEED_A0, SEED_TAU, seed_material, sphere_problem
 

@@ -1,6 +1,6 @@
 """Streamed results (issue 15 item 3): each record goes to the netCDF file as the run goes.
 
-Checked against independent truth: the in-memory result of the same run (``viscontact.run``) for the
+Checked against independent truth: the in-memory result of the same run (``viscontact.running``) for the
 file's content, the uninterrupted run for a resumed one, and the memory an in-memory run takes for
 the claim that a streamed one does not grow with the number of steps. The file after a kill -9 and
 the resume from it: ``test_reliability.test_kill_9_then_resume_equals_uninterrupted``.
@@ -15,12 +15,14 @@ import pytest
 import xarray as xr
 
 import viscontact as vc
-from viscontact import api, transient
+from viscontact.running import api
+from viscontact.solvers import transient
+from viscontact.running import loop
 from viscontact.errors import ParameterError, RunInterrupted
-from viscontact.observers import StreamWriter
-from viscontact import results
-from viscontact.results import netcdf_encoding, to_dataset
-from viscontact.streaming import ResultStream, is_complete_result, layout_bytes, partial_path
+from viscontact.running.observers import StreamWriter
+from viscontact.io import netcdf, results
+from viscontact.io.results import netcdf_encoding, to_dataset
+from viscontact.io.streaming import ResultStream, is_complete_result, layout_bytes, partial_path
 
 from vc_testing import SEED_A0, SEED_RADIUS, seed_material, sphere_problem
 
@@ -130,7 +132,7 @@ def _peak_bytes(run) -> int:
 
 def test_memory_does_not_grow_with_the_number_of_steps(tmp_path):
     """Peak (traced) memory of a 100-step and a 20-step run: streamed, the difference is under 10 %
-    of the 80 extra records; in memory (``viscontact.run``, which must hold them: 20 and 60 steps)
+    of the 80 extra records; in memory (``viscontact.running``, which must hold them: 20 and 60 steps)
     it is over 80 % of its 40 extra records. The approach is held (Lee & Radok: the contact radius
     stays sqrt(R delta) while the pressure relaxes), so the solver's support windows are the same
     in both runs: under a held load the contact grows with the creep, and the cropped kernels of
@@ -188,12 +190,12 @@ def test_memory_estimate_counts_the_subsurface_transforms():
     RSS of the case at n = 128, 256, 512 was 1.7-1.8 times the estimate)."""
     from dataclasses import replace
 
-    from viscontact.resources import estimate
+    from viscontact.running.resources import estimate
 
     case = vc.load_case(vc.shipped_case("creep_subsurface_stress")).with_overrides(
         {"grid.n": 64, "time.t_end": 0.001, "output.subsurface_times": [0.0, 0.001]})
     problem, _ = api.prepare(case)
-    records = list(transient.simulate(problem))
+    records = list(loop.simulate(problem))
     measured = _peak_bytes(lambda: results.subsurface_variables(records, problem))
     without = replace(problem, output=replace(problem.output, subsurface_depths=()))
     added = estimate(problem).peak_memory_bytes - estimate(without).peak_memory_bytes
@@ -201,9 +203,9 @@ def test_memory_estimate_counts_the_subsurface_transforms():
 
 
 def test_the_claimed_space_bounds_what_the_file_takes(tmp_path):
-    """The disk space a streamed run claims (viscontact.resources.stream_bytes) is an upper bound of
+    """The disk space a streamed run claims (viscontact.running.resources.stream_bytes) is an upper bound of
     what its records and its finishing really add to the file (blocks allocated on disk)."""
-    from viscontact.resources import stream_bytes
+    from viscontact.running.resources import stream_bytes
 
     problem = _partial_slip(every=1)
     out = tmp_path / "r.nc"
@@ -221,7 +223,7 @@ def test_space_claim_holds_the_space_until_handed_back(tmp_path):
     import errno
     import shutil
 
-    from viscontact.output_files import SpaceClaim
+    from viscontact.io.output_files import SpaceClaim
 
     size = 64 * 2**20
     free = shutil.disk_usage(tmp_path).free
@@ -278,7 +280,7 @@ def test_direct_chunks_read_back_bit_for_bit_whatever_the_field(tmp_path, shuffl
     import h5py
     import numpy as np
 
-    from viscontact.streaming import chunk_encoder
+    from viscontact.io.streaming import chunk_encoder
 
     rng = np.random.default_rng(1)
     x = np.linspace(-1, 1, 32)
@@ -305,7 +307,7 @@ def test_direct_chunks_read_back_bit_for_bit_whatever_the_field(tmp_path, shuffl
 def test_no_encoder_for_chunks_or_filters_it_does_not_know(tmp_path):
     import h5py
 
-    from viscontact.streaming import chunk_encoder
+    from viscontact.io.streaming import chunk_encoder
 
     with h5py.File(tmp_path / "c.h5", "w") as f:
         common = dict(shape=(0, 8, 8), maxshape=(None, 8, 8), dtype="f8")
@@ -412,7 +414,7 @@ def test_records_flushed_counts_the_whole_records_and_open_result_reads_only_tho
     returned; open_result reads the records up to it."""
     import h5py
 
-    from viscontact.streaming import FLUSHED
+    from viscontact.io.streaming import FLUSHED
 
     problem = _partial_slip()
     records = [rec for _, rec in transient.steps(problem)][:4]
@@ -425,11 +427,11 @@ def test_records_flushed_counts_the_whole_records_and_open_result_reads_only_tho
     stream.drain()
     assert stream.file.attrs[FLUSHED] == 4
     stream.close()
-    assert results.open_result(path).sizes["t"] == 4
+    assert netcdf.open_result(path).sizes["t"] == 4
     with h5py.File(path, "r+") as f:  # as a kill inside the fourth record's flush leaves it
         f.attrs[FLUSHED] = 3
         f["step"][3] = 0
-    torn = results.open_result(path)
+    torn = netcdf.open_result(path)
     assert torn.sizes["t"] == 3 and list(torn["step"].values) == [0, 1, 2]
 
 

@@ -1,4 +1,4 @@
-"""Support-window solve (viscontact.support_window) against the full-domain solve.
+"""Support-window solve (viscontact.numerics.support_window) against the full-domain solve.
 
 * the window operator (cropped kernels on an m x m box) is the full DC-FFT operator restricted to the
   box, to round-off (1e-12 of the largest value): a wrong crop or wrap-around layout is off by O(1);
@@ -20,13 +20,15 @@ import numpy as np
 import pytest
 from vc_testing import SEED_A0, seed_material, sphere_problem
 
-from viscontact import support_window, transient
-from viscontact.arrays import CPU, cpu_fast_length, device_fast_length
-from viscontact.constrained import constrained_cg
-from viscontact.grid import Grid
-from viscontact.materials import Material
-from viscontact.problem import SolverSettings
-from viscontact.substrate import HalfSpace
+from viscontact.numerics import support_window
+from viscontact.solvers import transient
+from viscontact.running import loop
+from viscontact.numerics.arrays import CPU, cpu_fast_length, device_fast_length
+from viscontact.numerics.constrained import constrained_cg
+from viscontact.numerics.grid import Grid
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import SolverSettings
+from viscontact.bodies.half_space import HalfSpace
 
 
 def _half_space(n: int = 32, material: Material | None = None) -> HalfSpace:
@@ -34,8 +36,8 @@ def _half_space(n: int = 32, material: Material | None = None) -> HalfSpace:
 
 
 def _nu_t_substrate(n: int = 32):
-    from viscontact.compliance_terms import term_substrate
-    from viscontact.poisson import BulkElasticMaterial, half_space_terms
+    from viscontact.bodies.compliance import term_substrate
+    from viscontact.bodies.bulk_elastic import BulkElasticMaterial, half_space_terms
 
     grid = Grid(n, 2e-3)
     return term_substrate(grid, half_space_terms(grid, BulkElasticMaterial(seed_material(), 5e6), ("zz",)),
@@ -62,7 +64,7 @@ def test_window_operator_is_the_full_operator_on_the_box(make, m, r0, c0):
 def test_window_convolvers_kept_are_bounded():
     """A contact that walks through many window sides keeps the convolvers of the last WINDOWS_KEPT
     only (their cropped kernels would otherwise pile up), the most recent first to stay."""
-    from viscontact.substrate import WINDOWS_KEPT
+    from viscontact.bodies.compliance import WINDOWS_KEPT
 
     sub = _half_space(32)
     op = sub.elastic_operator("z", False)
@@ -119,7 +121,7 @@ def _records(problem, monkeypatch, windows: bool):
         return m
 
     monkeypatch.setattr(support_window, "window_side", spy)
-    records = list(transient.simulate(problem))
+    records = list(loop.simulate(problem))
     monkeypatch.undo()
     return records, [m for m in used if m is not None]
 
@@ -176,7 +178,7 @@ def test_a_creeping_contact_on_the_device_ladder_keeps_its_window_longer(monkeyp
     """A GPU plans its transforms anew for every window side (a tenth of a second each on an H200):
     on the device ladder a creeping contact changes side less than half as often as on scipy's fast
     lengths, and the records are the same to the solver tolerance (the box holds the support)."""
-    from viscontact.substrate import substrate_for
+    from viscontact.bodies.body import substrate_for
 
     problem = sphere_problem(seed_material(), 96, 2.5 * SEED_A0, t_end=0.03, dt=0.001,
                              solver=SolverSettings(tolerance=1e-10), fields=("pressure",))

@@ -12,8 +12,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from viscontact import api, cli
-from viscontact.case import load_case
+from viscontact import cli
+from viscontact.running import api
+from viscontact.io.case import load_case
 from viscontact.errors import ParameterError, ViscontactWarning
 from viscontact.plotting import plot_sweep
 from viscontact.sweep import SweepSpec, load_sweep, plan, run_file_name, runs_dir, sweep
@@ -23,7 +24,7 @@ from vc_testing import SEED_MATERIAL_TOML
 pytestmark = [pytest.mark.timeout(90),
               pytest.mark.filterwarnings("ignore:time.dt = .* the transient is resolved coarsely")]
 
-# retardation time 0.04 s: the coarse dt of this tiny grid (4 ms) resolves its creep (viscontact.guards)
+# retardation time 0.04 s: the coarse dt of this tiny grid (4 ms) resolves its creep (viscontact.running.guards)
 BASE = """\
 title = "tiny sweep base"
 """ + SEED_MATERIAL_TOML.replace("retardation_time = 0.01", "retardation_time = 0.04") + """\
@@ -273,13 +274,13 @@ def test_runs_interpolated_onto_the_union_time_axis_are_listed_and_warned_once(t
     ('"tangential.sliding_speed" = [0.01, -1.0]\n', "steady", "tangential.sliding_speed",
      "tangential.sliding_speed=-1"),
     ('"material.shear_modulus_long_term" = [2e6]\n', "steady", "material.shear_modulus_long_term", "<="),
-    # what the solver refuses before its first step (viscontact.guards, ...): refused before any run
+    # what the solver refuses before its first step (viscontact.running.guards, ...): refused before any run
     ('"material.retardation_time" = [0.04, 0.002]\n', "transient", "tangential.steps_per_cell",
      "use tangential.steps_per_cell = 16 (time.dt = 0.00025 s) (in the run material.retardation_time=0.002)"),
     ('"normal.value" = [0.148, 1.0]\n', "steady", "grid.half_width", "(in the run normal.value=1)"),
     ('"tangential.sliding_speed" = [0.0471, 0]\n[overrides]\n"tangential.mode" = "none"\n"time.dt" = 0.001\n',
      "steady", "tangential.sliding_speed", "steady state, got 0.0 (in the run tangential.sliding_speed=0)"),
-    # an axis the steady solver ignores (viscontact.steady.ignored_keys): every run would be the same
+    # an axis the steady solver ignores (viscontact.solvers.steady.ignored_keys): every run would be the same
     ('"tangential.slip" = ["total", "incremental"]\n[overrides]\n"tangential.mode" = "partial_slip"\n'
      '"tangential.displacement_rate" = 0.01\n"tangential.friction_coefficient" = 0.3\n',
      "steady", "tangential.slip", "the steady solver ignores it (it is partial slip's stick condition"),
@@ -321,9 +322,9 @@ def test_steady_sweep_keeps_the_keys_that_matter(tmp_path, parameters, overrides
 
 
 def test_steady_state_ignores_the_keys_it_says_it_ignores(tmp_path):
-    """Every key of viscontact.steady.IGNORED_KEYS, changed, leaves every variable of a steady result
+    """Every key of viscontact.solvers.steady.IGNORED_KEYS, changed, leaves every variable of a steady result
     (partial slip with friction and the subsurface stresses) bit for bit the same."""
-    from viscontact.steady import IGNORED_KEYS
+    from viscontact.solvers.steady import IGNORED_KEYS
 
     changed = {"time.dt": 1e-3, "time.scheme": "constant", "tangential.steps_per_cell": 3,
                "tangential.displacement_rate": 0.05, "tangential.slip": "incremental", "output.every": 5,

@@ -103,7 +103,7 @@ READERS = {
 
 
 def test_every_key_naming_a_file_is_an_input_file():
-    from viscontact.case import FILE_KEYS, case_keys
+    from viscontact.io.case import FILE_KEYS, case_keys
 
     assert set(FILE_KEYS) == {key for key in case_keys() if key.rsplit(".", 1)[-1] == "file"} == set(READERS)
 

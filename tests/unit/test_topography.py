@@ -1,4 +1,4 @@
-"""Topographies through SurfaceTopography (viscontact.topography).
+"""Topographies through SurfaceTopography (viscontact.problem.topography).
 
 Truths: surfaces written by SurfaceTopography's own writers from arrays we index ourselves ([x, y]
 there, [y, x] here) and read back, units converted (um -> m); the generated surface's rms (exact by
@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 
 from viscontact.errors import ParameterError
-from viscontact.grid import Grid
+from viscontact.numerics.grid import Grid
 from viscontact.errors import ViscontactWarning
-from viscontact.topography import (check_surface, gap_from_heights, read_heights, self_affine_heights,
+from viscontact.problem.topography import (check_surface, gap_from_heights, read_heights, self_affine_heights,
                                    sphere_heights)
 
 ST = pytest.importorskip("SurfaceTopography")

@@ -1,7 +1,7 @@
 """The run's warnings point at the user's line that called the API, not into the package: the
-observers (:mod:`viscontact.observers`) and the checks before the run (:mod:`viscontact.guards`)
-warn several calls deep, at a depth that differs between :func:`viscontact.api.run`,
-:func:`viscontact.api.run_to_file` and the generator :func:`viscontact.transient.simulate`
+observers (:mod:`viscontact.running.observers`) and the checks before the run (:mod:`viscontact.running.guards`)
+warn several calls deep, at a depth that differs between :func:`viscontact.running.api.run`,
+:func:`viscontact.running.api.run_to_file` and the generator :func:`viscontact.running.loop.simulate`
 (:func:`viscontact.errors.warn_caller`)."""
 from __future__ import annotations
 
@@ -12,10 +12,11 @@ from pathlib import Path
 
 import pytest
 
-from viscontact import api, transient
+from viscontact.running import api
+from viscontact.running import loop
 from viscontact.errors import ViscontactWarning
-from viscontact.materials import Material
-from viscontact.problem import PiecewiseLinear
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import PiecewiseLinear
 
 from vc_testing import SEED_A0, SEED_TAU, seed_material, sphere_problem
 
@@ -49,7 +50,7 @@ def _run_to_file(problem, tmp: Path) -> int:
 
 def _simulate(problem, tmp: Path) -> int:
     line = sys._getframe().f_lineno + 1
-    list(transient.simulate(problem))
+    list(loop.simulate(problem))
     return line
 
 

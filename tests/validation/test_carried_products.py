@@ -15,10 +15,12 @@ import numpy as np
 import pytest
 
 from vc_testing import SEED_A0, SEED_TAU, seed_material, sphere_problem
-from viscontact import constrained, transient
-from viscontact.materials import Material
-from viscontact.problem import LayerSettings
-from viscontact.substrate import substrate_for
+from viscontact.numerics import constrained
+from viscontact.solvers import transient
+from viscontact.running import loop
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import LayerSettings
+from viscontact.bodies.body import substrate_for
 
 THREE_MODES = Material.prony(0.2e6, [0.5e6, 0.8e6, 0.4e6], [1e-3, 1e-2, 1e-1], 0.3)
 
@@ -119,11 +121,11 @@ def test_carried_products_give_the_solves_without_them(mode, monkeypatch):
     else:
         problem = sphere_problem(seed_material(), 48, 2.56 * SEED_A0, mode="frictionless_sliding",
                                  speed=0.8 * SEED_A0 / SEED_TAU, t_end=0.01)
-    carried = list(transient.simulate(problem))
+    carried = list(loop.simulate(problem))
     monkeypatch.setattr(transient, "_warm_start", lambda substrate, state, k: (
         np.maximum(2.0 * state.pressure - state.pressure_previous, 0.0) if k > 1 else state.pressure, None))
     monkeypatch.setattr(type(substrate_for(problem)), "initial_response", lambda self: None)
-    plain = list(transient.simulate(problem))
+    plain = list(loop.simulate(problem))
     for a, b in zip(carried, plain):
         assert np.abs(a.pressure - b.pressure).sum() < 1e-8 * np.abs(b.pressure).sum()
     assert abs(sum(r.iterations for r in carried) - sum(r.iterations for r in plain)) <= 0.02 * sum(
@@ -133,7 +135,7 @@ def test_carried_products_give_the_solves_without_them(mode, monkeypatch):
 def test_a_checkpoint_without_the_carried_fields_resumes():
     """A checkpoint written before the state carried products (no such arrays in it) resumes with
     them absent: the next steps transform as before and give the same solves."""
-    from viscontact.checkpoint import state_arrays, state_from_arrays
+    from viscontact.io.checkpoint import state_arrays, state_from_arrays
 
     problem = _creep(seed_material(), "constant", steps=10)
     substrate = substrate_for(problem)

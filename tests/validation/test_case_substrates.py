@@ -1,4 +1,4 @@
-"""Issue 12 through the case file and the API (``viscontact.run``): ``material.bulk_modulus``
+"""Issue 12 through the case file and the API (``viscontact.running``): ``material.bulk_modulus``
 (nu(t)), ``[layer]`` and the subsurface stress output, each against independent truth.
 
 Measured (n = 32 on [-2 mm, 2 mm]^2 unless said; seed Zener G(0) = 1.93 MPa, R = 10 mm, W = 0.15 N):
@@ -27,10 +27,10 @@ import numpy as np
 import pytest
 
 import viscontact as vc
-from viscontact.case import load_case
+from viscontact.io.case import load_case
 from viscontact.errors import ParameterError, ViscontactWarning
-from viscontact.poisson import BulkElasticMaterial
-from viscontact.reference import hertz_axis_stresses, hertz_from_load, lee_radok_creep
+from viscontact.bodies.bulk_elastic import BulkElasticMaterial
+from viscontact.physics.reference import hertz_axis_stresses, hertz_from_load, lee_radok_creep
 
 ROOT = Path(__file__).resolve().parents[2]
 BASE = load_case(ROOT / "cases" / "creep_indentation.toml")
@@ -62,7 +62,7 @@ def test_bulk_modulus_case_creeps_as_lee_radok_with_the_normal_creep_function():
     assert ds["poisson_ratio_long_term"].attrs["units"] == "1"  # also a scalar variable
 
 
-# four steps per cell: one step per cell (dt = 5 ms) misses the creep by about 33 % (viscontact.guards)
+# four steps per cell: one step per cell (dt = 5 ms) misses the creep by about 33 % (viscontact.running.guards)
 SLIDING = {"tangential.sliding_speed": 0.05, "tangential.friction_coefficient": 0.3, "time.dt": None, "time.scheme": "linear",
            "tangential.steps_per_cell": 4, "time.t_end": 4 * 2 * 2e-3 / 16 / 0.05}
 
@@ -203,7 +203,7 @@ def test_subsurface_maximum_shear_of_hertz(tmp_path):
                                atol=0.02 * hertz.peak_pressure)
     # saved, reopened and drawn by the plotting package
     from viscontact.plotting import plot_any
-    from viscontact.results import open_result, write_netcdf
+    from viscontact.io.netcdf import open_result, write_netcdf
 
     path = write_netcdf(ds, tmp_path / "hertz.nc")
     names = [p.name for p in plot_any(open_result(path), tmp_path / "figs")]
@@ -253,7 +253,7 @@ def test_subsurface_output_of_a_layer_problem_is_refused_before_the_run():
     (the API path, not only the case file): one line naming the key."""
     import dataclasses
 
-    from viscontact.problem import LayerSettings, OutputSettings
+    from viscontact.problem.problem import LayerSettings, OutputSettings
 
     problem = BASE.with_overrides({"grid.n": 16}).to_problem()
     with pytest.raises(ParameterError, match="^output.subsurface_depths: needs a homogeneous half-space"):

@@ -1,6 +1,6 @@
 """Partial slip against Cattaneo-Mindlin, and the Coulomb and load-balance conditions at every step.
 
-Cattaneo-Mindlin (Johnson, Contact Mechanics, Sec. 7.2; :class:`viscontact.reference.CattaneoMindlin`)
+Cattaneo-Mindlin (Johnson, Contact Mechanics, Sec. 7.2; :class:`viscontact.physics.reference.CattaneoMindlin`)
 holds exactly for an elastic half-space with nu = 0.5 (no normal/tangential coupling): under a held
 load W and a tangential approach delta_x, Q / mu W = 1 - (1 - delta_x / delta*)^(3/2),
 c / a = (1 - Q / mu W)^(1/3), delta* = 3 mu W (2 - nu) / (16 G a). Tolerance 0.02 on Q / mu W;
@@ -11,10 +11,10 @@ mu p0 [sqrt(1 - r^2/a^2) - (c/a) sqrt(1 - r^2/c^2)] (the cells at the two square
 import numpy as np
 import pytest
 
-from viscontact.materials import Material
-from viscontact.problem import PHASE_GROSS_SLIDING, PHASE_PARTIAL_SLIP, PiecewiseLinear, SolverSettings
-from viscontact.reference import cattaneo_mindlin, hertz_from_load
-from viscontact.transient import simulate
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import PHASE_GROSS_SLIDING, PHASE_PARTIAL_SLIP, PiecewiseLinear, SolverSettings
+from viscontact.physics.reference import cattaneo_mindlin, hertz_from_load
+from viscontact.running.loop import simulate
 
 from vc_testing import SEED_G0, SEED_LOAD, SEED_RADIUS, sphere_problem
 

@@ -9,11 +9,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from viscontact import api
-from viscontact.case import Case
+from viscontact.running import api
+from viscontact.io.case import Case
 from viscontact.errors import ParameterError
-from viscontact.steady import solve_steady
-from viscontact.transient import simulate
+from viscontact.solvers.steady import solve_steady
+from viscontact.running.loop import simulate
 
 from vc_testing import SEED_A0, SEED_MATERIAL_TOML, SEED_TAU
 

@@ -36,9 +36,9 @@ from vc_testing import sphere_problem
 
 import viscontact as vc
 from viscontact.errors import ViscontactWarning
-from viscontact.guards import WARNING_LIMIT, flat_face_cells
-from viscontact.materials import Material
-from viscontact.problem import SolverSettings
+from viscontact.running.guards import WARNING_LIMIT, flat_face_cells
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import SolverSettings
 
 G, NU, A, HALF_WIDTH, DELTA = 1e6, 0.3, 0.5e-3, 2e-3, 3.5e-6
 E_STAR = 2 * G / (1 - NU)

@@ -16,10 +16,10 @@ import numpy as np
 import pytest
 
 from viscontact.errors import ParameterError
-from viscontact.materials import Material
-from viscontact.problem import PHASE_PARTIAL_SLIP, PiecewiseLinear
-from viscontact.reference import cattaneo_mindlin, hertz_from_load
-from viscontact.transient import simulate
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import PHASE_PARTIAL_SLIP, PiecewiseLinear
+from viscontact.physics.reference import cattaneo_mindlin, hertz_from_load
+from viscontact.running.loop import simulate
 
 from vc_testing import SEED_G0 as G, SEED_LOAD as W, SEED_RADIUS as R, sphere_problem
 
@@ -240,7 +240,7 @@ def _energies(nu: float, steps_per_amplitude: int, cycles: int):
     U = 1/2 sum (p u_z + q_x u_x) dA (u_z = delta_z - h and u_x = delta_x + s_x in contact), the work
     of friction D = sum over steps and cells of |q_x| |Delta s_x| dA (s_x: the state's incremental
     slip), and the changes of Q and delta_z over the cycle."""
-    from viscontact.transient import steps
+    from viscontact.solvers.transient import steps
 
     cm = cattaneo_mindlin(W, R, MU, G, nu)
     amp = 0.6 * cm.sliding_displacement

@@ -31,10 +31,10 @@ from vc_testing import (SEED_A0, SEED_G0, SEED_GINF, SEED_LOAD, SEED_NU, SEED_P0
                         sphere_problem)
 
 from viscontact.errors import ViscontactWarning
-from viscontact.materials import Material
-from viscontact.problem import SolverSettings
-from viscontact.reference import hertz_from_approach, hertz_from_load
-from viscontact.transient import simulate
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import SolverSettings
+from viscontact.physics.reference import hertz_from_approach, hertz_from_load
+from viscontact.running.loop import simulate
 
 G0, GINF, LAM, NU, R, W = SEED_G0, SEED_GINF, SEED_TAU, SEED_NU, SEED_RADIUS, SEED_LOAD
 HERTZ0 = hertz_from_load(W, R, G0, NU)

@@ -1,4 +1,4 @@
-"""Frictionless sphere on an elastic layer bonded to a rigid base (viscontact.layers kernels + the
+"""Frictionless sphere on an elastic layer bonded to a rigid base (viscontact.bodies.layer kernels + the
 Polonsky-Keer solver), against the asymptotic limits of the layer:
 
 * thin compressible layer: Winkler foundation with the oedometric modulus M = 2G(1-nu)/(1-2nu),
@@ -23,14 +23,14 @@ import numpy as np
 import pytest
 from vc_testing import sphere_problem
 
-from viscontact.constrained import constrained_cg
-from viscontact.convolution import Convolver, FourierPreconditioner
-from viscontact.grid import Grid
-from viscontact.layers import Layer, influence_coefficients
-from viscontact.materials import Material
-from viscontact.problem import LayerSettings
-from viscontact.reference import hertz_from_approach
-from viscontact.transient import simulate
+from viscontact.numerics.constrained import constrained_cg
+from viscontact.numerics.convolution import Convolver, FourierPreconditioner
+from viscontact.numerics.grid import Grid
+from viscontact.bodies.layer import Layer, influence_coefficients
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import LayerSettings
+from viscontact.physics.reference import hertz_from_approach
+from viscontact.running.loop import simulate
 
 G, R, A = 1.0e6, 0.01, 1.0e-3
 
@@ -92,9 +92,9 @@ def test_thick_layer_tends_to_hertz():
 def test_periodic_contact_on_a_thick_layer_is_the_half_space(mode, friction):
     """A bi-sinusoidal surface (wavelength L = 2 mm, amplitude 2 um, n = 32, load 0.02 N per period:
     about half the cells in contact) on an elastic layer h = 10 L thick bonded to a rigid base, periodic
-    grid, load control, one step of the transient solver (viscontact.transient.simulate): at
+    grid, load control, one step of the transient solver (viscontact.running.loop.simulate): at
     k h >= 2 pi h/L = 63 the layer is the half-space (to exp(-126)), so the pressure is that of the
-    periodic half-space run (the Ewald kernels of viscontact.periodic) and the approach that one
+    periodic half-space run (the Ewald kernels of viscontact.physics.periodic) and the approach that one
     plus the uniform compliance h/M times the mean pressure. Frictionless and in gross sliding with
     mu = 0.5 (the zx coupling). Measured: pressures within 4e-14 of the peak, the approach shift
     within 3e-16 of h/M p_mean; tolerance 1e-9 (the kernels differ by round-off, far below the CG

@@ -1,6 +1,6 @@
 """Lee & Radok (1960): a rigid sphere on a linear viscoelastic half-space, whose contact radius
 never decreases, follows the elastic Hertz relations with the moduli replaced by hereditary
-operators (viscontact.reference.lee_radok_*; Johnson, *Contact Mechanics*, §6.5).
+operators (viscontact.physics.reference.lee_radok_*; Johnson, *Contact Mechanics*, §6.5).
 
 Seed Zener material: G(0) = 1.93 MPa, G(inf) = 0.193 MPa, retardation time lambda = 10 ms
 (relaxation time tau = 1 ms), nu = 0.3, R = 10 mm, W = 0.15 N.
@@ -46,16 +46,16 @@ import pytest
 from vc_testing import SEED_G0, SEED_GINF, SEED_LOAD, SEED_NU, SEED_RADIUS, SEED_TAU, seed_material, sphere_problem
 
 from viscontact.errors import ViscontactWarning
-from viscontact.materials import Material
-from viscontact.problem import SolverSettings
-from viscontact.reference import (
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import SolverSettings
+from viscontact.physics.reference import (
     hertz_from_approach,
     hertz_from_load,
     lee_radok_centre_pressure,
     lee_radok_creep,
     lee_radok_relaxation,
 )
-from viscontact.transient import simulate
+from viscontact.running.loop import simulate
 
 G0, GINF, LAM, NU, R, W = SEED_G0, SEED_GINF, SEED_TAU, SEED_NU, SEED_RADIUS, SEED_LOAD
 ZENER = seed_material()

@@ -9,10 +9,10 @@ loading did at the same load (the material has crept while loaded).
 import numpy as np
 import pytest
 
-from viscontact.materials import Material
-from viscontact.problem import PiecewiseLinear
-from viscontact.reference import hertz_from_load
-from viscontact.transient import simulate
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import PiecewiseLinear
+from viscontact.physics.reference import hertz_from_load
+from viscontact.running.loop import simulate
 
 from vc_testing import SEED_G0, SEED_NU, SEED_RADIUS, seed_material, sphere_problem
 

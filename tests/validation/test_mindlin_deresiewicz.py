@@ -21,9 +21,9 @@ import numpy as np
 import pytest
 
 from viscontact.errors import ViscontactWarning
-from viscontact.materials import Material
-from viscontact.problem import PHASE_PARTIAL_SLIP, PiecewiseLinear
-from viscontact.transient import simulate
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import PHASE_PARTIAL_SLIP, PiecewiseLinear
+from viscontact.running.loop import simulate
 
 from vc_testing import SEED_RADIUS as R, sphere_problem
 

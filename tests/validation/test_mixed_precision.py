@@ -17,12 +17,13 @@ import numpy as np
 import pytest
 
 from vc_testing import SEED_A0, seed_material, sphere_problem
-from viscontact import constrained
-from viscontact.convolution import Convolver
-from viscontact.grid import Grid
-from viscontact.problem import SolverSettings
-from viscontact.substrate import substrate_for
-from viscontact.transient import init, simulate, step
+from viscontact.numerics import constrained
+from viscontact.physics.kernels import half_space_convolver
+from viscontact.numerics.grid import Grid
+from viscontact.problem.problem import SolverSettings
+from viscontact.bodies.body import substrate_for
+from viscontact.solvers.transient import init, step
+from viscontact.running.loop import simulate
 
 
 def _final(problem, mixed: bool, tolerance: float):
@@ -32,7 +33,7 @@ def _final(problem, mixed: bool, tolerance: float):
 
 
 def test_single_precision_product_is_the_double_one_to_float32_rounding():
-    conv = Convolver.for_grid(Grid(48, 1e-3), 0.3, workers=1, components=("zz",))
+    conv = half_space_convolver(Grid(48, 1e-3), 0.3, workers=1, components=("zz",))
     field = np.random.default_rng(1).random((48, 48)) * 1e5
     double, single = conv.apply("zz", field), conv.apply("zz", field, single=True)
     assert single.dtype == np.float32 and double.dtype == np.float64
@@ -81,7 +82,7 @@ def test_drift_bound_keeps_the_incremental_product_exact_to_the_tolerance():
     """An operator whose increments are off by 1e-7 (a perturbed kernel) and a start far from the
     answer: the returned gradient is the exact one to tolerance x max|b|."""
     n = 24
-    conv = Convolver.for_grid(Grid(n, 1e-3), 0.3, workers=1, components=("zz",))
+    conv = half_space_convolver(Grid(n, 1e-3), 0.3, workers=1, components=("zz",))
     exact = lambda x: conv.apply("zz", x) * 1e-6  # noqa: E731
 
     def rough(x):  # an increment product with a relative error of 1e-7 of its size

@@ -1,7 +1,7 @@
 """The transient on a periodic domain: moving frame wrapping around, against exact references.
 
 * Full-contact sinusoid h0 cos(kx), frictionless and gross sliding: the transient tends to the
-  exact periodic steady state (viscontact.steady_periodic, no history truncation) as the time step
+  exact periodic steady state (viscontact.solvers.steady_periodic, no history truncation) as the time step
   dt = dx / v shrinks with the grid, at second order (the linear scheme), and so to
   mu_app = k^2 h0^2 E''(kv) / (4 p_mean) (0.06 % at 64 cells per wavelength).
 * Ridges along x (a gap that depends on y only): sliding along x changes nothing, so with the
@@ -19,13 +19,13 @@ import warnings
 import numpy as np
 import pytest
 
-from viscontact import transient
+from viscontact.solvers import transient
 from viscontact.errors import ParameterError
-from viscontact.grid import Grid
-from viscontact.materials import Material
-from viscontact.problem import (PHASE_PARTIAL_SLIP, LayerSettings, NormalLoading, OutputSettings, PiecewiseLinear,
+from viscontact.numerics.grid import Grid
+from viscontact.physics.materials import Material
+from viscontact.problem.problem import (PHASE_PARTIAL_SLIP, LayerSettings, NormalLoading, OutputSettings, PiecewiseLinear,
                                 Problem, SolverSettings, TangentialLoading, TimeStepping)
-from viscontact.steady import solve_steady
+from viscontact.solvers.steady import solve_steady
 from vc_testing import observed_order, periodic_elastic_contact
 
 NU = 0.3

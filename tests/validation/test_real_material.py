@@ -21,9 +21,9 @@ import numpy as np
 import pytest
 
 import viscontact as vc
-from viscontact.prony_table import PronyTable, parse_prony_table
-from viscontact.reference import hertz_from_approach
-from viscontact.shipped import shipped_cases_dir
+from viscontact.io.prony_table import PronyTable, parse_prony_table
+from viscontact.physics.reference import hertz_from_approach
+from viscontact.io.shipped import shipped_cases_dir
 
 MPA = 1e6
 

@@ -19,9 +19,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from viscontact.grid import Grid
-from viscontact.roughness import roughness_metrics
-from viscontact.topography import gap_from_heights, read_heights, self_affine_heights
+from viscontact.numerics.grid import Grid
+from viscontact.problem.roughness import roughness_metrics
+from viscontact.problem.topography import gap_from_heights, read_heights, self_affine_heights
 from vc_testing import periodic_elastic_contact
 
 ST = pytest.importorskip("SurfaceTopography")

@@ -14,9 +14,9 @@ import warnings
 import numpy as np
 import pytest
 
-from viscontact.steady import solve_steady, speed_sweep
-from viscontact.transient import simulate
-from viscontact.reference import hertz_from_load
+from viscontact.solvers.steady import solve_steady, speed_sweep
+from viscontact.running.loop import simulate
+from viscontact.physics.reference import hertz_from_load
 
 from vc_testing import SEED_A0, SEED_RADIUS, SEED_TAU, observed_order, seed_material, sphere_problem
 

@@ -1,15 +1,15 @@
 """Steady sliding on the bodies built from compliance terms: a time-dependent Poisson ratio
-(``bulk_modulus``, viscontact.poisson) and a viscoelastic layer on a rigid base (viscontact.layers),
+(``bulk_modulus``, viscontact.bodies.bulk_elastic) and a viscoelastic layer on a rigid base (viscontact.bodies.layer),
 on DC-FFT and periodic grids, against independent truth.
 
 Each term's steady kernel is built from its own spectrum (TermSubstrate.steady_convolver, the
-shapes of viscontact.steady_kernels.SteadyShape); on a periodic grid the operator is each term's
+shapes of viscontact.physics.steady_kernels.SteadyShape); on a periodic grid the operator is each term's
 spectrum times its complex compliance at -k_x v (TermSubstrate.steady_spectrum).
 
 References and measured values (seed Zener G(0) = 1.93 MPa, G(inf) = G(0)/10, tau = 10 ms, R = 10 mm):
 
 Bodies: nu(t) with K = 2 G(0); a layer bonded to a rigid base; a viscoelastic layer bonded to an
-elastic substrate (G_s = 3 G(0), nu_s = 0.4: one kernel per shift node, viscontact.layers
+elastic substrate (G_s = 3 G(0), nu_s = 0.4: one kernel per shift node, viscontact.bodies.layer
 .elastic_substrate_terms).
 
 * slow sliding (v tau/a0 = 1e-4) is the elastic contact at G(inf), nu(inf); fast (1e4) at G(0), nu(0).
@@ -42,13 +42,13 @@ import pytest
 from vc_testing import SEED_A0, SEED_G0, SEED_RADIUS, SEED_TAU, seed_material, sphere_problem
 
 from viscontact.errors import ViscontactWarning
-from viscontact.grid import Grid
-from viscontact.materials import Material
-from viscontact.poisson import BulkElasticMaterial
-from viscontact.problem import LayerSettings
-from viscontact.reference import hertz_from_load
-from viscontact.steady import solve_steady
-from viscontact.transient import simulate
+from viscontact.numerics.grid import Grid
+from viscontact.physics.materials import Material
+from viscontact.bodies.bulk_elastic import BulkElasticMaterial
+from viscontact.problem.problem import LayerSettings
+from viscontact.physics.reference import hertz_from_load
+from viscontact.solvers.steady import solve_steady
+from viscontact.running.loop import simulate
 
 LOAD = 0.148
 K = 2 * SEED_G0

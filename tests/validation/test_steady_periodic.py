@@ -1,4 +1,4 @@
-"""Exact steady sliding on a periodic domain (viscontact.steady_periodic).
+"""Exact steady sliding on a periodic domain (viscontact.solvers.steady_periodic).
 
 * Full-contact sinusoid h0 cos(kx) under the mean pressure p_mean: the displacement is prescribed
   (u = delta - gap), so p^(k) = u^(k) G*(-kv) / K^(k) and F_T / A = -mean(p du/dx) give
@@ -21,11 +21,11 @@ import numpy as np
 import pytest
 
 from viscontact.errors import ParameterError
-from viscontact.grid import Grid
-from viscontact.materials import Material
-from viscontact.periodic import PeriodicConvolver
-from viscontact.steady_periodic import solve_periodic_steady
-from viscontact.topography import gap_from_heights, self_affine_heights
+from viscontact.numerics.grid import Grid
+from viscontact.physics.materials import Material
+from viscontact.physics.periodic import PeriodicConvolver
+from viscontact.solvers.steady_periodic import solve_periodic_steady
+from viscontact.problem.topography import gap_from_heights, self_affine_heights
 from vc_testing import observed_order, periodic_elastic_contact
 
 NU = 0.3

@@ -1,4 +1,4 @@
-"""Subsurface stresses (viscontact.subsurface) against closed-form half-space solutions.
+"""Subsurface stresses (viscontact.physics.subsurface) against closed-form half-space solutions.
 
 * Hertz pressure: sigma_z, sigma_r on the axis (Johnson Eq. 3.45) and the principal shear maximum
   0.31 p0 at 0.48 a for nu = 0.3 (Johnson sec. 3.4). Tolerance 2e-3 p0: the pressure is sampled at
@@ -35,9 +35,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from viscontact.grid import Grid
-from viscontact.reference import hertz_axis_stresses
-from viscontact.subsurface import section_stresses
+from viscontact.numerics.grid import Grid
+from viscontact.physics.reference import hertz_axis_stresses
+from viscontact.physics.subsurface import section_stresses
 
 NU, A, P0 = 0.3, 1e-3, 1e6
 
@@ -207,7 +207,7 @@ def test_default_padding_keeps_the_load_images_out_of_deep_stresses():
 
 def test_automatic_padding_is_capped_with_a_warning():
     from viscontact.errors import ViscontactWarning
-    from viscontact.subsurface import automatic_padding
+    from viscontact.physics.subsurface import automatic_padding
 
     grid = Grid(64, 1e-3)
     assert automatic_padding(grid, 0.0) == 2 and automatic_padding(grid, 0.3e-3) == 3
@@ -243,7 +243,7 @@ def test_working_bytes_is_the_traced_peak_and_a_missing_shear_saves_its_spectrum
     leaving the zero q_y (and q_x) out lowers the traced peak by at least the spectra not made."""
     import tracemalloc
 
-    from viscontact.subsurface import working_bytes
+    from viscontact.physics.subsurface import working_bytes
 
     grid, p, qx = _hertz_tractions(64)
     depths = np.linspace(0.0, 1e-3, 13)

@@ -1,10 +1,10 @@
-"""The transient solver on substrates built from compliance terms (viscontact.compliance_terms
-.term_substrate): a time-dependent Poisson ratio (viscontact.poisson) and a viscoelastic layer on a
-rigid base (viscontact.layers), under a held load.
+"""The transient solver on substrates built from compliance terms (viscontact.bodies.compliance
+.term_substrate): a time-dependent Poisson ratio (viscontact.bodies.bulk_elastic) and a viscoelastic layer on a
+rigid base (viscontact.bodies.layer), under a held load.
 
 * nu(t), K elastic (seed Zener shear modulus, K = 2 G(0): nu rises from 0.286 to 0.475): Lee & Radok
   with the creep function of the normal compliance operator, a(t)^3 = 3 W R Phi(t)/8 with
-  Phi = creep of (1 - nu)/(2G) (viscontact.reference.lee_radok_creep with the BulkElasticMaterial).
+  Phi = creep of (1 - nu)/(2G) (viscontact.physics.reference.lee_radok_creep with the BulkElasticMaterial).
   n = 64 on [-2 mm, 2 mm]^2, linear scheme, dt = 0.5 ms to 20 ms: measured 4.0e-4, tolerance 1%
   as for the constant-nu case (tests/validation/test_lee_radok.py); the constant-nu(0) prediction
   is 22% off at 20 ms.
@@ -23,14 +23,14 @@ import pytest
 
 from vc_testing import SEED_G0, SEED_LOAD, SEED_RADIUS, SEED_TAU, seed_material, sphere_problem
 
-from viscontact.compliance_terms import term_substrate
+from viscontact.bodies.compliance import term_substrate
 from viscontact.errors import ViscontactWarning
-from viscontact.layers import Layer, rigid_base_terms
-from viscontact.materials import Material
-from viscontact.poisson import BulkElasticMaterial, half_space_terms
-from viscontact.problem import SolverSettings
-from viscontact.reference import lee_radok_creep
-from viscontact.transient import simulate
+from viscontact.bodies.layer import Layer, rigid_base_terms
+from viscontact.physics.materials import Material
+from viscontact.bodies.bulk_elastic import BulkElasticMaterial, half_space_terms
+from viscontact.problem.problem import SolverSettings
+from viscontact.physics.reference import lee_radok_creep
+from viscontact.running.loop import simulate
 
 ZENER = seed_material()
 

@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from viscontact.errors import ViscontactWarning
-from viscontact.steady import solve_steady
-from viscontact.transient import simulate
+from viscontact.solvers.steady import solve_steady
+from viscontact.running.loop import simulate
 
 from vc_testing import SEED_A0, SEED_TAU, seed_material, sphere_problem
 

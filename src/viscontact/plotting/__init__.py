@@ -11,10 +11,20 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .base import DPI, FORMATS, FigureFiles, Scales, check_format, phase_name, profile, pyplot, save_figure
-from .material import plot_material
-from .result import plot_result, plot_speed_curve
-from .sweep import plot_sweep
+from viscontact.plotting.base import (
+    DPI,
+    FORMATS,
+    FigureFiles,
+    Scales,
+    check_format,
+    phase_name,
+    profile,
+    pyplot,
+    save_figure,
+)
+from viscontact.plotting.material import plot_material
+from viscontact.plotting.result import plot_result, plot_speed_curve
+from viscontact.plotting.sweep import plot_sweep
 
 if TYPE_CHECKING:
     import xarray as xr

@@ -12,8 +12,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..problem import PHASE_NAMES
+from viscontact.errors import ParameterError
+from viscontact.problem.problem import PHASE_NAMES
 
 if TYPE_CHECKING:  # xarray is imported where it is used
     import xarray as xr
@@ -96,7 +96,7 @@ def check_drawable(ds: xr.Dataset, dim: str, names: Sequence[str]) -> None:
     ParameterError
         Keyed by the file the Dataset was read from (``result`` when it was not read from one).
     """
-    from ..errors import ParameterError
+    from viscontact.errors import ParameterError
 
     where = str(ds.encoding.get("source") or "result")
     if not ds.sizes.get(dim, 0):

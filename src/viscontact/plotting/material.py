@@ -1,11 +1,11 @@
-"""Figure of a material (a :func:`viscontact.results.material_dataset`): G(t) and J(t), G'(omega)
+"""Figure of a material (a :func:`viscontact.io.results.material_dataset`): G(t) and J(t), G'(omega)
 and G''(omega), tan delta, so that an imported Prony series can be checked before a long run."""
 from __future__ import annotations
 
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from .base import FigureFiles, pyplot
+from viscontact.plotting.base import FigureFiles, pyplot
 
 if TYPE_CHECKING:
     import xarray as xr

@@ -5,22 +5,39 @@ condition (a constant load or approach) get no panel; panels of one figure share
 """
 from __future__ import annotations
 
-import tomllib
 from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import tomllib
 
-from ..problem import PHASE_GROSS_SLIDING
-from .base import (FigureFiles, Scales, cell_limits, check_drawable, check_format, draw_contact_maps, draw_map,
-                   fit_title, is_periodic, is_steady, map_axes, map_image, positive_attr, profile, pyplot,
-                   retardation_count, set_title, time_index)
+from viscontact.plotting.base import (
+    FigureFiles,
+    Scales,
+    cell_limits,
+    check_drawable,
+    check_format,
+    draw_contact_maps,
+    draw_map,
+    fit_title,
+    is_periodic,
+    is_steady,
+    map_axes,
+    map_image,
+    positive_attr,
+    profile,
+    pyplot,
+    retardation_count,
+    set_title,
+    time_index,
+)
+from viscontact.problem.problem import PHASE_GROSS_SLIDING
 
 if TYPE_CHECKING:
     import xarray as xr
 
-    from ..materials import Material
+    from viscontact.physics.materials import Material
 
 __all__ = ["ROUGH_VARIABLES", "contact_history_figure", "friction_figure", "is_rough", "material_of", "plot_result",
            "plot_speed_curve", "pressure_animation_figure", "pressure_maps_figure", "profiles_figure",
@@ -29,7 +46,7 @@ __all__ = ["ROUGH_VARIABLES", "contact_history_figure", "friction_figure", "is_r
 
 #: frames of the pressure animation at most
 MAX_FRAMES = 60
-#: the rough-contact histories of a result (:mod:`viscontact.roughness`)
+#: the rough-contact histories of a result (:mod:`viscontact.problem.roughness`)
 ROUGH_VARIABLES = ("contact_fraction", "contact_patches", "mean_gap", "mean_contact_pressure")
 
 
@@ -64,8 +81,8 @@ def material_of(ds: xr.Dataset) -> Material | None:
     ``a_T`` of a Prony one applied; None when they disagree, e.g. a material overridden on the command
     line in a way the text does not show). None when the body is no half-space of constant nu
     (``bulk_modulus``: nu(t); a ``[layer]``), whose contact the Lee & Radok reference does not describe."""
-    from ..errors import ParameterError
-    from ..materials import Material
+    from viscontact.errors import ParameterError
+    from viscontact.physics.materials import Material
 
     try:
         if "bulk_modulus" in ds.attrs or "layer_thickness" in ds.attrs:
@@ -128,10 +145,10 @@ def profiles_figure(ds: xr.Dataset, times: Sequence[float] | None = None) -> Any
 # --- against time ------------------------------------------------------------------------------------
 def contact_history_figure(ds: xr.Dataset) -> Any:
     """Contact radius, load and approach against time, without the one the boundary condition holds,
-    and with Lee & Radok's solution (:mod:`viscontact.reference`) for a sphere indented without
+    and with Lee & Radok's solution (:mod:`viscontact.physics.reference`) for a sphere indented without
     sliding under a held load (creep) or approach (relaxation), labelled Hertz for an elastic
     material (G(0) = G(∞)), where it is his; returns the Figure."""
-    from ..reference import lee_radok_creep, lee_radok_relaxation
+    from viscontact.physics.reference import lee_radok_creep, lee_radok_relaxation
 
     sc = Scales(ds)
     t = ds["t"].values
@@ -252,14 +269,14 @@ def rough_contact_figure(ds: xr.Dataset) -> Any:
 
 
 def _cattaneo_mindlin_references(ds: xr.Dataset) -> list[tuple[Any, str, str]]:
-    """(:class:`~viscontact.reference.CattaneoMindlin`, legend label, line style) of the elastic
+    """(:class:`~viscontact.physics.reference.CattaneoMindlin`, legend label, line style) of the elastic
     references of a sphere's partial slip: under a held load W those for G(0) and G(∞) at W; under a
     held approach δ_z the one curve Q/(μ_f W) against δ_x that every modulus gives there (a = √(R δ_z)
     and δ* = μ_f a² (2 - ν) / (2 R (1 - ν)) do not depend on G), which a viscoelastic body follows
     only for a tangential ramp fast or slow against its relaxation (the load relaxes under the
     held approach; in between, the shear held from when the load was higher reaches μ_f W(t)
     earlier). None under a varying load or approach, nor without a sphere."""
-    from ..reference import cattaneo_mindlin, hertz_from_approach
+    from viscontact.physics.reference import cattaneo_mindlin, hertz_from_approach
 
     sphere = positive_attr(ds, "radius")
     mu = float(ds.attrs.get("friction_coefficient", 0.0) or 0.0)
@@ -505,7 +522,7 @@ def _warn_incomplete(ds: xr.Dataset) -> None:
     except (TypeError, ValueError):
         complete = 1
     if complete == 0:
-        from ..errors import warn_caller
+        from viscontact.errors import warn_caller
 
         stopped = ds.attrs.get("stopped_by")
         why = f", stopped by {stopped}" if stopped else ""
@@ -545,7 +562,7 @@ def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] |
     Parameters
     ----------
     ds
-        A result Dataset (:func:`viscontact.results.open_result`).
+        A result Dataset (:func:`viscontact.io.netcdf.open_result`).
     out_dir
         Folder for the files (created).
     times

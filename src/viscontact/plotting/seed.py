@@ -13,8 +13,17 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .base import FigureFiles, Scales, draw_contact_maps, phase_name, profile, pyplot, set_title, time_index
-from .result import material_of
+from viscontact.plotting.base import (
+    FigureFiles,
+    Scales,
+    draw_contact_maps,
+    phase_name,
+    profile,
+    pyplot,
+    set_title,
+    time_index,
+)
+from viscontact.plotting.result import material_of
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -98,7 +107,7 @@ def material_figure(runs: Runs, times_tau: Sequence[float], title: str, function
     """Figs. 6 and 7: p/p0 along y = 0 at ``times_tau`` for each material, and the material function
     ``"relaxation"`` (G(t)/G(0)) or ``"creep"`` (J(t) G(0)) of the materials of the results
     (:func:`~viscontact.plotting.result.material_of`; a Zener from the attributes otherwise)."""
-    from ..materials import Material
+    from viscontact.physics.materials import Material
 
     fig, axes = _profile_axes(len(runs))
     t_curve = np.linspace(0.0, 4.0, 200)

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .base import FigureFiles, check_format, positive_attr, pyplot, set_title
+from viscontact.plotting.base import FigureFiles, check_format, positive_attr, pyplot, set_title
 
 if TYPE_CHECKING:
     import xarray as xr

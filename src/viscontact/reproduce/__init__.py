@@ -4,8 +4,16 @@
 saves and reuses their results and draws the figure with :mod:`viscontact.plotting.seed`.
 ``viscontact reproduce FIGURE --out DIR [--n N]`` on the command line.
 """
-from .figures import FIGURES, FigureSpec
-from .runner import draw, find_cases_dir, load_seed_case, record_every, reproduce, run_seed_cases, time_scale
+from viscontact.reproduce.figures import FIGURES, FigureSpec
+from viscontact.reproduce.runner import (
+           draw,
+           find_cases_dir,
+           load_seed_case,
+           record_every,
+           reproduce,
+           run_seed_cases,
+           time_scale,
+)
 
 __all__ = ["FIGURES", "FigureSpec", "draw", "find_cases_dir", "load_seed_case", "record_every", "reproduce",
            "run_seed_cases", "time_scale"]

@@ -25,8 +25,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..plotting import FigureFiles
-from ..plotting import seed as draw
+from viscontact.plotting import FigureFiles
+from viscontact.plotting import seed as draw
 
 __all__ = ["FIGURES", "FigureSpec"]
 

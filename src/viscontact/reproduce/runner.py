@@ -18,13 +18,13 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from ..errors import ParameterError
-from .figures import FIGURES
+from viscontact.errors import ParameterError
+from viscontact.reproduce.figures import FIGURES
 
 if TYPE_CHECKING:
     import xarray as xr
 
-    from ..case import Case
+    from viscontact.io.case import Case
 
 __all__ = ["check_outputs", "draw", "find_cases_dir", "load_seed_case", "record_every", "reproduce", "run_seed_cases",
            "stable_steps", "time_scale"]
@@ -43,8 +43,8 @@ STABLE_FRACTION = 0.5
 
 def find_cases_dir(cases_dir: str | Path | None = None) -> Path:
     """The folder holding ``seed_*.toml``: ``cases_dir``, else ``./cases``, else the cases shipped
-    with the package (:func:`viscontact.shipped.shipped_cases_dir`)."""
-    from ..shipped import shipped_cases_dir
+    with the package (:func:`viscontact.io.shipped.shipped_cases_dir`)."""
+    from viscontact.io.shipped import shipped_cases_dir
 
     candidates = [Path(cases_dir)] if cases_dir is not None else [Path.cwd() / "cases", shipped_cases_dir()]
     for folder in candidates:
@@ -99,13 +99,13 @@ def stable_steps(case: Case) -> tuple[Case, str]:
     At half the limit it decays by a factor 0.03 (G(0)/G(inf) = 10) to 0.3 (= 3) per step. A case
     whose ``time.dt`` follows the grid gets ``tangential.steps_per_cell`` k times larger, one that
     gives ``time.dt`` a k times smaller one. The linear scheme is stable for every step. Then (either
-    scheme) the step is halved until :func:`viscontact.guards.time_step_error` is under the guards'
+    scheme) the step is halved until :func:`viscontact.running.guards.time_step_error` is under the guards'
     warning limit, so that a coarse preview is neither refused nor warned about.
     """
     from dataclasses import replace
 
-    from ..guards import TIME_WARNING_LIMIT, time_step_error
-    from ..schemes import stable_step_limit
+    from viscontact.numerics.schemes import stable_step_limit
+    from viscontact.running.guards import TIME_WARNING_LIMIT, time_step_error
 
     dt = case.default_dt()
     k, why = 1, ""
@@ -116,7 +116,7 @@ def stable_steps(case: Case) -> tuple[Case, str]:
             why = (f"dt = {dt * 1e3:.3g} ms is over {STABLE_FRACTION:g} of the stability limit "
                    f"{limit * 1e3:.3g} ms of time.scheme = 'constant'") if k > 1 else ""
     problem = case.to_problem()
-    for _ in range(10):  # then halve dt until the time-step guard (viscontact.guards) has nothing to say
+    for _ in range(10):  # then halve dt until the time-step guard (viscontact.running.guards) has nothing to say
         error = time_step_error(replace(problem, time=replace(problem.time, dt=dt / k)))
         if error <= TIME_WARNING_LIMIT:
             break
@@ -137,7 +137,7 @@ def load_seed_case(name: str, cases_dir: Path, n: int | None, times_tau: Sequenc
     """The shipped case ``name`` with ``overrides`` (dotted keys), ``grid.n = n`` (when given;
     ``time.dt`` follows the grid), a stable step (:func:`stable_steps`) and the ``output.every`` of
     :func:`record_every`; and the note of :func:`stable_steps`."""
-    from ..case import load_case
+    from viscontact.io.case import load_case
 
     case = load_case(cases_dir / f"{name}.toml")
     if n is not None and "grid.n" in (overrides or {}) and overrides["grid.n"] != n:  # one would be ignored
@@ -158,7 +158,7 @@ def _saved(path: Path) -> xr.Dataset | None:
     """The result saved at ``path``; None when there is no file or it is not a readable result."""
     if not path.is_file():
         return None
-    from ..results import open_result
+    from viscontact.io.netcdf import open_result
 
     try:
         return open_result(path)
@@ -211,7 +211,7 @@ def check_outputs(out_dir: Path, shipped: Mapping[str, str], inputs: Iterable[Pa
     OSError
         Naming the path and saying why.
     """
-    from ..output_files import check_output_folder, check_output_path
+    from viscontact.io.output_files import check_output_folder, check_output_path
 
     check_output_folder(out_dir, option="--out")
     inputs = list(inputs)
@@ -257,9 +257,9 @@ def run_seed_cases(names: Sequence[str], out_dir: str | Path, *, n: int | None =
     reuse
         Reuse a complete saved result computed from the same case text.
     """
-    from .. import api
-    from ..case import read_input_file
-    from ..results import write_netcdf
+    from viscontact.io.case import read_input_file
+    from viscontact.io.netcdf import write_netcdf
+    from viscontact.running import api
 
     out_dir = Path(out_dir)
     folder = find_cases_dir(cases_dir)
@@ -316,7 +316,7 @@ def reproduce(figure: str, out_dir: str | Path, *, n: int | None = None, overrid
     list of Path
         The figure files, then the result files.
     """
-    from ..plotting import check_format, pyplot
+    from viscontact.plotting import check_format, pyplot
 
     if figure not in FIGURES:
         raise ParameterError("figure", f"must be one of {', '.join(FIGURES)}, got {figure!r}")
@@ -333,7 +333,7 @@ def reproduce(figure: str, out_dir: str | Path, *, n: int | None = None, overrid
 def draw(figure: str, runs: Mapping[str, Any], out_dir: str | Path, *, fmt: str = "png",
          dpi: int | None = None) -> list[Path]:
     """Draw ``figure`` from saved results ``runs`` (keyed by case name) into ``out_dir``."""
-    from ..plotting import FigureFiles
+    from viscontact.plotting import FigureFiles
 
     spec = FIGURES[figure]
     return spec.render({name: runs[name] for name in spec.cases}, spec, FigureFiles(Path(out_dir), fmt, dpi))

@@ -13,9 +13,19 @@ Example on a tiny case, without a cluster (``solver.workers`` as for a single ru
     >>> [run.label for run in plan(spec).runs]
     ['tangential.sliding_speed=0.01, grid.n=16', 'tangential.sliding_speed=0.02, grid.n=16']
 """
-from .assemble import SERIES, SUMMARIES
-from .execute import cluster_client, default_workers, local_cluster, planned, runs_dir, sweep
-from .spec import SOLVERS, Plan, Run, SweepSpec, check_run, format_value, load_sweep, plan, run_file_name
+from viscontact.sweep.assemble import SERIES, SUMMARIES
+from viscontact.sweep.execute import cluster_client, default_workers, local_cluster, planned, runs_dir, sweep
+from viscontact.sweep.spec import (
+           SOLVERS,
+           Plan,
+           Run,
+           SweepSpec,
+           check_run,
+           format_value,
+           load_sweep,
+           plan,
+           run_file_name,
+)
 
 __all__ = ["SERIES", "SOLVERS", "SUMMARIES", "Plan", "Run", "SweepSpec", "check_run", "cluster_client",
            "default_workers", "format_value", "load_sweep", "local_cluster", "plan", "planned", "run_file_name",

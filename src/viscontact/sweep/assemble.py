@@ -21,9 +21,9 @@ from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 import numpy as np
 
-from ..case import case_keys
-from ..errors import warn_caller
-from .spec import Plan, format_value
+from viscontact.errors import warn_caller
+from viscontact.io.case import case_keys
+from viscontact.sweep.spec import Plan, format_value
 
 if TYPE_CHECKING:  # xarray is imported where it is used
     import xarray as xr
@@ -92,7 +92,7 @@ def _interpolated(t: np.ndarray, tr: np.ndarray, tol: float) -> bool:
 
 
 def assemble(the_plan: Plan, results: Mapping[int, dict[str, Any]], transient: bool) -> xr.Dataset:
-    from ..results import VARIABLES, global_attrs
+    from viscontact.io.results import VARIABLES, global_attrs
 
     spec = the_plan.spec
     dims, shape = spec.dims, tuple(len(v) for v in spec.parameters.values())

@@ -1,7 +1,7 @@
 """Running a sweep on dask.distributed: one task per run, each run's result file kept, resume.
 
 Every run's full result is kept in ``SWEEP.runs/`` (named by its parameters) and is written
-atomically (:func:`viscontact.results.write_netcdf`), so an interrupted sweep is resumed by running
+atomically (:func:`viscontact.io.netcdf.write_netcdf`), so an interrupted sweep is resumed by running
 the same command again: runs whose file opens, has ``complete == 1`` and was made from the same
 case (attribute ``sweep_fingerprint``, a hash of the validated case and the solver) are not
 recomputed. With an existing cluster the workers write those files themselves, so they must see
@@ -16,11 +16,11 @@ import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable
 
-from ..errors import ParameterError, ViscontactWarning, warn_caller
-from ..output_files import check_output_path, remove_temporaries
-from ..resources import available_cores as default_workers
-from .assemble import assemble, summarize
-from .spec import Plan, Run, SweepSpec, load_sweep, plan
+from viscontact.errors import ParameterError, ViscontactWarning, warn_caller
+from viscontact.io.output_files import check_output_path, remove_temporaries
+from viscontact.running.resources import available_cores as default_workers
+from viscontact.sweep.assemble import assemble, summarize
+from viscontact.sweep.spec import Plan, Run, SweepSpec, load_sweep, plan
 
 if TYPE_CHECKING:  # xarray is imported where it is used
     import xarray as xr
@@ -34,9 +34,9 @@ def _execute(task: dict[str, Any]) -> dict[str, Any]:
     ``task``: ``text``, ``base_dir``, ``source`` of the base case, ``overrides`` (all of them),
     ``solver``, ``path`` (result file or None), ``fingerprint``, ``parameters`` (JSON).
     """
-    from .. import api
-    from ..case import Case
-    from ..results import write_netcdf
+    from viscontact.io.case import Case
+    from viscontact.io.netcdf import write_netcdf
+    from viscontact.running import api
 
     started = time.perf_counter()
     ds = None
@@ -120,7 +120,7 @@ def sweep(spec: SweepSpec | Plan | str | Path, client: Any = None, out: str | Pa
         The sweep's netCDF file; the runs' result files go to ``SWEEP.runs/`` beside it, and complete
         ones found there are reused (resume). An existing ``out`` is replaced when it holds this same
         sweep (resuming) or with ``force``; never the sweep file or the base case. Checked before any
-        run, under a lock held until the end (:func:`viscontact.output_files.output_lock`: a sweep
+        run, under a lock held until the end (:func:`viscontact.io.output_files.output_lock`: a sweep
         writing the same ``out`` in another process is refused). None: no files, nothing reused.
     progress
         Called as ``progress(done, failed, total)`` after each finished (or reused) run.
@@ -146,7 +146,7 @@ def sweep(spec: SweepSpec | Plan | str | Path, client: Any = None, out: str | Pa
         raise ParameterError("--workers", f"must be >= 1, got {workers}")
     if out is None:
         return _sweep(the_plan, client, None, progress, workers)
-    from ..output_files import output_lock
+    from viscontact.io.output_files import output_lock
 
     with output_lock(out):  # another sweep writing ``out`` (and its runs) is refused
         check_output_path(out, force=force or _holds_sweep(out, spec), inputs=the_plan.input_files())
@@ -202,7 +202,7 @@ def _sweep(the_plan: Plan, client: Any, out: str | Path | None,
     if folder is not None:
         ds.attrs["runs_dir"] = folder.name
     if out is not None:
-        from ..results import write_netcdf
+        from viscontact.io.netcdf import write_netcdf
 
         write_netcdf(ds, out, force=True)
     return ds

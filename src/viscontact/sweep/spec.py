@@ -21,21 +21,21 @@ import itertools
 import json
 import math
 import re
-import tomllib
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping, Sequence
 
 import numpy as np
+import tomllib
 
-from ..case import case_keys, closest, load_case, read_input_file
-from ..errors import ParameterError, ViscontactWarning
+from viscontact.errors import ParameterError, ViscontactWarning
+from viscontact.io.case import case_keys, closest, load_case, read_input_file
 
 __all__ = ["SOLVERS", "Plan", "Run", "SweepSpec", "check_run", "format_value", "load_sweep", "plan",
            "run_file_name"]
 
-#: solvers a sweep may use: ``viscontact.api.run_steady`` or ``viscontact.api.run``
+#: solvers a sweep may use: ``viscontact.running.api.run_steady`` or ``viscontact.running.api.run``
 SOLVERS = ("steady", "transient")
 _SWEEP_KEYS = ("title", "base", "solver", "parameters", "overrides")
 _MAX_NAME = 200  # characters of a run file name before it is shortened with a hash
@@ -154,7 +154,7 @@ class Run:
 
     index: tuple[int, ...]
     overrides: dict[str, Any]
-    case: Any  # viscontact.case.Case
+    case: Any  # viscontact.io.case.Case
     name: str
     fingerprint: str
 
@@ -166,14 +166,14 @@ class Run:
 @dataclass(frozen=True)
 class Plan:
     spec: SweepSpec
-    base: Any  # viscontact.case.Case
+    base: Any  # viscontact.io.case.Case
     base_path: Path
     runs: tuple[Run, ...]
     fixed: dict[str, Any]
 
     def input_files(self) -> list[Path]:
         """Every file the sweep reads: the sweep file (when read from one), the base case and the
-        files any run's case reads (:meth:`viscontact.case.Case.input_files`)."""
+        files any run's case reads (:meth:`viscontact.io.case.Case.input_files`)."""
         files = [Path(self.spec.source)] if self.spec.text else []
         files.append(self.base_path)
         for run in self.runs:
@@ -194,7 +194,7 @@ def plan(spec: SweepSpec | str | Path, *, fixed: Mapping[str, Any] | None = None
         list that is not a non-empty array of distinct values, or a run whose case is invalid or
         that the solver would refuse before its first step (:func:`check_run`; the message names
         the run's parameters); a steady sweep along a key that the steady solver ignores in every
-        run (:func:`viscontact.steady.ignored_keys`: ``time.dt``, ``tangential.slip``, ...).
+        run (:func:`viscontact.solvers.steady.ignored_keys`: ``time.dt``, ``tangential.slip``, ...).
     """
     spec = load_sweep(spec) if isinstance(spec, (str, Path)) else spec
     if spec.solver not in SOLVERS:
@@ -225,7 +225,7 @@ def plan(spec: SweepSpec | str | Path, *, fixed: Mapping[str, Any] | None = None
         raise ParameterError(exc.key, f"{exc.message} (in base case {base_path})") from None
     extra = {**spec.overrides, **{k: v for k, v in (fixed or {}).items()
                                   if k not in spec.overrides and k not in spec.parameters}}
-    from ..steady import ignored_keys
+    from viscontact.solvers.steady import ignored_keys
 
     keys = list(spec.parameters)
     runs = []
@@ -253,30 +253,30 @@ def plan(spec: SweepSpec | str | Path, *, fixed: Mapping[str, Any] | None = None
 def check_run(case: Any, solver: str) -> Any:
     """The checks the solver makes before its first step (those of ``viscontact run`` or
     ``viscontact steady``), made here so that a sweep refuses a bad run before any run starts: the
-    physical guards (:func:`viscontact.guards.check_problem`: material, grid, and for the transient
-    the time step), then :func:`viscontact.transient.validate` or :func:`viscontact.steady.check_steady`
+    physical guards (:func:`viscontact.running.guards.check_problem`: material, grid, and for the transient
+    the time step), then :func:`viscontact.solvers.transient.validate` or :func:`viscontact.solvers.steady.check_steady`
     (a sliding speed, no displacement history).
 
     About 1 ms per run for the steady solver and 6 ms for the transient (the time-step estimate)
     on a 64 x 64 grid. Warnings are not shown here: the run records them when it runs. Returns the
-    run's :class:`~viscontact.problem.Problem`.
+    run's :class:`~viscontact.problem.problem.Problem`.
 
     Raises
     ------
     ParameterError
         What the run would have been refused with.
     """
-    from ..api import prepare
+    from viscontact.running.api import prepare
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ViscontactWarning)
         problem, _ = prepare(case, transient=solver == "transient")
     if solver == "transient":
-        from ..transient import validate
+        from viscontact.solvers.transient import validate
 
         validate(problem)
     else:
-        from ..steady import check_steady
+        from viscontact.solvers.steady import check_steady
 
         check_steady(problem)
     return problem

@@ -1,0 +1,267 @@
+"""Time-dependent Poisson ratio: shear relaxing as a Prony series, bulk modulus elastic.
+
+A polymer's bulk modulus K hardly relaxes while its shear modulus does, so the Poisson ratio rises
+with time. By the correspondence principle the elastic surface influence factors become operators
+whose Carson transforms (s times the Laplace transform) are the elastic factors evaluated at
+G~(s) = s G^(s) and
+
+    nu~(s) = (3K - 2 G~) / (2 (3K + G~))                                          (Carson domain)
+
+(e.g. Tschoegl, *The Phenomenological Theory of Linear Viscoelastic Behavior*, 1989, ch. 2;
+Lakes, *Viscoelastic Materials*, 2009, sec. 2.7). Every factor of the half-space kernels
+(Johnson, *Contact Mechanics*, Eqs. 3.19-3.20, 3.86-3.87; see :mod:`viscontact.physics.kernels`) splits
+into two partial fractions in G~:
+
+    (1 - nu)/G    = 1/(2 G~) + 3 / (2 (G~ + 3K))       normal  (u_z of p)
+    1/G           = 1/G~                               tangential, shape 1/r
+    nu/G          = 1/(2 G~) - 3 / (2 (G~ + 3K))       tangential, shape (x^2/r^3 - 1/r)
+    (1 - 2 nu)/G  = 3 / (G~ + 3K)                      coupling (u_x of p, u_z of q_x)
+
+so only two creep functions are needed: the shear creep compliance J(t) (Carson 1/G~) and the
+creep function L(t) of the modulus G(t) + 3K (Carson 1/(G~ + 3K)). Both are exact sums of
+exponentials, J0 + sum_m J_m (1 - exp(-t/lambda_m)), with retardation rates 1/lambda_m the roots
+of G~(s) = -c (c = 0 for J, 3K for L). With G~(s) = G(0) - sum_i g_i r_i / (s + r_i) (r_i = 1/tau_i)
+this is a secular equation: G~ is increasing between its poles -r_i, so exactly one root lies in
+each interval (-r_{i+1}, -r_i) and one in (-r_1, 0). Each root is found by bisection on the
+equation written relative to the nearer pole (as LAPACK's dlaed4 does), so the
+rates keep full relative accuracy for spectra over many decades, where the roots of the expanded
+polynomial (coefficients spanning hundreds of orders of magnitude) do not. The amplitude of a root
+s_m = -rho_m is the residue: J_m = 1 / (rho_m G~'(s_m)), G~'(s) = sum_i g_i r_i / (s + r_i)^2.
+
+With the shape kernels at unit modulus taken at nu = 0 (``S``) and their nu-derivative (``D``),
+the half-space displacements are
+
+    u_z = S_zz [(1-nu)/G] p + S_zx [(1-2nu)/G] q_x
+    u_x = S_xx [1/G] q_x + D_xx [nu/G] q_x + S_xz [(1-2nu)/G] p
+
+where the bracketed operators act as hereditary convolutions with the spectra above;
+:func:`half_space_terms` regroups them by the two basis functions J and L (two histories per
+traction component, each with one internal field per retardation time, :mod:`viscontact.numerics.history`).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from viscontact.bodies.compliance import ComplianceTerm
+from viscontact.errors import ParameterError
+from viscontact.numerics.exponentials import CreepSpectrum, linear_combination
+from viscontact.numerics.grid import Grid
+from viscontact.physics.kernels import influence_coefficients
+from viscontact.physics.materials import Material
+from viscontact.physics.periodic import periodic_influence_coefficients
+from viscontact.physics.steady_kernels import SteadyKernelBuilder, SteadyShape
+
+#: the factor names of :meth:`BulkElasticMaterial.factor`
+FACTORS = ("normal", "tangential", "tangential_poisson", "coupling")
+
+
+def _secular_roots(rates: np.ndarray, weights: np.ndarray, levels: np.ndarray, m: int,
+                   iterations: int = 110) -> tuple[np.ndarray, np.ndarray]:
+    """Roots of level - sum_i w_i / (s + r_i) = 0 in (-r_m, -r_{m-1}) (r_{-1} = 0) for each of
+    ``levels`` (S,); ``rates`` ascending. Returns rho = -s [1/s] and sum_i w_i / (s + r_i)^2 [Pa s],
+    each (S,).
+
+    The root is sought relative to the nearer end of its interval (decided by the sign at the
+    midpoint): near a pole k, s = -r_k + delta and h(delta) = delta f(s) = delta (level -
+    sum_{i != k} w_i / (r_i - r_k + delta)) - w_k, finite at delta = 0; near s = 0 (m = 0), f itself.
+    Bisection on that bracket (``iterations`` halvings, vectorised over the levels) keeps full
+    relative accuracy however close the root is to the pole.
+    """
+    levels = np.asarray(levels, dtype=float)
+    lo_rate = rates[m - 1] if m > 0 else 0.0
+    mid_rate = 0.5 * (rates[m] + lo_rate)
+    f_mid = levels - np.sum(weights / (rates - mid_rate))
+    direct = (f_mid <= 0.0) & (m == 0)                  # root in (-r_0/2, 0): no pole nearby
+    origin = np.where(f_mid > 0.0, m, max(m - 1, 0))     # the nearer pole otherwise
+    origin_rate = np.where(direct, 0.0, rates[origin])
+    gaps = rates[None, :] - origin_rate[:, None]          # r_i - r_k (S, n)
+    others = direct[:, None] | (np.arange(rates.size)[None, :] != origin[:, None])
+    w_origin = np.where(direct, 0.0, weights[origin])
+
+    def value(delta: np.ndarray) -> np.ndarray:
+        denom = np.where(others, gaps + delta[:, None], 1.0)
+        rest = levels - np.sum(np.where(others, weights[None, :] / denom, 0.0), axis=1)
+        return np.where(direct, -rest, delta * rest - w_origin)
+
+    # bracket: value(neg) < 0 (delta = 0), value(pos) >= 0 (delta at the midpoint)
+    neg = np.zeros_like(levels)
+    pos = origin_rate - mid_rate
+    for _ in range(iterations):
+        mid = 0.5 * (neg + pos)
+        below = value(mid) < 0.0
+        neg = np.where(below, mid, neg)
+        pos = np.where(below, pos, mid)
+    delta = 0.5 * (neg + pos)
+    diffs = gaps + delta[:, None]
+    return origin_rate - delta, np.sum(weights[None, :] / diffs**2, axis=1)
+
+
+def prony_creep_spectra(g_inf: float, g: np.ndarray | tuple[float, ...], tau: np.ndarray | tuple[float, ...],
+                        shifts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`prony_creep_spectrum` for many ``shifts`` (S,) [Pa] at once: returns the instantaneous
+    values (S,) [1/Pa], amplitudes (S, M) [1/Pa] and retardation times (S, M) [s], ascending in
+    time along each row (M distinct relaxation times; an infinite shift gives zeros, times 1 s)."""
+    shifts = np.asarray(shifts, dtype=float)
+    g = np.asarray(g, dtype=float)
+    rates, inverse = np.unique(1.0 / np.asarray(tau, dtype=float), return_inverse=True)
+    moduli = np.zeros(rates.size)
+    np.add.at(moduli, inverse, g)
+    finite = np.isfinite(shifts)
+    levels = g_inf + float(moduli.sum()) + np.where(finite, shifts, 0.0)
+    weights = moduli * rates
+    rho = np.empty((shifts.size, rates.size))
+    amps = np.empty_like(rho)
+    for m in range(rates.size):
+        rho[:, m], slope = _secular_roots(rates, weights, levels, m)
+        amps[:, m] = 1.0 / (rho[:, m] * slope)
+    times = 1.0 / rho[:, ::-1]  # rates descending in m -> times ascending
+    amps = amps[:, ::-1]
+    return (np.where(finite, 1.0 / levels, 0.0), np.where(finite[:, None], amps, 0.0),
+            np.where(finite[:, None], times, 1.0))
+
+
+def prony_creep_spectrum(g_inf: float, g: np.ndarray | tuple[float, ...], tau: np.ndarray | tuple[float, ...],
+                         shift: float = 0.0) -> CreepSpectrum:
+    """Creep function whose Carson transform is 1 / (G~(s) + shift), for the Prony modulus
+    G(t) = g_inf + sum_i g_i exp(-t/tau_i) [Pa] and a constant ``shift`` [Pa] >= 0.
+
+    ``shift = 0`` gives the shear creep compliance J(t) (seed Eq. 3); ``shift = 3K`` the function
+    L(t) of the module docstring. ``shift = inf`` gives L = 0. Equal relaxation times are merged.
+    Returns a :class:`~viscontact.numerics.exponentials.CreepSpectrum` with retardation times ascending.
+    """
+    if np.isinf(shift):
+        return CreepSpectrum(0.0, np.zeros(0), np.zeros(0))
+    inst, amps, times = prony_creep_spectra(g_inf, g, tau, np.array([shift]))
+    return CreepSpectrum(float(inst[0]), amps[0], times[0])
+
+
+@dataclass(frozen=True)
+class BulkElasticMaterial:
+    """Isotropic viscoelastic material with a relaxing shear modulus and an elastic bulk modulus.
+
+    Parameters
+    ----------
+    shear
+        The shear relaxation modulus G(t) (its ``poisson_ratio`` is not used).
+    bulk_modulus
+        K [Pa], elastic; ``inf`` for an incompressible material. K >= 2 G(0)/3 so that
+        nu(0) >= 0.
+
+    Examples
+    --------
+    The seed's material with K = 10 G(0): nu rises from 0.45 to 0.495 as G relaxes, and the normal
+    factor (1 - nu)/G gains the retardation time of G(t) + 3K beside that of J(t):
+
+    >>> from viscontact.physics.materials import Material
+    >>> m = BulkElasticMaterial(Material.zener(1.93e6, 1.93e5, 0.01, 0.3), 19.3e6)
+    >>> round(m.poisson_ratio_instantaneous, 4), round(m.poisson_ratio_long_term, 4)
+    (0.4516, 0.495)
+    >>> m.factor("normal").retardation_times.round(5).tolist()
+    [0.00103, 0.01]
+    """
+
+    shear: Material
+    bulk_modulus: float
+
+    def __post_init__(self) -> None:
+        k, g0 = self.bulk_modulus, self.shear.shear_modulus_instantaneous
+        if np.isnan(k) or not k >= 2.0 * g0 / 3.0:
+            raise ParameterError("material.bulk_modulus",
+                                 f"must be >= 2 G(0)/3 = {2 * g0 / 3:.6g} Pa (Poisson ratio nu(0) >= 0), got {k}")
+
+    @staticmethod
+    def poisson_ratio_of(shear_modulus: float, bulk_modulus: float) -> float:
+        """nu = (3K - 2G) / (2 (3K + G)) [-] (0.5 for K = inf)."""
+        if np.isinf(bulk_modulus):
+            return 0.5
+        return float((3 * bulk_modulus - 2 * shear_modulus) / (2 * (3 * bulk_modulus + shear_modulus)))
+
+    @property
+    def poisson_ratio_instantaneous(self) -> float:
+        """nu(0) from G(0) and K [-]."""
+        return self.poisson_ratio_of(self.shear.shear_modulus_instantaneous, self.bulk_modulus)
+
+    @property
+    def poisson_ratio_long_term(self) -> float:
+        """nu(inf) from G(inf) and K [-]."""
+        return self.poisson_ratio_of(self.shear.shear_modulus_long_term, self.bulk_modulus)
+
+    @cached_property
+    def shear_creep(self) -> CreepSpectrum:
+        """J(t), Carson transform 1/G~(s) [1/Pa]."""
+        m = self.shear
+        return prony_creep_spectrum(m.g_inf, m.g, m.tau)
+
+    @cached_property
+    def bulk_shear_creep(self) -> CreepSpectrum:
+        """L(t), Carson transform 1/(G~(s) + 3K) [1/Pa] (zero when K = inf)."""
+        m = self.shear
+        return prony_creep_spectrum(m.g_inf, m.g, m.tau, 3.0 * self.bulk_modulus)
+
+    def factor(self, name: str) -> CreepSpectrum:
+        """Time response [1/Pa] of an influence factor (module docstring): ``normal`` (1-nu)/G,
+        ``tangential`` 1/G, ``tangential_poisson`` nu/G, ``coupling`` (1-2nu)/G."""
+        j, l_ = self.shear_creep, self.bulk_shear_creep
+        parts = {"normal": [(0.5, j), (1.5, l_)], "tangential": [(1.0, j)],
+                 "tangential_poisson": [(0.5, j), (-1.5, l_)], "coupling": [(3.0, l_)]}
+        if name not in parts:
+            raise ValueError(f"factor must be one of {FACTORS}, got {name!r}")
+        return linear_combination(parts[name])
+
+    def elastic_factor(self, name: str, shear_modulus: float) -> float:
+        """The same factor [1/Pa] of an elastic material (G, K), nu from :meth:`poisson_ratio_of`."""
+        nu = self.poisson_ratio_of(shear_modulus, self.bulk_modulus)
+        return {"normal": (1 - nu), "tangential": 1.0, "tangential_poisson": nu,
+                "coupling": (1 - 2 * nu)}[name] / shear_modulus
+
+
+def half_space_terms(grid: Grid, material: BulkElasticMaterial,
+                     components: tuple[str, ...] = ("zz", "xx", "xz", "zx")) -> list[ComplianceTerm]:
+    """Compliance terms of the homogeneous half-space with K elastic (module docstring), grouped by
+    the two basis creep functions J ("shear") and L ("bulk") so that each traction component needs
+    two hereditary histories (2M internal fields for an M-term Prony series, twice the
+    constant-nu cost) and each displacement at most three kernels:
+
+        u_z = S_zz/2 (J (*) dp) + 3 S_zz/2 (L (*) dp) + 3 S_zx (L (*) dq)
+        u_x = (S_xx + D_xx/2) (J (*) dq) - 3 D_xx/2 (L (*) dq) + 3 S_xz (L (*) dp)
+
+    The kernels of :mod:`viscontact.physics.kernels` are affine in nu, IC(nu) = IC(0) + nu (IC(1) - IC(0)):
+    ``S = IC(0)`` and ``D = IC(1) - IC(0)`` are the shape parts (on a periodic grid those of
+    :func:`~viscontact.physics.periodic.periodic_influence_coefficients`, affine in nu too). Each term's
+    steady shape (:class:`~viscontact.physics.steady_kernels.SteadyShape`, DC-FFT grids) is the same
+    combination of :class:`~viscontact.physics.steady_kernels.SteadyKernelBuilder` kernels at nu = 0 and 1,
+    so steady sliding integrates each part with its own spectrum. Terms whose response vanishes
+    (every L term when K = inf) are left out.
+    """
+    kernels_at = periodic_influence_coefficients if grid.periodic else influence_coefficients
+    at0 = kernels_at(grid, 0.0)
+    d_xx = kernels_at(grid, 1.0)["xx"] - at0["xx"] if "xx" in components else None
+    shear, bulk = material.shear_creep, material.bulk_shear_creep
+    # (kernel, response, steady shape: (nu of the half-space kernel, factor) pairs)
+    parts = {
+        "zz": [(0.5 * at0["zz"], shear, ((0.0, 0.5),)), (1.5 * at0["zz"], bulk, ((0.0, 1.5),))],
+        "xx": [(at0["xx"] + 0.5 * d_xx, shear, ((0.0, 0.5), (1.0, 0.5))),
+               (-1.5 * d_xx, bulk, ((0.0, 1.5), (1.0, -1.5)))] if d_xx is not None else [],
+        "xz": [(3.0 * at0["xz"], bulk, ((0.0, 3.0),))],
+        "zx": [(3.0 * at0["zx"], bulk, ((0.0, 3.0),))],
+    }
+    builders: dict[tuple[float, str], SteadyKernelBuilder] = {}
+
+    def shape(comp: str, pieces: tuple[tuple[float, float], ...]) -> SteadyShape | None:
+        if grid.periodic:
+            return None
+        for nu, _ in pieces:
+            builders.setdefault((nu, comp), SteadyKernelBuilder(grid, nu, (comp,)))
+        return SteadyShape(tuple((builders[(nu, comp)], comp, factor) for nu, factor in pieces))
+
+    terms: list[ComplianceTerm] = []
+    for comp in components:
+        for kernel, response, pieces in parts[comp]:
+            if response.instantaneous == 0.0 and not np.any(response.amplitudes):
+                continue
+            label = "shear" if response is shear else "bulk"
+            terms.append(ComplianceTerm(comp[0], comp[1], kernel, response, f"{comp}:{label}", shape(comp, pieces)))
+    return terms

@@ -1,0 +1,540 @@
+"""Validated physical description of one simulation, free of file formats.
+
+These frozen dataclasses are what the numerical core consumes. ``viscontact.io.case`` turns a TOML
+case file into them; a script may build them directly. All quantities are SI (m, s, N, Pa).
+"""
+from __future__ import annotations
+
+import importlib.util
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any, Callable, Literal
+
+import numpy as np
+
+from viscontact.errors import ParameterError
+from viscontact.numerics.grid import Grid
+from viscontact.physics.materials import Material
+
+NormalControl = Literal["load", "displacement"]
+TangentialMode = Literal["none", "frictionless_sliding", "gross_sliding", "partial_slip"]
+SlipCondition = Literal["total", "incremental"]
+TimeScheme = Literal["constant", "linear"]
+
+#: phase codes written to ``phase(t)``
+PHASE_INDENTATION, PHASE_PARTIAL_SLIP, PHASE_GROSS_SLIDING = 0, 1, 2
+#: what each phase code means (labels of figures and of the ``phase`` variable)
+PHASE_NAMES = {PHASE_INDENTATION: "indentation", PHASE_PARTIAL_SLIP: "partial slip",
+               PHASE_GROSS_SLIDING: "gross sliding"}
+
+
+def is_number(value: object) -> bool:
+    """A real number (Python or numpy), not a boolean."""
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
+
+
+def is_integer(value: object) -> bool:
+    """An integer (Python or numpy), not a boolean."""
+    return isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))
+
+
+def _check_number(key: str, value: object, unit: str, *, low: float = 0.0, strict: bool = True) -> None:
+    """Raise :class:`ParameterError` naming ``key`` unless ``value`` is a finite number > ``low``
+    (``strict``) or >= ``low``."""
+    ok = is_number(value) and bool(np.isfinite(value)) and (value > low if strict else value >= low)
+    if not ok:
+        raise ParameterError(key, f"must be a finite number {'>' if strict else '>='} {low:g}{unit}, got {value!r}")
+
+
+def _check_integer(key: str, value: object, low: int = 1) -> None:
+    """Raise :class:`ParameterError` naming ``key`` unless ``value`` is an integer >= ``low``."""
+    if not is_integer(value) or value < low:
+        raise ParameterError(key, f"must be an integer >= {low}, got {value!r}")
+
+
+@dataclass(frozen=True)
+class PiecewiseLinear:
+    """A piecewise-linear history f(t) through the points (times[i], values[i]).
+
+    Held constant before the first and after the last point.
+    """
+
+    times: tuple[float, ...]
+    values: tuple[float, ...]
+
+    @classmethod
+    def constant(cls, value: float) -> "PiecewiseLinear":
+        return cls((0.0,), (float(value),))
+
+    def __call__(self, t: float) -> float:
+        return float(np.interp(t, self.times, self.values))
+
+    @property
+    def reference(self) -> float:
+        """The largest value of the history (used to normalise: Hertz a0, p0)."""
+        return float(max(self.values))
+
+    def turning_points(self) -> tuple[tuple[float, float, float, int], ...]:
+        """The history's reversals, in time order: (first time [s], last time [s] of the extreme held
+        there — the same time unless a plateau holds it —, the extreme, +1 for a peak or -1 for a
+        trough). A change of slope without a change of direction is none."""
+        values = np.asarray(self.values)
+        starts = np.flatnonzero(np.r_[True, np.diff(values) != 0])  # plateaus of equal values: [start, end]
+        ends = np.r_[starts[1:] - 1, values.size - 1]
+        found = []
+        for g in range(1, starts.size - 1):
+            i, j = starts[g], ends[g]
+            before, after = np.sign(values[i] - values[i - 1]), np.sign(values[starts[g + 1]] - values[j])
+            if before != after:
+                found.append((float(self.times[i]), float(self.times[j]), float(values[i]), int(before)))
+        return tuple(found)
+
+    def turning_steps(self, dt: float, last: int) -> tuple[tuple[int, float], ...]:
+        """For each turning point that steps t = k ``dt`` (k <= ``last``) reach: (the step nearest to it,
+        the value the steps reach there): the first step on its plateau where one falls there, else the
+        more extreme of the steps just before and after it."""
+        found = []
+        for first, held_until, _, direction in self.turning_points():
+            k = int(np.ceil(first / dt - 1e-9))  # the first step on or after the turning point
+            if k > last:
+                break
+            if k * dt <= held_until + 1e-9 * dt:  # a step on the turning point or its plateau
+                found.append((k, self(k * dt)))
+                continue
+            value, k = max((direction * self(m * dt), m) for m in (k, k - 1))
+            found.append((k, direction * value))
+        return tuple(found)
+
+
+def check_history(history: PiecewiseLinear, key: str) -> None:
+    """Raise :class:`ParameterError` naming the case key ``key`` unless ``history`` has as many
+    times as values (one at least), all finite numbers, its times >= 0 s and strictly increasing;
+    the values are the caller's to check (a normal load, a tangential displacement)."""
+    times, values = history.times, history.values
+    if len(times) != len(values) or len(times) == 0:  # len: numpy arrays of times are sequences too
+        raise ParameterError(key, f"must be a non-empty list of [t, value] pairs, got {len(times)} times and "
+                             f"{len(values)} values")
+    if not all(is_number(v) and np.isfinite(v) for v in (*times, *values)):
+        raise ParameterError(key, "must contain finite numbers only")
+    if times[0] < 0 or np.any(np.diff(times) <= 0):
+        raise ParameterError(key, "times must be >= 0 s and strictly increasing")
+
+
+@dataclass(frozen=True)
+class NormalLoading:
+    """Normal boundary condition (seed Eqs. 7-8): load W(t) [N] or approach delta_z(t) [m]."""
+
+    control: NormalControl
+    history: PiecewiseLinear
+
+    def __post_init__(self) -> None:
+        """The one place that checks a normal loading (the case layer delegates here).
+
+        Raises
+        ------
+        ParameterError
+            ``normal.control`` not ``"load"`` or ``"displacement"``; ``normal.history`` (a held
+            value too: a history of one point) not finite, negative or nowhere > 0, its times not
+            >= 0 s and strictly increasing, or times and values of different lengths.
+        """
+        if self.control not in ("load", "displacement"):
+            raise ParameterError("normal.control", f"must be 'load' or 'displacement', got {self.control!r}")
+        check_history(self.history, "normal.history")  # a held value is a history of one point
+        values = self.history.values
+        if min(values) < 0 or not max(values) > 0:
+            raise ParameterError("normal.history", f"values must be >= 0 (N or m) with a positive maximum, got {values!r}")
+
+
+@dataclass(frozen=True)
+class TangentialLoading:
+    """Tangential motion of the indenter.
+
+    Attributes
+    ----------
+    mode
+        ``none`` (pure indentation), ``frictionless_sliding`` (seed case 1),
+        ``gross_sliding`` (q_x = mu_f p from t = 0, seed case 2) or ``partial_slip``
+        (delta_x ramped at ``displacement_rate`` until the stick zone of a contact vanishes, then
+        sliding; the stuck points move with delta_x since the contact began; or delta_x following
+        ``displacement_history``, which may reverse: fretting, stopped if the stick zone vanishes).
+    friction_coefficient
+        Coulomb coefficient mu_f [-].
+    displacement_rate
+        d(delta_x)/dt during partial slip [m/s].
+    displacement_history
+        delta_x(t) [m] of partial slip instead of ``displacement_rate``: piecewise linear from
+        delta_x(0) = 0 (held after its last point, as :class:`PiecewiseLinear`), of either sign and
+        reversing (fretting). It needs ``slip = "incremental"``
+        (a reversal unloads the stuck points from where they are; the total slip has no memory of
+        that). The indenter never slides under it: a step whose contact has no stuck point left (an
+        amplitude beyond gross slip) stops the run (:class:`~viscontact.errors.ParameterError`
+        naming the time), and ``sliding_speed`` is not needed (``time.dt`` is free).
+    sliding_speed
+        Speed v of the indenter in +x once sliding [m/s].
+    steps_per_cell
+        k >= 1: time steps per grid cell of sliding (v dt = dx / k).
+    slip
+        How partial slip reads the slip s_x = u_x - delta_x of seed Eqs. 9, 11. ``"total"`` (the
+        seed's): a stuck point has s_x = 0 at every step, without memory; exact while the contact
+        does not grow and the loading is monotonic (a held approach), but a point entering a growing
+        contact (a rising load, creep under a held load) is then forced to u_x = delta_x as if it had
+        stuck since the contact began. ``"incremental"`` (Mindlin-Deresiewicz): a stuck point keeps
+        its s_x, the slip condition acts on the step's change of s_x, and a point entering the
+        contact sticks where it is. No effect outside partial slip.
+    """
+
+    mode: TangentialMode = "none"
+    friction_coefficient: float = 0.0
+    displacement_rate: float = 0.0
+    sliding_speed: float = 0.0
+    steps_per_cell: int = 1
+    slip: SlipCondition = "total"
+    displacement_history: PiecewiseLinear | None = None
+
+    def __post_init__(self) -> None:
+        """What each mode needs; the one place that decides it (the case layer delegates here).
+
+        Raises
+        ------
+        ParameterError
+            A sliding mode without a speed > 0 m/s (partial slip under a displacement history
+            needs none), partial slip without exactly one of a displacement rate > 0 m/s and a
+            displacement history, or without a friction coefficient > 0 (with mu_f = 0 nothing would
+            ever stick); a displacement history outside partial slip, not starting at 0 m, or with
+            the total slip.
+        """
+        if self.mode not in ("none", "frictionless_sliding", "gross_sliding", "partial_slip"):
+            raise ParameterError("tangential.mode", "must be one of 'none', 'frictionless_sliding', 'gross_sliding', "
+                                 f"'partial_slip', got {self.mode!r}")
+        for name, unit in (("friction_coefficient", ""), ("displacement_rate", " m/s"), ("sliding_speed", " m/s")):
+            _check_number(f"tangential.{name}", getattr(self, name), unit, strict=False)
+        _check_integer("tangential.steps_per_cell", self.steps_per_cell)
+        history = self.displacement_history
+        if history is not None:
+            self._check_history(history)
+        if self.frame_moves and not self.sliding_speed > 0:
+            raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s with mode = '{self.mode}', "
+                                 f"got {self.sliding_speed:g}")
+        if self.mode == "partial_slip":
+            if history is None and not self.displacement_rate > 0:
+                raise ParameterError("tangential.displacement_rate",
+                                     f"must be > 0 m/s with mode = 'partial_slip' (or give "
+                                     f"tangential.displacement_history instead), got {self.displacement_rate:g}")
+            if not self.friction_coefficient > 0:
+                raise ParameterError("tangential.friction_coefficient",
+                                     f"must be > 0 with mode = 'partial_slip', got {self.friction_coefficient:g}")
+        if self.slip not in ("total", "incremental"):
+            raise ParameterError("tangential.slip", f"must be 'total' or 'incremental', got {self.slip!r}")
+
+    def _check_history(self, history: PiecewiseLinear) -> None:
+        key = "tangential.displacement_history"
+        check_history(history, key)
+        if self.mode != "partial_slip":
+            raise ParameterError(key, f"only with mode = 'partial_slip', got mode = '{self.mode}'")
+        if self.displacement_rate != 0:
+            raise ParameterError(key, "give exactly one of tangential.displacement_rate (a ramp until gross sliding) "
+                                 f"and tangential.displacement_history, got both (displacement_rate = "
+                                 f"{self.displacement_rate:g} m/s)")
+        if history(0.0) != 0.0:
+            raise ParameterError(key, f"must start at delta_x = 0 m at t = 0 s (the indenter's position at t = 0), "
+                                 f"got {history(0.0):g} m")
+        if self.slip != "incremental":
+            raise ParameterError("tangential.slip", "must be 'incremental' with tangential.displacement_history: the "
+                                 "total slip has no memory of the load path, so on a reversal of delta_x it would "
+                                 "force every stuck point back to u_x = delta_x instead of unloading it from where "
+                                 "it is (Mindlin-Deresiewicz)")
+
+    def delta_x(self, t: float) -> float:
+        """The tangential displacement of partial slip at time ``t`` [s] (m): the history, or the ramp."""
+        if self.displacement_history is not None:
+            return self.displacement_history(t)
+        return self.displacement_rate * t
+
+    @property
+    def frame_moves(self) -> bool:
+        """Whether the indenter may slide, ``time.dt`` then tied to ``sliding_speed`` (v dt = dx / k):
+        every sliding mode but partial slip under a displacement history, which stops instead."""
+        return self.slides and self.displacement_history is None
+
+    @property
+    def slides(self) -> bool:
+        return self.mode != "none"
+
+    @property
+    def incremental_slip(self) -> bool:
+        """Whether partial slip keeps the slip of its stuck points (``slip = "incremental"``)."""
+        return self.mode == "partial_slip" and self.slip == "incremental"
+
+    @property
+    def has_shear(self) -> bool:
+        """Whether this mode puts a shear traction q_x on the surface (``gross_sliding``,
+        ``partial_slip``); in ``none`` and ``frictionless_sliding`` q_x = 0 by definition."""
+        return self.mode in ("gross_sliding", "partial_slip")
+
+    @property
+    def effective_friction(self) -> float:
+        """mu_f acting in this mode: 0 for ``none`` and ``frictionless_sliding``."""
+        return self.friction_coefficient if self.has_shear else 0.0
+
+
+@dataclass(frozen=True)
+class TimeStepping:
+    """Time discretisation.
+
+    ``scheme = "linear"`` (the default) treats tractions as linear within a step (exact
+    integration of the exponential compliance over the step; second order, stable for every dt).
+    ``"constant"`` is the seed's: tractions constant within a step, increments act at the start of
+    the step (first order, with a stability limit on dt).
+    """
+
+    t_end: float
+    dt: float
+    scheme: TimeScheme = "linear"
+
+    def __post_init__(self) -> None:
+        """``time.t_end`` a finite number >= 0 s, ``time.dt`` > 0 s (else :class:`ParameterError`)."""
+        _check_number("time.t_end", self.t_end, " s", strict=False)
+        _check_number("time.dt", self.dt, " s")
+
+    @property
+    def n_steps(self) -> int:
+        """Number of steps, the one at t = 0 included."""
+        return int(np.floor(self.t_end / self.dt + 1e-9)) + 1
+
+
+@dataclass(frozen=True)
+class SolverSettings:
+    """Tolerances and iteration caps. Failing to converge raises ``ConvergenceError``.
+
+    Every field is checked on construction (:class:`~viscontact.errors.ParameterError` naming its
+    ``solver.`` key and the allowed range).
+    """
+
+    tolerance: float = 1e-8           # relative change of the traction field per CG iteration
+    max_iterations: int = 2000        # per constrained CG solve
+    coupling_tolerance: float = 1e-8  # relative change between normal/tangential alternations
+    max_coupling_iterations: int = 100
+    workers: int = -1                 # scipy.fft workers (-1: all cores above 512^2 cells, 1 below)
+    history: Literal["recursive", "direct"] = "recursive"  # direct: literal sum of seed Eq. 5 (reference)
+    coupling: bool = True             # False: drop the (1 - 2 nu) normal/tangential cross terms
+    fft: Literal["scipy", "pyfftw"] = "scipy"  # DC-FFT transforms (viscontact.numerics.fftbackends); pyfftw: extra "fast"
+    mixed_precision: bool = True      # CG search directions and preconditioner in float32 (viscontact.numerics.constrained)
+    device: Literal["cpu", "gpu"] = "cpu"  # array backend: numpy, or CuPy on a CUDA GPU (viscontact.numerics.arrays)
+
+    def __post_init__(self) -> None:
+        for name in ("tolerance", "coupling_tolerance"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0 < value < 1:
+                raise ParameterError(f"solver.{name}", f"must be a number in (0, 1), got {value!r}")
+        for name in ("max_iterations", "max_coupling_iterations"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+                raise ParameterError(f"solver.{name}", f"must be an integer >= 1, got {value!r}")
+        w = self.workers
+        if not is_integer(w) or w == 0 or w < -1:
+            raise ParameterError("solver.workers", f"must be -1 (all cores) or an integer >= 1, got {w!r}")
+        if self.history not in ("recursive", "direct"):
+            raise ParameterError("solver.history", f"must be 'recursive' or 'direct', got {self.history!r}")
+        for name in ("coupling", "mixed_precision"):
+            if not isinstance(getattr(self, name), (bool, np.bool_)):
+                raise ParameterError(f"solver.{name}", f"must be true or false, got {getattr(self, name)!r}")
+        if self.device not in ("cpu", "gpu"):
+            raise ParameterError("solver.device", f"must be 'cpu' or 'gpu', got {self.device!r}")
+        if self.device == "gpu" and self.fft == "pyfftw":
+            raise ParameterError("solver.fft", "'pyfftw' transforms on the CPU: with solver.device = 'gpu' "
+                                 "the transforms are cuFFT's; use 'scipy' (the default)")
+        if self.device == "gpu" and self.history == "direct":  # refused here, before any file: --dry-run too
+            raise ParameterError("solver.history", "'direct' (the reference sum) runs on the CPU only: with "
+                                 "solver.device = 'gpu' use 'recursive' (the default)")
+        if self.device == "gpu" and importlib.util.find_spec("cupy") is None:
+            raise ParameterError("solver.device", "'gpu' needs the optional package CuPy for the machine's CUDA "
+                                 "(pip install 'viscontact[gpu]' for CUDA 12, 'viscontact[gpu-cuda13]' for CUDA 13); "
+                                 "use 'cpu'")
+        if self.fft not in ("scipy", "pyfftw"):
+            raise ParameterError("solver.fft", f"must be 'scipy' or 'pyfftw', got {self.fft!r}")
+        if self.fft == "pyfftw" and importlib.util.find_spec("pyfftw") is None:
+            raise ParameterError("solver.fft", "'pyfftw' needs the optional package pyFFTW "
+                                 "(pip install 'viscontact[fast]'); use 'scipy'")
+
+
+@dataclass(frozen=True)
+class OutputSettings:
+    """What is recorded: every ``every``-th step (and always the last) and which fields."""
+
+    every: int = 1
+    fields: tuple[str, ...] = ("pressure", "shear_x", "stick")
+    #: depths z [m] of the subsurface stress output in the section y = 0 (empty: none)
+    subsurface_depths: tuple[float, ...] = ()
+    #: times [s] of the subsurface output (the nearest recorded steps); None: the last recorded step
+    subsurface_times: tuple[float, ...] | None = None
+
+    def __post_init__(self) -> None:
+        """``output.every`` an integer >= 1, ``output.fields`` a tuple or list of field names, the
+        subsurface depths and times finite numbers >= 0 (else :class:`ParameterError`)."""
+        from viscontact.problem.records import StepRecord
+
+        _check_integer("output.every", self.every)
+        fields = self.fields
+        if not isinstance(fields, (tuple, list)) or any(f not in StepRecord.FIELDS for f in fields):
+            raise ParameterError("output.fields", f"must be a list of {', '.join(map(repr, StepRecord.FIELDS))}, "
+                                 f"got {fields!r}")
+        for key, values in (("subsurface_depths", self.subsurface_depths), ("subsurface_times", self.subsurface_times)):
+            for value in values or ():
+                _check_number(f"output.{key}", value, " m" if key == "subsurface_depths" else " s", strict=False)
+
+
+@dataclass(frozen=True)
+class LayerSettings:
+    """The viscoelastic material is a layer of ``thickness`` [m] on a substrate.
+
+    ``substrate``: ``"rigid"`` or ``"elastic"`` (then ``substrate_shear_modulus`` [Pa] and
+    ``substrate_poisson_ratio`` [-]); ``interface``: ``"bonded"`` or ``"frictionless"``. The
+    compliance is that of :class:`viscontact.bodies.layer.Layer`.
+    """
+
+    thickness: float
+    substrate: Literal["rigid", "elastic"] = "rigid"
+    interface: Literal["bonded", "frictionless"] = "bonded"
+    substrate_shear_modulus: float = float("inf")
+    substrate_poisson_ratio: float = 0.3
+
+
+def check_subsurface_body(depths, layered: bool, bulk_modulus: bool) -> None:
+    """Subsurface stresses (:mod:`viscontact.physics.subsurface`) are the elastic fields of the current
+    tractions, true for the homogeneous half-space with constant nu only: raise
+    :class:`~viscontact.errors.ParameterError` when ``depths`` are asked for with a layer or a bulk
+    modulus."""
+    if depths and (layered or bulk_modulus):
+        raise ParameterError("output.subsurface_depths", "needs a homogeneous half-space with material.poisson_ratio "
+                             "(no [layer], no material.bulk_modulus): the stresses are the elastic fields of the "
+                             "current tractions only there")
+
+
+@dataclass(frozen=True)
+class Problem:
+    """Everything the transient and steady solvers need.
+
+    ``gap`` is the undeformed gap h0(x, y) [m] on the grid, in the frame of the indenter
+    (origin under its centre). ``radius`` [m] is the sphere radius when the indenter is a sphere
+    (used for Hertz normalisation and sub-cell shifts), else ``None``.
+    """
+
+    material: Material
+    grid: Grid
+    gap: np.ndarray = field(repr=False)  # see frame_gap
+    normal: NormalLoading
+    tangential: TangentialLoading = TangentialLoading()
+    time: TimeStepping = TimeStepping(t_end=0.0, dt=1.0)
+    solver: SolverSettings = SolverSettings()
+    output: OutputSettings = OutputSettings()
+    radius: float | None = None
+    title: str = ""
+    #: elastic bulk modulus K [Pa]: nu(t) from G(t) and K (``material.poisson_ratio`` is then nu(0))
+    bulk_modulus: float | None = None
+    #: the material is a layer on a substrate (None: a half-space)
+    layer: LayerSettings | None = None
+    #: the gap was made by SurfaceTopography (a self-affine surface or roughness, a measured
+    #: topography; set by :meth:`viscontact.io.case.Case.to_problem`): a run of it imports that package,
+    #: which :func:`viscontact.running.resources.estimate` counts. It does not shape the solution.
+    surface_topography: bool = False
+
+    def __post_init__(self) -> None:
+        n = self.grid.n
+        if np.shape(self.gap) != (n, n):
+            raise ParameterError("gap", f"must be an array of the grid's shape ({n}, {n}), got shape {np.shape(self.gap)}")
+        if not (np.isfinite(np.min(self.gap)) and np.isfinite(np.max(self.gap))):  # no n x n temporary
+            raise ParameterError("gap", "must hold finite heights [m] only (NaN or Inf found)")
+        if self.radius is not None:
+            _check_number("indenter.radius", self.radius, " m")
+        check_subsurface_body(self.output.subsurface_depths, self.layer is not None, self.bulk_modulus is not None)
+
+    @cached_property
+    def _gap_is_sphere(self) -> bool:
+        """Whether the gap is the paraboloid of ``radius`` to round-off (built in any order: an exact
+        comparison sent x^2/2R + y^2/2R to the interpolated shift)."""
+        if self.radius is None:
+            return False
+        x, y = self.grid.mesh()
+        sphere = (x**2 + y**2) / (2.0 * self.radius)
+        return bool(np.allclose(self.gap, sphere, rtol=0.0, atol=1e-13 * sphere.max()))
+
+    @cached_property
+    def turning_steps(self) -> frozenset[int]:
+        """The steps nearest the turning points of the run's histories (``normal.history``,
+        ``tangential.displacement_history``: :meth:`PiecewiseLinear.turning_steps`), recorded whatever
+        ``output.every`` (a fretting loop keeps its tips, a load pulse its peak)."""
+        last = self.time.n_steps - 1
+        histories = [self.normal.history, self.tangential.displacement_history]
+        return frozenset(k for h in histories if h is not None for k, _ in h.turning_steps(self.time.dt, last))
+
+    def recorded(self, step: int) -> bool:
+        """Whether the result keeps step ``step``: every ``output.every``-th, the last and the
+        :attr:`turning_steps`."""
+        return step % self.output.every == 0 or step == self.time.n_steps - 1 or step in self.turning_steps
+
+    def frame_gap(self, offset: float) -> np.ndarray:
+        """Undeformed gap [m] on the grid with the indenter centre at x = ``offset`` [m], 0 <= offset < dx.
+
+        The one place that moves the indenter within a cell (``tangential.steps_per_cell`` > 1):
+        a sphere's paraboloid ((x - offset)^2 + y^2) / 2R is rebuilt exactly; on a periodic grid any
+        other gap is translated exactly as its Fourier series along x (the phase exp(-i k_x offset);
+        exact for a surface whose spectrum the grid holds, such as a generated self-affine one: a
+        linear interpolation smoothed a rough surface, its approach 3-4 % high and its peak pressure
+        10-14 % low at half a cell); on a DC-FFT grid it is interpolated linearly along x between
+        neighbouring cells (error f (1 - f) dx^2 max|h''| / 2 at offset f dx), its first column
+        extrapolated linearly (error f (1 + f) dx^2 max|h''| / 2). :meth:`frame_gaps` does the same
+        on a device.
+        """
+        return self._host_frame_gaps.at(offset)
+
+    def frame_gaps(self, to_device: Callable[[np.ndarray], Any] = lambda array: array) -> "FrameGaps":
+        """What :meth:`frame_gap` builds the gap from, moved once by ``to_device`` (an
+        :meth:`~viscontact.numerics.arrays.ArrayBackend.to_device`): its :meth:`FrameGaps.at` gives the gap at
+        any offset on that device, equal to :meth:`frame_gap`'s, without copying a field there again."""
+        sphere = periodic = None
+        if self._gap_is_sphere:
+            x, y = self.grid.mesh()
+            sphere = (to_device(x[:1, :]), to_device(y[:, :1]), self.radius)  # broadcast: the same values
+        elif self.grid.periodic:
+            k_x = 2.0 * np.pi * np.fft.rfftfreq(self.grid.n, self.grid.spacing)
+            periodic = (to_device(self._gap_rows_spectrum), to_device(k_x))
+        return FrameGaps(to_device(self.gap), self.grid.spacing, sphere, periodic)
+
+    @cached_property
+    def _host_frame_gaps(self) -> "FrameGaps":
+        return self.frame_gaps()
+
+    @cached_property
+    def _gap_rows_spectrum(self) -> np.ndarray:
+        """The real FFT of the gap along x (periodic grids: :meth:`frame_gap`)."""
+        return np.fft.rfft(self.gap, axis=1)
+
+
+@dataclass(frozen=True)
+class FrameGaps:
+    """The undeformed gap at each frame offset (:meth:`Problem.frame_gap`) from arrays held by one
+    array library (:meth:`Problem.frame_gaps`): each offset's gap is computed there by numpy's
+    functions, which dispatch to the arrays' library, so a device needs no host field per step."""
+
+    gap: Any
+    spacing: float
+    #: a sphere: x (1, n) and y (n, 1) [m], its radius [m]
+    sphere: tuple[Any, Any, float] | None = None
+    #: a periodic grid: the gap's real FFT along x, k_x [1/m]
+    periodic: tuple[Any, Any] | None = None
+
+    def at(self, offset: float) -> Any:
+        """The gap [m] with the indenter centre at x = ``offset`` [m] (:meth:`Problem.frame_gap`)."""
+        if offset == 0.0:
+            return self.gap
+        if self.sphere is not None:
+            x, y, radius = self.sphere
+            return ((x - offset) ** 2 + y**2) / (2.0 * radius)
+        if self.periodic is not None:
+            spectrum, k_x = self.periodic
+            return np.fft.irfft(spectrum * np.exp(-1j * k_x * offset), self.gap.shape[1], axis=1)
+        frac = offset / self.spacing
+        behind = np.empty_like(self.gap)  # the gap one cell towards -x, h(x - dx)
+        behind[:, 1:] = self.gap[:, :-1]
+        behind[:, 0] = 2.0 * self.gap[:, 0] - self.gap[:, 1]
+        return (1.0 - frac) * self.gap + frac * behind

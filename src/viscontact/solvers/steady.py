@@ -1,0 +1,267 @@
+"""Direct steady-state solver for sliding at constant speed v.
+
+In the frame of the indenter the half-space moves at -v along x, so a material point now at x was
+at x + xi a time xi/v ago. With the tractions steady in this frame, the hereditary integral of
+seed Eq. 5 becomes (integration by parts, J(t) = J_0 + sum_m J_m (1 - exp(-t/lambda_m)))
+
+    u(x) = J_0 [IC * p](x) + sum_m J_m int_0^inf exp(-xi/L_m)/L_m [IC * p](x + xi) dxi,  L_m = v lambda_m,
+
+i.e. a convolution with the *effective steady kernel*
+
+    K(d) = J_0 IC(d) + sum_m J_m F_m(d),   F_m(d) = int_0^inf exp(-xi/L_m)/L_m IC(d + xi) dxi.
+
+F_m integrates the whole past of the material, far beyond the grid, so only the contact needs to
+be on the grid (no wake truncation). It is built once per speed by the substrate
+(:meth:`viscontact.bodies.half_space.HalfSpace.steady_convolver`, all modes in one pass by
+:mod:`viscontact.physics.steady_kernels`).
+
+The kernel is not symmetric, so the contact problem (p >= 0, gap >= 0, complementarity, load or
+approach given) is solved by a primal-dual active-set method (Hintermueller, Ito & Kunisch 2002):
+on the current contact set the linear system is solved with GMRES (:mod:`viscontact.numerics.krylov`, FFT
+matrix-vector products), then points with negative pressure leave and points with negative gap
+enter, until the set is stable. Each solve uses at most ``solver.max_iterations`` Krylov iterations.
+What makes it fast:
+
+* the Fourier preconditioner is the operator's own symbol, the elastic one times the complex
+  compliance J*(k_x v) (:func:`steady_preconditioner`): ~20 GMRES iterations per solve to 1e-10
+  instead of ~65 with the symmetric part alone;
+* under load control a round is one solve of the bordered system for (p, delta), preconditioned by
+  the same block system with the Fourier preconditioner (:func:`_solve_bordered`), not two solves;
+* until the set first settles the solves stop at 1e-6 (:func:`solve_contact_active_set`), then the
+  settled set is solved to the tolerance and checked again (the answer is that of exact rounds);
+* the first set comes from the steady state on the grid with half the cells per side
+  (:func:`coarse_start`, recursively down to 64^2), so the fine grid needs a few rounds, not ~10;
+  a speed sweep starts each speed from the previous one instead (:func:`speed_sweep`).
+
+For gross sliding (q_x = mu_f p) the operator is K_zz + mu_f K_zx.
+
+The fields are those of the substrate's array backend (:mod:`viscontact.numerics.arrays`); the record comes
+back to the host.
+"""
+from __future__ import annotations
+
+from dataclasses import asdict, replace
+from typing import Sequence
+
+import numpy as np
+
+from viscontact.bodies.body import substrate_for
+from viscontact.bodies.compliance import TermSubstrate
+from viscontact.bodies.half_space import HalfSpace
+from viscontact.errors import ParameterError
+from viscontact.numerics.active_set import solve_contact_active_set
+from viscontact.numerics.convolution import Convolver, FourierPreconditioner
+from viscontact.numerics.exponentials import complex_compliance
+from viscontact.numerics.grid import Grid
+from viscontact.problem.problem import PHASE_GROSS_SLIDING, Problem
+from viscontact.problem.records import StepRecord
+from viscontact.problem.roughness import roughness_metrics
+from viscontact.solvers.checks import check_solution
+from viscontact.solvers.sliding import check_speed, hysteresis_force, pressure_centroid
+
+
+def steady_convolver(problem: Problem, speed: float, substrate: TermSubstrate | None = None
+                     ) -> tuple[Convolver, dict[str, np.ndarray]]:
+    """The substrate's effective steady kernels at ``speed`` [m/s] (``zz``, and ``zx`` when sliding with
+    friction and coupling): ``apply("zz", p)`` is u_z [m] of the pressure p [Pa]."""
+    components = steady_components(problem)
+    substrate = substrate or substrate_for(problem, components)
+    return substrate.steady_convolver(speed, components)
+
+
+def steady_components(problem: Problem) -> list[str]:
+    """Kernels of the steady operator: ``zz``, and ``zx`` when sliding with friction and coupling
+    (nu < 0.5, ``solver.coupling``)."""
+    mat = problem.material
+    coupled = problem.tangential.effective_friction > 0 and mat.poisson_ratio < 0.5 and problem.solver.coupling
+    return ["zz"] + (["zx"] if coupled else [])
+
+
+def steady_preconditioner(substrate: TermSubstrate, kernels: dict[str, np.ndarray], speed: float,
+                          workers: int = -1, symmetric: bool = False) -> FourierPreconditioner:
+    """Fourier preconditioner of the steady operator K_zz [m/Pa] at ``speed`` [m/s].
+
+    For the :class:`~viscontact.bodies.half_space.HalfSpace` the operator's Fourier symbol is known: in the
+    indenter's frame the material point at x + xi was at x a time xi/v ago, so the shift
+    xi -> exp(i k_x xi) turns the hereditary integral of :mod:`viscontact.solvers.steady` into the complex
+    compliance at the frequency k_x v,
+
+        K^(k) = IC^_zz(k) J*(k_x),   J*(k_x) = J_0 + sum_m J_m / (1 - i k_x v lambda_m),
+
+    with IC^_zz the elastic symbol at unit modulus (the periodic one of the n x n grid, as for the
+    transient's preconditioner). It carries the phase of the viscous lag that the symmetric part
+    misses: 2.5-3x fewer GMRES iterations. Other substrates: the symmetric part of the wrapped
+    effective kernel (|Re K^|)."""
+    if isinstance(substrate, HalfSpace) and not substrate.periodic and "zz" in substrate.preconditioners:
+        elastic = substrate.preconditioners["zz"]
+        grid = substrate.grid
+        k_x = 2.0 * np.pi * np.fft.rfftfreq(grid.n, grid.spacing)
+        j_star = complex_compliance(substrate.material.creep, -k_x * speed)
+        symbol = j_star.real if symmetric else j_star  # Re K^ = IC^ Re J*: the symmetric part
+        return FourierPreconditioner(elastic.inverse_symbol / substrate.backend.to_device(symbol[None, :]), workers,
+                                     elastic.fft)
+    return FourierPreconditioner.for_kernel(substrate.backend.to_device(kernels["zz"]), 1.0, workers, fft=substrate.fft)
+
+
+def _symmetric_guess(conv: Convolver, problem: Problem, value: float, coupled: bool, mu: float,
+                     preconditioner: FourierPreconditioner | None = None) -> np.ndarray:
+    """Polonsky-Keer solution with the symmetric part of the steady operator (spectrum Re K^):
+    the right contact size, a good first active set for the non-symmetric solve."""
+    from viscontact.numerics.constrained import constrained_cg
+
+    spec = conv.spectra["zz"].real.astype(complex)
+    if coupled:
+        spec = spec + mu * conv.spectra["zx"].real
+    sym = Convolver(conv.n, {"s": spec}, conv.workers, xp=conv.xp, fft=conv.fft)
+    grid = problem.grid
+    gap = conv.xp.asarray(problem.gap)
+    b = -gap if problem.normal.control == "load" else value - gap
+    sol = constrained_cg(lambda x: sym.apply("s", x), b, np.zeros_like(b), 0.0, np.inf,
+                         total=value if problem.normal.control == "load" else None,
+                         cell_area=grid.cell_area, tolerance=1e-6, max_iterations=problem.solver.max_iterations,
+                         preconditioner=preconditioner)
+    return sol.x
+
+
+#: the coarsest grid of the coarse-grid start (:func:`coarse_start`): started from the symmetric guess
+COARSEST = 64
+
+
+def coarse_problem(problem: Problem) -> Problem:
+    """The problem on the grid with half the cells per side (same domain, n even): the gap averaged
+    over each 2 x 2 block of cells (its value at the coarse cell centre to O(dx^2))."""
+    grid = problem.grid
+    coarse = Grid(grid.n // 2, grid.half_width, grid.periodic)
+    gap = problem.gap.reshape(coarse.n, 2, coarse.n, 2).mean(axis=(1, 3))
+    return replace(problem, grid=coarse, gap=gap, radius=None)
+
+
+def coarse_start(problem: Problem, speed: float) -> np.ndarray:
+    """First pressure [Pa] for the active set on ``problem``'s grid: the steady state at ``speed``
+    [m/s] on the grid with half the cells per side (itself started the same way down to
+    :data:`COARSEST` cells per side), each coarse cell's pressure on its 2 x 2 fine cells.
+
+    The coarse contact set is right to about one coarse cell, so the fine active set needs a few
+    rounds instead of the ~10 it needs from the symmetric guess; a coarse solve costs a quarter of
+    a fine one per iteration (kernel build included)."""
+    coarse = solve_steady(coarse_problem(problem), speed)
+    return np.repeat(np.repeat(coarse.pressure, 2, axis=0), 2, axis=1)
+
+
+#: the case keys a steady state never reads -> why (:func:`ignored_keys`: with those it ignores only
+#: in some cases). Each was checked to leave every variable of a steady result bit for bit unchanged.
+IGNORED_KEYS = {
+    "time.dt": "a steady state has no time steps",
+    "time.scheme": "a steady state has no time steps",
+    "tangential.steps_per_cell": "it sets the default time.dt, and a steady state has no time steps",
+    "tangential.displacement_rate": "it drives partial slip, and a steady state is gross sliding",
+    "tangential.slip": "it is partial slip's stick condition, and a steady state is gross sliding",
+    "output.every": "a steady state is one record",
+    "output.subsurface_times": "a steady state is one record",
+    "solver.coupling_tolerance": "the steady solver couples the normal and tangential tractions exactly, "
+                                 "without alternations",
+    "solver.max_coupling_iterations": "the steady solver couples the normal and tangential tractions exactly, "
+                                      "without alternations",
+    "solver.mixed_precision": "it sets the transient's conjugate gradient; the steady solver uses GMRES in double",
+    "solver.history": "a steady state has no hereditary sum over past steps",
+}
+
+
+def ignored_keys(problem: Problem) -> dict[str, str]:
+    """The case keys that cannot change ``problem``'s steady state -> why: :data:`IGNORED_KEYS`, and
+    ``time.t_end`` under a held normal condition (its value at t_end is the one taken: only a
+    ``normal.history`` reads it) and ``tangential.friction_coefficient`` without friction
+    (``tangential.mode`` "none" or "frictionless_sliding")."""
+    keys = dict(IGNORED_KEYS)
+    if len(set(problem.normal.history.values)) == 1:
+        keys["time.t_end"] = "the steady state takes the normal condition at time.t_end, and it is held"
+    if problem.tangential.mode in ("none", "frictionless_sliding"):
+        keys["tangential.friction_coefficient"] = f"tangential.mode = {problem.tangential.mode!r} has no friction"
+    return keys
+
+
+def check_steady(problem: Problem, speed: float | None = None) -> None:
+    """What a steady state needs of ``problem`` besides the guards: an indenter that slides (a
+    ``tangential.displacement_history`` never does: fretting has no steady sliding state) at a
+    ``speed`` > 0 m/s (default: the problem's sliding speed; :func:`check_speed`)."""
+    if problem.tangential.displacement_history is not None:
+        raise ParameterError("tangential.displacement_history", "a displacement history (fretting) never slides, so "
+                             "the case has no steady sliding state; run its transient (viscontact run), or drop "
+                             "the history and give tangential.sliding_speed for a steady state of sliding")
+    check_speed(problem.tangential.sliding_speed if speed is None else speed)
+
+
+def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.ndarray | None = None,
+                 substrate: TermSubstrate | None = None) -> StepRecord:
+    """Steady state of sliding at ``speed`` [m/s] (default: the problem's sliding speed).
+
+    Frictionless (``frictionless_sliding``) or with q_x = mu_f p (``gross_sliding``,
+    ``partial_slip`` once sliding). The normal condition is the history's final value. The record's
+    ``iterations`` counts the GMRES (Krylov) iterations of all active-set rounds on this grid (not
+    those of the coarse-grid start, a quarter the cost each). ``initial``: the pressure [Pa] to
+    start the active set from (default: :func:`coarse_start` when n >= 2 :data:`COARSEST` is even,
+    else the symmetric guess). On a periodic grid
+    the steady state is exact in Fourier space (:mod:`viscontact.solvers.steady_periodic`).
+    """
+    v = problem.tangential.sliding_speed if speed is None else speed
+    check_steady(problem, v)
+    grid = problem.grid
+    mu = problem.tangential.effective_friction if problem.tangential.mode != "none" else 0.0
+    value = problem.normal.history(problem.time.t_end)
+    tolerance = min(problem.solver.tolerance, 1e-10)
+    substrate = substrate or substrate_for(problem, steady_components(problem))
+    backend = substrate.backend
+    if initial is not None:
+        initial = backend.to_device(initial)
+    if grid.periodic:
+        from viscontact.solvers.steady_periodic import solve_periodic_steady
+
+        state = solve_periodic_steady(substrate.convolver, problem.material, grid, problem.gap,
+                                      speed=v, control=problem.normal.control, value=value, friction=mu,
+                                      initial=initial, tolerance=tolerance,
+                                      max_iterations=problem.solver.max_iterations,
+                                      spectrum=substrate.steady_spectrum(v, mu), to_host=backend.to_host)
+        p, delta, krylov, u_z = state.pressure, state.delta_z, state.iterations, state.displacement_z
+    else:
+        conv, kernels = steady_convolver(problem, v, substrate)
+        coupled = "zx" in conv.spectra
+        precondition = steady_preconditioner(substrate, kernels, v, problem.solver.workers)
+
+        def apply_k(p: np.ndarray) -> np.ndarray:
+            return conv.combine([("zz", 1.0, p)] + ([("zx", mu, p)] if coupled else []))
+
+        if initial is None and grid.n >= 2 * COARSEST and grid.n % 2 == 0:
+            initial = backend.to_device(coarse_start(problem, v))
+        elif initial is None:
+            initial = _symmetric_guess(conv, problem, value, coupled, mu,
+                                       steady_preconditioner(substrate, kernels, v, problem.solver.workers, True))
+        p, delta, krylov, _ = solve_contact_active_set(apply_k, backend.to_device(problem.gap),
+                                                       control=problem.normal.control, value=value,
+                                                       cell_area=grid.cell_area, initial=initial, tolerance=tolerance,
+                                                       max_iterations=problem.solver.max_iterations,
+                                                       preconditioner=precondition)
+        p, u_z = backend.to_host(p), backend.to_host(apply_k(p))
+    load = float(p.sum() * grid.cell_area)
+    check_solution(problem, p, load, value, where=f" at v = {v:.4g} m/s")
+    f_t = hysteresis_force(p, u_z, grid, grid.periodic)
+    q = mu * p
+    return StepRecord(step=0, t=problem.time.t_end, phase=PHASE_GROSS_SLIDING, load=load, delta_z=delta,
+                      delta_x=0.0, sliding_distance=float("inf"), contact_area=float((p > 0).sum() * grid.cell_area),
+                      stick_ratio=0.0, friction_force=float(q.sum() * grid.cell_area), hysteresis_force=f_t,
+                      mu_app=f_t / load if load > 0 else 0.0, contact_shift=pressure_centroid(p, grid),
+                      iterations=krylov, coupling_iterations=1,
+                      **asdict(roughness_metrics(p, problem.gap + u_z - delta, grid.periodic)),
+                      pressure=p, shear_x=q, stick=np.zeros(p.shape, dtype=bool), displacement_z=u_z)
+
+
+def speed_sweep(problem: Problem, speeds: Sequence[float]) -> list[StepRecord]:
+    """Steady states at each speed [m/s], in the given order, each warm-started from the previous;
+    one substrate serves them all (its kernel builder keeps what does not depend on the speed)."""
+    out: list[StepRecord] = []
+    previous = None
+    substrate = substrate_for(problem, steady_components(problem))
+    for v in speeds:
+        rec = solve_steady(problem, v, initial=previous, substrate=substrate)
+        previous = rec.pressure
+        out.append(rec)
+    return out

@@ -1,0 +1,631 @@
+"""Transient solver: indentation, partial slip and gross sliding (seed Sec. 2.2, Fig. 3).
+
+Each time step is an elastic contact problem with the instantaneous compliance J_inst plus the
+known hereditary displacement of all earlier increments (:mod:`viscontact.numerics.history`):
+
+* normal (seed Eqs. 7-8, 10): Polonsky-Keer constrained CG under load or displacement control;
+* partial slip (seed Eqs. 9, 11): bounded CG for q_x in [-mu_f p, mu_f p], alternated with the
+  normal solve (semi-coupled: IC_zx, IC_xz ~ (1 - 2 nu)) until both change by less than
+  ``coupling_tolerance``; the stick condition on the total slip (the seed's, s_x = 0) or, with
+  ``tangential.slip = "incremental"``, on its change over the step (Mindlin-Deresiewicz: the state
+  carries s_x, :attr:`State.slip_x`);
+* gross sliding (seed Eq. 12): q_x = mu_f p, so u_z = J_inst (IC_zz + mu_f IC_zx) p + history. The
+  operator is not symmetric; the coupling term is iterated as a fixed point around symmetric
+  Polonsky-Keer solves (contraction factor about mu_f (1 - 2 nu) / (2 (1 - nu)) < 0.1 for the
+  seed's case), each warm-started.
+
+State is explicit: :func:`init` builds it, :func:`step` advances it by one time step and returns
+the step's :class:`~viscontact.problem.records.StepRecord`; :func:`simulate` loops and yields the records
+the output settings ask for.
+"""
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field, replace
+from typing import Callable, Iterator, Protocol
+
+import numpy as np
+
+from viscontact.bodies.body import stability_responses, substrate_for
+from viscontact.bodies.compliance import TermSubstrate
+from viscontact.errors import ConvergenceError, ParameterError
+from viscontact.numerics.allocator import tune_allocator
+from viscontact.numerics.history import History
+from viscontact.numerics.schemes import stable_step_limit
+from viscontact.numerics.support_window import windowed_bounded_cg, windowed_cg
+from viscontact.physics.periodic import check_approach
+from viscontact.problem.problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP, FrameGaps, Problem
+from viscontact.problem.records import StepRecord
+from viscontact.problem.roughness import roughness_metrics
+from viscontact.solvers.checks import check_solution
+from viscontact.solvers.sliding import Wake, hysteresis_force, pressure_centroid
+
+#: relative margin under mu_f p below which a node counts as stuck
+STICK_MARGIN = 1e-9
+
+
+@dataclass(frozen=True)
+class State:
+    """Everything that carries over from one step to the next (checkpointable, never mutated:
+    :func:`step` returns a new one).
+
+    Attributes
+    ----------
+    step, t
+        Index and time [s] of the last step done (-1 and -dt before the first).
+    phase
+        Phase code of the next step (:mod:`viscontact.problem.problem`).
+    pressure, shear_x, pressure_previous, shear_previous
+        Tractions [Pa] of the last two steps (frame fields; the warm start extrapolates them).
+    histories
+        Hereditary histories by key (:class:`~viscontact.bodies.compliance.Term`).
+    delta_z, delta_x, sliding_distance
+        Approach, tangential displacement and distance slid [m].
+    pressure_product, pressure_product_previous
+        The normal elastic operator of a regular step applied to ``pressure`` and to
+        ``pressure_previous`` [m] (J_inst K p, from the full-domain check of the step's solve; None
+        where that solve had none or the step was the first): with them the warm start's product
+        costs no transform (:func:`_warm_start`).
+    response
+        The normal history in displacement space, which gives the history displacement without a
+        transform (:meth:`~viscontact.bodies.compliance.TermSubstrate.initial_response`); None where the
+        substrate has none, from the first frame shift on, and from the first partial-slip step on.
+    substep
+        Steps since the last frame shift (0 .. steps_per_cell - 1).
+    t_gross_sliding
+        When gross sliding began [s] (None before).
+    slip_origin
+        Partial slip: ``delta_x`` [m] at the first step of the current contact, from which the
+        displacement of the stuck points is measured; None after a step without contact (the
+        indenter moves at ``displacement_rate`` without touching, which loads nothing): the next
+        step that touches sets it. 0 before the first step (delta_x(0) = 0; also what a checkpoint
+        written without it resumes with). Read by the total slip only: the incremental one's
+        ``slip_x`` holds s_x = -delta_x at every point before the first contact, so the points
+        that touch first stick where they are without an origin.
+    slip_x
+        Incremental slip (``tangential.slip = "incremental"``) during partial slip: the slip
+        s_x = u_x - delta_x [m] at the end of the last step at every point of the grid (a frame
+        field; in contact or not: a point entering the contact sticks at its own), which a stuck
+        point keeps; zeros before the first step, None with the total slip and from gross sliding on.
+    wake
+        History that left the frame (:class:`~viscontact.solvers.sliding.Wake`).
+    """
+
+    step: int
+    t: float
+    phase: int
+    pressure: np.ndarray
+    shear_x: np.ndarray
+    histories: dict[str, History]
+    delta_z: float = 0.0
+    delta_x: float = 0.0
+    sliding_distance: float = 0.0
+    substep: int = 0
+    t_gross_sliding: float | None = None
+    wake: Wake = field(default_factory=Wake)
+    pressure_previous: np.ndarray | None = None
+    shear_previous: np.ndarray | None = None
+    pressure_product: np.ndarray | None = None
+    pressure_product_previous: np.ndarray | None = None
+    response: History | None = None
+    slip_origin: float | None = 0.0
+    slip_x: np.ndarray | None = None
+
+
+def init(problem: Problem, substrate: TermSubstrate | None = None) -> State:
+    """State before the first step (t = 0 is solved by the first call of :func:`step`)."""
+    validate(problem)
+    substrate = substrate or substrate_for(problem)
+    n, xp = problem.grid.n, substrate.xp
+    mode = problem.tangential.mode
+    phase = {"none": PHASE_INDENTATION, "partial_slip": PHASE_PARTIAL_SLIP}.get(mode, PHASE_GROSS_SLIDING)
+    return State(step=-1, t=-problem.time.dt, phase=phase, pressure=xp.zeros((n, n)),
+                 shear_x=xp.zeros((n, n)), histories=substrate.initial_histories(),
+                 pressure_previous=xp.zeros((n, n)), shear_previous=xp.zeros((n, n)),
+                 t_gross_sliding=0.0 if phase == PHASE_GROSS_SLIDING else None,
+                 response=substrate.initial_response(),
+                 slip_x=xp.zeros((n, n)) if problem.tangential.incremental_slip else None)
+
+
+def validate(problem: Problem) -> None:
+    """Checks that involve several parts of the problem (each part validated itself)."""
+    tan = problem.tangential
+    if tan.frame_moves:
+        if not tan.sliding_speed > 0:
+            raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s when sliding, got {tan.sliding_speed}")
+        cell_dt = problem.grid.spacing / (tan.sliding_speed * tan.steps_per_cell)
+        if abs(problem.time.dt - cell_dt) > 1e-6 * cell_dt:
+            raise ParameterError(
+                "time.dt", f"must equal (2*half_width/n)/sliding_speed/steps_per_cell = {cell_dt:.6g} s "
+                f"so that the frame moves by whole cells, got {problem.time.dt:.6g}")
+    if problem.grid.periodic and problem.normal.control == "displacement":
+        check_approach(problem.normal.history.reference, problem.gap,
+                       "normal.value" if len(problem.normal.history.values) == 1 else "normal.history")
+    if tan.displacement_history is not None and tan.sliding_speed != 0:
+        raise ParameterError("tangential.sliding_speed", "give none with tangential.displacement_history: the "
+                             "indenter never slides under a history (a vanished stick zone stops the run), got "
+                             f"{tan.sliding_speed:g} m/s")
+    if tan.mode == "partial_slip" and tan.displacement_history is None and not tan.displacement_rate > 0:
+        raise ParameterError("tangential.displacement_rate", f"must be > 0 m/s for partial_slip, got {tan.displacement_rate}")
+    limit = min(stable_step_limit(r, problem.time.scheme) for r in stability_responses(problem))
+    if problem.time.dt > limit:
+        raise ParameterError(
+            "time.dt", f"{problem.time.dt:.4g} s exceeds the stability limit {limit:.4g} s of the piecewise-constant "
+            "(seed) scheme for this material: the result would oscillate and grow. Use time.scheme = \"linear\" "
+            "(stable for any dt) or a smaller dt (with sliding: a larger grid.n or tangential.steps_per_cell)")
+    # the accuracy of dt (against the material times and the loading) is checked by viscontact.running.guards
+
+
+# --- one step: frame -> known displacement -> phase solver -> commit -> record -------------------
+
+@dataclass(frozen=True)
+class StepContext:
+    """What the phase solvers of step ``k`` at time ``t`` [s] see (all given, nothing solved yet)."""
+
+    problem: Problem
+    substrate: TermSubstrate
+    k: int
+    t: float
+    first: bool
+    gap: np.ndarray          # undeformed gap at the frame offset [m]
+    known_uz: np.ndarray     # history displacement [m]
+    known_ux: np.ndarray | None
+    value: float             # normal condition: load [N] or approach [m]
+    delta_x: float           # tangential displacement [m] the contact sees (total slip: since it began)
+    slip_x: np.ndarray | None = None  # incremental slip: s_x [m] of the last step, which a stuck point keeps
+
+
+@dataclass(frozen=True)
+class StepSolution:
+    """Tractions [Pa], approach delta_z [m], total u_z [m] and the iteration counts of one step;
+    ``pressure_product``: the step's normal operator applied to the pressure [m], where the solve
+    computed it in double precision (else None); ``slip``: partial slip's s_x - ``ctx.slip_x`` [m]
+    at every point (the tangential solve's gradient: the slip, or with the incremental slip its
+    change over the step), else None."""
+
+    pressure: np.ndarray
+    shear_x: np.ndarray
+    delta_z: float
+    displacement_z: np.ndarray
+    iterations: int = 0
+    coupling_iterations: int = 1
+    pressure_product: np.ndarray | None = None
+    slip: np.ndarray | None = None
+
+
+class PhaseSolver(Protocol):
+    """One phase's contact problem, iterated by :func:`solve_coupled` as a fixed point on (p, q).
+
+    ``name`` names it in errors; ``coupled`` says whether a pass depends on the previous iterate
+    (else one pass is the solution); ``solves_shear`` whether q is an unknown of its own.
+    """
+
+    name: str
+    coupled: bool
+    solves_shear: bool
+
+    def solve(self, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray, product: np.ndarray | None
+              ) -> tuple[np.ndarray, np.ndarray, float, int, np.ndarray, np.ndarray | None, np.ndarray | None]:
+        """One pass from the iterate (p, q), ``product`` the normal operator applied to p where known:
+        returns (p, q, delta_z, CG iterations, u_z, the normal operator applied to the new p or None,
+        the slip :attr:`StepSolution.slip` or None)."""
+
+    def finish(self, ctx: StepContext, solution: StepSolution) -> StepSolution:
+        """The converged solution, completed (e.g. u_z with the final coupling term)."""
+
+
+def _solve_normal(ctx: StepContext, known_uz: np.ndarray, warm: np.ndarray, warm_product: np.ndarray | None):
+    """Polonsky-Keer solve of the normal problem (seed Eqs. 7-8, 10) with known displacement
+    ``known_uz`` [m], on a box around the warm start's support (:mod:`viscontact.numerics.support_window`);
+    ``warm_product``: the step's normal operator applied to ``warm`` where known.
+    Returns (pressure [Pa], approach delta_z [m], iterations, total u_z [m], the operator applied to
+    the pressure or None)."""
+    problem, s, gap = ctx.problem, ctx.problem.solver, ctx.gap
+    op = ctx.substrate.elastic_operator("z", ctx.first)
+    if problem.normal.control == "load":
+        sol = windowed_cg(op, -(gap + known_uz), warm, total=ctx.value, cell_area=problem.grid.cell_area,
+                          tolerance=s.tolerance, max_iterations=s.max_iterations, what="normal contact (load control)",
+                          mixed_precision=s.mixed_precision, start_product=warm_product)
+        return sol.x, sol.multiplier, sol.iterations, sol.gradient + sol.multiplier - gap, sol.product
+    sol = windowed_cg(op, ctx.value - (gap + known_uz), warm, tolerance=s.tolerance, max_iterations=s.max_iterations,
+                      what="normal contact (displacement control)", mixed_precision=s.mixed_precision,
+                      start_product=warm_product)
+    return sol.x, ctx.value, sol.iterations, sol.gradient + ctx.value - gap, sol.product
+
+
+def _plus(known: np.ndarray, coupling: np.ndarray | None) -> np.ndarray:
+    return known if coupling is None else known + coupling
+
+
+@dataclass(frozen=True)
+class NormalContact:
+    """Indentation, frictionless sliding and gross sliding (seed Eq. 12): q_x = mu_f p.
+
+    With friction and coupling terms, u_z = J_inst (IC_zz + mu_f IC_zx) p + history is not
+    symmetric; the coupling term is iterated as a fixed point around symmetric Polonsky-Keer solves
+    (contraction factor about mu_f (1 - 2 nu) / (2 (1 - nu)) < 0.1 for the seed's case)."""
+
+    friction: float
+    coupled: bool
+    name: str = "gross sliding"
+    solves_shear: bool = False
+
+    def solve(self, ctx, pressure, shear, product):
+        cross = ctx.substrate.cross_displacement("z", "x", pressure, ctx.first, self.friction) if self.coupled else None
+        p, delta_z, its, u_z, product = _solve_normal(ctx, _plus(ctx.known_uz, cross), pressure, product)
+        return p, (self.friction * p if self.friction else np.zeros_like(p)), delta_z, its, u_z, product, None
+
+    def solve_direct(self, ctx, pressure):
+        """The step's normal problem with the coupling inside the operator, J_inst (K_zz + mu_f K_zx),
+        which is not symmetric: the primal-dual active set with GMRES of the steady solver
+        (:func:`viscontact.numerics.active_set.solve_contact_active_set`), from ``pressure``. For a coupling too
+        strong for the fixed point. Returns (p, q, delta_z, Krylov iterations, u_z, K_zz p, None)."""
+        from viscontact.numerics.active_set import solve_contact_active_set
+
+        problem, s, sub = ctx.problem, ctx.problem.solver, ctx.substrate
+        op = sub.elastic_operator("z", ctx.first)
+
+        def apply_k(p: np.ndarray) -> np.ndarray:
+            return op.apply(p) + sub.cross_displacement("z", "x", p, ctx.first, self.friction)
+
+        p, delta_z, krylov, _ = solve_contact_active_set(
+            apply_k, ctx.gap + ctx.known_uz, control=problem.normal.control, value=ctx.value,
+            cell_area=problem.grid.cell_area, initial=pressure, tolerance=min(s.tolerance, 1e-10),
+            max_iterations=s.max_iterations, preconditioner=op.preconditioner,
+            what=f"{self.name} with the coupling in the operator")
+        product = op.apply(p)
+        u_z = product + sub.cross_displacement("z", "x", p, ctx.first, self.friction) + ctx.known_uz
+        return p, self.friction * p, delta_z, krylov, u_z, product, None
+
+    def finish(self, ctx, solution):
+        return solution
+
+
+@dataclass(frozen=True)
+class PartialSlip:
+    """Partial slip (seed Eqs. 9, 11): bounded CG for q_x in [-mu_f p, mu_f p] with slip
+    s = u_x - delta_x, alternated with the normal solve (semi-coupled: IC_zx, IC_xz ~ (1 - 2 nu)).
+
+    Total slip (the seed's): the CG's gradient is s itself, zero where stuck; delta_x is measured
+    from the first step of the contact (:attr:`State.slip_origin`): the indenter that moved before
+    it touched has dragged nothing. Incremental slip (``ctx.slip_x``, the last step's s): the
+    right-hand side is delta_x + s_prev - u_known, so the gradient is the step's change of s, zero
+    where stuck (a stuck point keeps its slip) and opposed to q where slipping (Mindlin-Deresiewicz);
+    with nothing entering the contact and a monotonic loading both give the same solution.
+    ``free_mean``: a uniform shear is in the null space of the tangential operator
+    (:meth:`~viscontact.bodies.compliance.TermSubstrate.free_mean`), so a contact over every cell is refused
+    (:func:`check_not_full_contact`)."""
+
+    friction: float
+    coupled: bool
+    name: str = "partial slip"
+    solves_shear: bool = True
+    free_mean: bool = False
+
+    def solve(self, ctx, pressure, shear, product):
+        sub, s = ctx.substrate, ctx.problem.solver
+        cross_z = sub.cross_displacement("z", "x", shear, ctx.first) if self.coupled else None
+        p, delta_z, it_n, u_z, product = _solve_normal(ctx, _plus(ctx.known_uz, cross_z), pressure, product)
+        if self.free_mean:
+            check_not_full_contact(p, ctx.t)
+        cross_x = sub.cross_displacement("x", "z", p, ctx.first) if self.coupled else None
+        bound = self.friction * p
+        op = sub.elastic_operator("x", ctx.first)
+        target = ctx.delta_x - _plus(ctx.known_ux, cross_x)
+        if ctx.slip_x is not None:
+            target += ctx.slip_x
+        sol = windowed_bounded_cg(op, target, np.clip(shear, -bound, bound),
+                                  -bound, bound, tolerance=s.tolerance, max_iterations=s.max_iterations,
+                                  what="tangential contact (partial slip)", mixed_precision=s.mixed_precision)
+        return p, sol.x, delta_z, it_n + sol.iterations, u_z, product, sol.gradient
+
+    def finish(self, ctx, solution):
+        if not self.coupled:
+            return solution
+        # the last tangential update changed the coupling term of u_z: recompute it
+        u_z = ctx.substrate.instantaneous_displacement({"z": solution.pressure, "x": solution.shear_x}, ctx.first)
+        return replace(solution, displacement_z=u_z + ctx.known_uz)
+
+
+def gross_slip_under_history(t: float, delta_x: float, force: float, load: float, mu: float) -> ParameterError:
+    """The error that stops partial slip under ``tangential.displacement_history`` at the step ``t`` [s]
+    whose contact has no stuck point left: the amplitude of delta_x [m] exceeds gross slip (the
+    friction force ``force`` [N] has reached mu_f times the ``load`` [N]). The indenter does not slide
+    on (nor back): the steps before are kept."""
+    return ParameterError(
+        "tangential.displacement_history", f"the stick zone vanished at t = {t:.6g} s (delta_x = {delta_x:.6g} m, "
+        f"Q / (mu_f W) = {force / (mu * load) if load > 0 else float('nan'):.3g}): the amplitude exceeds gross slip, "
+        "and a displacement history does not slide on; lower its amplitude, or use tangential.displacement_rate "
+        "(a ramp into gross sliding)")
+
+
+def check_not_full_contact(pressure: np.ndarray, t: float) -> None:
+    """Raise :class:`~viscontact.errors.ParameterError` when the contact covers every cell of a
+    periodic partial-slip problem whose tangential operator has a free mean: a uniform shear then
+    moves the surface by an undetermined mean displacement, q = 0 pins it nowhere, and delta_x
+    cannot fix the friction force (the solve returned any mean shear between 0 and mu_f min p:
+    Q = 0 at every delta_x, or, on an earlier solver, mu_f min p everywhere at 5e-14 m). Under a
+    prescribed delta_x nothing else determines it (a prescribed tangential force would); where part
+    of the period is out of contact, q = 0 there does. Under displacement control the contact never
+    covers the period (:func:`viscontact.physics.periodic.check_approach`)."""
+    if bool((pressure > 0).all()):
+        raise ParameterError(
+            "tangential.mode", f"partial slip with the contact covering the whole period (t = {t:.6g} s): a uniform "
+            "shear moves the periodic surface by an undetermined mean displacement, so delta_x cannot fix the "
+            "friction force; use tangential.mode = 'gross_sliding', a normal load low enough to leave part of the "
+            "period out of contact, or grid.periodic = false")
+
+
+def phase_solver(phase: int, problem: Problem, substrate: TermSubstrate) -> PhaseSolver:
+    """The solver of a phase: partial slip with friction, else the normal problem (q = mu_f p
+    when gross sliding, 0 otherwise)."""
+    mu = problem.tangential.effective_friction
+    coupled = substrate.has_coupling() and mu > 0
+    if phase == PHASE_PARTIAL_SLIP and mu > 0:
+        return PartialSlip(mu, coupled, free_mean=substrate.free_mean("x"))
+    if phase == PHASE_GROSS_SLIDING:
+        return NormalContact(mu, coupled)
+    return NormalContact(0.0, False, name="indentation")
+
+
+def _relative_change(new: np.ndarray, old: np.ndarray) -> float:
+    scale = float(np.sum(np.abs(new)))
+    return float(np.sum(np.abs(new - old))) / scale if scale > 0 else 0.0
+
+
+#: smallest relaxation weight of the coupling iteration (:func:`relaxation_weight`)
+MIN_RELAXATION = 0.02
+#: a coupling pass whose change is above this fraction of the last pass's contracts too slowly for
+#: the plain fixed point (:func:`solve_coupled`; the seed's cases shrink by about 0.1 a pass)
+SLOW_CONTRACTION = 0.7
+
+
+def relaxation_weight(weight: float, ratio: float) -> float:
+    """Relaxation weight omega of the coupling iteration x <- (1 - omega) x + omega S(x) after a pass
+    whose change shrank by ``ratio`` (>= 1: it did not shrink) under ``weight``.
+
+    The coupling term mu_f K_zx is odd in x (a skew operator), so about the solution the map S acts
+    on x through a matrix of imaginary eigenvalues +-i gamma, gamma ~ mu_f (1 - 2 nu) / (2 (1 - nu))
+    relative to K_zz: the plain iteration (omega = 1) shrinks the change by gamma, diverging beyond 1.
+    Relaxed, the change shrinks by |1 - omega -+ i omega gamma| = sqrt((1 - omega)^2 + omega^2 gamma^2),
+    smallest, gamma / sqrt(1 + gamma^2) < 1, at omega = 1 / (1 + gamma^2). gamma is read off the
+    observed ratio, gamma^2 = (ratio^2 - (1 - weight)^2) / weight^2; the weight never grows and
+    stays above :data:`MIN_RELAXATION`.
+    """
+    gamma2 = max(ratio**2 - (1.0 - weight) ** 2, 0.0) / weight**2
+    return max(min(weight, 1.0 / (1.0 + gamma2)), MIN_RELAXATION)
+
+
+def solve_coupled(solver: PhaseSolver, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray,
+                  product: np.ndarray | None = None) -> StepSolution:
+    """Fixed-point iteration of ``solver`` from (p, q) until both change by less than
+    ``solver.coupling_tolerance`` (one pass when it is not coupled); ``product``: the step's normal
+    operator applied to p, where known (each pass hands its own on to the next).
+
+    While the change shrinks from pass to pass, each pass starts from the last one's solution (the
+    seed's cases: mu_f (1 - 2 nu) / (2 (1 - nu)) < 0.1). After a pass whose change did not shrink
+    (a large mu_f (1 - 2 nu)), a solver with a direct method for the coupled operator
+    (``solve_direct``: gross sliding) solves the step with it; otherwise (partial slip)
+    under-relaxation turns on (:func:`relaxation_weight`): the next pass starts from a weighted mean
+    of its start and its solution (both satisfy the bounds and the load, so the mean does), which
+    converges where the plain iteration diverges. A converged pass's own solution is returned."""
+    settings = ctx.problem.solver
+    iterations = 0
+    change = previous = np.inf
+    weight = 1.0
+    for count in range(1, settings.max_coupling_iterations + 1):
+        p, q, delta_z, its, u_z, solved_product, slip = solver.solve(ctx, pressure, shear, product)
+        iterations += its
+        change = _relative_change(p, pressure)
+        if solver.solves_shear:
+            change = max(change, _relative_change(q, shear))
+        if not solver.coupled or change < settings.coupling_tolerance:
+            return solver.finish(ctx, StepSolution(p, q, float(delta_z), u_z, iterations, count, solved_product,
+                                                   slip))
+        if change >= SLOW_CONTRACTION * previous:
+            if hasattr(solver, "solve_direct"):  # the coupling is too strong for the fixed point
+                p, q, delta_z, its, u_z, solved_product, slip = solver.solve_direct(ctx, p)
+                return solver.finish(ctx, StepSolution(p, q, float(delta_z), u_z, iterations + its, count + 1,
+                                                       solved_product, slip))
+            weight = relaxation_weight(weight, change / previous)
+        previous = change
+        if weight == 1.0:
+            pressure, shear, product = p, q, solved_product
+        else:
+            pressure = (1.0 - weight) * pressure + weight * p
+            shear = (1.0 - weight) * shear + weight * q
+            product = (None if product is None or solved_product is None
+                       else (1.0 - weight) * product + weight * solved_product)
+    hint = ("raise solver.max_coupling_iterations" if weight == 1.0 else
+            f"it converges slowly (under-relaxed by {weight:.2g}: a large mu_f (1 - 2 nu)); raise "
+            "solver.max_coupling_iterations")
+    raise ConvergenceError(f"normal/tangential coupling ({solver.name})", settings.max_coupling_iterations,
+                           change, settings.coupling_tolerance, hint=hint)
+
+
+#: clipped points of the extrapolated warm start whose product is added by direct sums; more: one
+#: product of the warm start instead (:func:`_warm_start`)
+WARM_CLIP_POINTS = 24
+
+
+def _warm_start(substrate: TermSubstrate, state: State, k: int) -> tuple[np.ndarray, np.ndarray | None]:
+    """The warm start of step ``k``'s pressure [Pa]: the linear extrapolation of the last two steps
+    (frame fields) clipped at 0, or the last pressure at k <= 1; and the step's normal operator
+    applied to it [m] where the state's products give it (J_inst K is linear: 2 K p_-1 - K p_-2, plus
+    the direct sums of the clipped points, at most :data:`WARM_CLIP_POINTS`), else None."""
+    if k <= 1:
+        return state.pressure, None
+    linear = 2.0 * state.pressure - state.pressure_previous
+    warm = np.maximum(linear, 0.0)
+    if state.pressure_product is None or state.pressure_product_previous is None:
+        return warm, None
+    clipped = np.subtract(warm, linear, out=linear)
+    points = np.count_nonzero(clipped)
+    if points > WARM_CLIP_POINTS:
+        return warm, None
+    product = 2.0 * state.pressure_product - state.pressure_product_previous
+    if points:
+        product += substrate.elastic_operator("z", False).apply_sparse(clipped)
+    return warm, product
+
+
+def _advance_frame(problem: Problem, substrate: TermSubstrate, state: State, k: int, t: float) -> State:
+    """The state with the frame moved (gross sliding after the step at which it began: v dt per
+    step, the history shifted by a cell every steps_per_cell steps) or delta_x ramped or following its
+    history (partial slip)."""
+    tan, dt = problem.tangential, problem.time.dt
+    if state.phase == PHASE_GROSS_SLIDING and k > 0 and state.t_gross_sliding is not None \
+            and t > state.t_gross_sliding + 0.5 * dt:
+        histories, wake, substep = state.histories, state.wake, state.substep + 1
+        if substep == tan.steps_per_cell:
+            substep = 0
+            histories, dropped = substrate.shifted(histories, 1)
+            if substrate.normal_history in dropped:
+                wake = wake.dropped(dropped[substrate.normal_history])
+        wake = wake.ticked(substrate.responses[substrate.normal_history], dt)
+        return replace(state, sliding_distance=state.sliding_distance + tan.sliding_speed * dt,
+                       delta_x=state.delta_x + tan.sliding_speed * dt, substep=substep, histories=histories,
+                       wake=wake, response=state.response if histories is state.histories else None)
+    if state.phase == PHASE_PARTIAL_SLIP:
+        return replace(state, delta_x=tan.delta_x(t))
+    return state
+
+
+def step(problem: Problem, substrate: TermSubstrate, state: State,
+         frame_gaps: FrameGaps | None = None) -> tuple[State, StepRecord]:
+    """Advance ``state`` by one time step; returns the new state and the step's record (``state``
+    itself is left as it was). ``frame_gaps``: the gap's arrays on the substrate's device
+    (:meth:`~viscontact.problem.problem.Problem.frame_gaps`; :func:`steps` moves them there once), else moved
+    for this step."""
+    grid, tan = problem.grid, problem.tangential
+    k = state.step + 1
+    t = k * problem.time.dt
+    first = k == 0
+    mu = tan.effective_friction
+
+    state = _advance_frame(problem, substrate, state, k, t)
+    offset = state.substep * grid.spacing / tan.steps_per_cell if tan.slides else 0.0
+    solver = phase_solver(state.phase, problem, substrate)
+    if solver.solves_shear and state.response is not None:
+        # partial slip needs u_x of the traction history anyway, and ends in sliding, whose first
+        # frame shift would drop the response history: it is not kept up
+        state = replace(state, response=None)
+    if state.response is not None:
+        known_uz, known_ux = substrate.known_from_response(state.response, t, first), None
+    else:
+        known_uz, known_ux = substrate.known_displacement(state.histories, t, first, need_x=solver.solves_shear)
+    gap = problem.frame_gap(offset)  # on the host, for the record
+    backend = substrate.backend
+    if backend.is_cpu:
+        device_gap = gap
+    else:
+        device_gap = (frame_gaps or problem.frame_gaps(backend.to_device)).at(offset)
+    # partial slip, total slip: the stuck points move with the indenter since the contact began (this
+    # step, when the last one had none); incremental slip: they keep the slip of the last step
+    origin = state.delta_x if state.slip_origin is None else state.slip_origin
+    incremental = solver.solves_shear and state.slip_x is not None
+    ctx = StepContext(problem, substrate, k, t, first, device_gap, known_uz, known_ux,
+                      problem.normal.history(t), state.delta_x if incremental else state.delta_x - origin,
+                      state.slip_x if incremental else None)
+    p0, p0_product = _warm_start(substrate, state, k)
+    q0 = 2.0 * state.shear_x - state.shear_previous if k > 1 else state.shear_x
+    sol = solve_coupled(solver, ctx, p0, q0, p0_product)
+    p, q = sol.pressure, sol.shear_x
+    # what the record keeps, on the host (the same arrays on the CPU: :mod:`viscontact.numerics.arrays`)
+    to_host = backend.to_host
+    p_host, q_host, u_z = to_host(p), to_host(q), to_host(sol.displacement_z)
+
+    contact = p_host > 0
+    n_contact = int(contact.sum())
+    stick = (contact & (np.abs(q_host) < mu * p_host * (1 - STICK_MARGIN)) if solver.solves_shear
+             else np.zeros_like(contact))
+    # no contact: nothing sticks or slips (undefined in partial slip; zero by definition in the other modes)
+    stick_ratio = (float(stick.sum()) / n_contact if n_contact else
+                   float("nan") if tan.mode == "partial_slip" else 0.0)
+
+    # -- commit: gross sliding begins when the stick zone of a contact vanishes (no contact: the phase
+    # stays; once sliding, it stays)
+    phase, t_gross = state.phase, state.t_gross_sliding
+    if phase == PHASE_PARTIAL_SLIP and n_contact and (not stick.any() or mu == 0):
+        if tan.displacement_history is not None:
+            raise gross_slip_under_history(t, state.delta_x, float(q_host.sum() * grid.cell_area),
+                                           float(p_host.sum() * grid.cell_area), mu)
+        phase, t_gross = PHASE_GROSS_SLIDING, t
+    slip_x = None
+    if incremental and phase == PHASE_PARTIAL_SLIP:
+        # s_x at the end of the step: a stuck point keeps the last step's exactly (its change is zero
+        # to the solve's tolerance), the others add the change the solve found
+        stuck = (p > 0) & (np.abs(q) < mu * p * (1 - STICK_MARGIN))
+        slip_x = np.where(stuck, state.slip_x, state.slip_x + sol.slip)
+    state = replace(state, step=k, t=t, phase=phase, t_gross_sliding=t_gross,
+                    slip_origin=origin if n_contact else None, slip_x=slip_x,
+                    histories=substrate.advanced(state.histories, {"z": p, "x": q}, t, first),
+                    pressure_previous=state.pressure, shear_previous=state.shear_x,
+                    pressure=p, shear_x=q, delta_z=sol.delta_z,
+                    pressure_product_previous=state.pressure_product,
+                    pressure_product=None if first else sol.pressure_product,
+                    response=None if state.response is None else
+                    substrate.advanced_response(state.response, p, sol.pressure_product, t, first))
+
+    # -- record
+    load = float(p_host.sum() * grid.cell_area)
+    check_solution(problem, p_host, load, ctx.value)
+    f_t = hysteresis_force(p_host, u_z, grid, grid.periodic) if tan.slides else 0.0
+    wake = _wake_loss(problem, substrate, state, p_host, f_t / load if load > 0 else 0.0, sol.delta_z)
+    record = StepRecord(
+        step=k, t=t, phase=phase, load=load, delta_z=sol.delta_z, delta_x=state.delta_x,
+        sliding_distance=state.sliding_distance, contact_area=n_contact * grid.cell_area,
+        stick_ratio=stick_ratio, friction_force=float(q_host.sum() * grid.cell_area),
+        hysteresis_force=f_t, mu_app=f_t / load if load > 0 else 0.0,
+        contact_shift=pressure_centroid(p_host, grid) - offset, frame_offset=offset, wake_loss=wake,
+        iterations=sol.iterations, coupling_iterations=sol.coupling_iterations,
+        **asdict(roughness_metrics(p_host, gap + u_z - sol.delta_z, grid.periodic)),
+        pressure=p_host, shear_x=q_host, stick=stick, displacement_z=u_z,
+    )
+    return state, record
+
+
+def _wake_loss(problem: Problem, substrate: TermSubstrate, state: State, pressure: np.ndarray, mu_app: float,
+               delta_z: float) -> float:
+    """Estimated relative error of the result from the history dropped at the trailing edge:
+    |d mu_app| / |mu_app| from the slope of the lost displacement, and under displacement control
+    also the load error 3/2 u_lost / delta_z (W ~ delta^(3/2) for a sphere)."""
+    if not state.wake.strips:
+        return 0.0
+    u_lost, slope = state.wake.lost_displacement(substrate.responses[substrate.normal_history],
+                                                 problem.material.poisson_ratio, problem.grid, problem.time.dt,
+                                                 pressure)
+    err = abs(slope) / max(abs(mu_app), 1e-3)
+    if problem.normal.control == "displacement" and delta_z > 0:
+        err = max(err, 1.5 * abs(u_lost) / delta_z)
+    return float(err)
+
+
+def steps(problem: Problem, *, progress: Callable[[int, int], None] | None = None,
+          state: State | None = None, substrate: TermSubstrate | None = None) -> Iterator[tuple[State, StepRecord]]:
+    """Run the transient one step at a time: yields (state after the step, its full record).
+
+    Stopping the iteration between two steps leaves a consistent state (what checkpoints and
+    interruptions rely on); what is kept, warned or saved is up to the caller's observers
+    (:mod:`viscontact.running.observers`). The first call sets the C allocator for the solver's temporaries
+    (:func:`viscontact.numerics.allocator.tune_allocator`).
+
+    Parameters
+    ----------
+    problem
+        What to solve.
+    progress
+        Called as ``progress(steps_done, steps_total)`` after each step.
+    state, substrate
+        Resume from a state (e.g. a checkpoint) / reuse a substrate.
+    """
+    tune_allocator()  # reuse freed temporaries instead of faulting them in again (glibc; opt-out documented)
+    substrate = substrate or substrate_for(problem)
+    state = state or init(problem, substrate)
+    total = problem.time.n_steps
+    # the gap on the substrate's device, moved there once (each step shifts it there)
+    frame_gaps = None if substrate.backend.is_cpu else problem.frame_gaps(substrate.backend.to_device)
+    while state.step + 1 < total:
+        state, record = step(problem, substrate, state, frame_gaps)
+        if progress is not None:
+            progress(state.step + 1, total)
+        yield state, record
