@@ -14,7 +14,7 @@ and the shear creep compliance follows exactly from the Laplace relation J^(s) G
 where J_0 = 1/G(0), J_inf = 1/g_inf, and the retardation times lambda_m are the negative
 reciprocals of the roots of s G^(s). Those roots interlace with the relaxation rates 1/tau_i, one
 in each gap, so each is found by bracketed root finding on the secular equation (see
-:meth:`Material.creep`); this stays accurate for 40 terms over 15 decades, where the roots of the
+:meth:`Material.creep`, :mod:`viscontact.physics.prony`); this stays accurate for 40 terms over 15 decades, where the roots of the
 expanded polynomial do not.
 
 Time-temperature superposition (Williams, Landel & Ferry 1955): at temperature T every
@@ -30,6 +30,7 @@ import numpy as np
 
 from viscontact.errors import ParameterError
 from viscontact.numerics.exponentials import CreepSpectrum
+from viscontact.physics.prony import retardation_spectrum
 
 #: multipliers of the modulus units of a Prony table (Pa, kPa, MPa, GPa) to Pa
 MODULUS_UNITS = {"Pa": 1.0, "kPa": 1.0e3, "MPa": 1.0e6, "GPa": 1.0e9}
@@ -69,58 +70,6 @@ def wlf_shift_factor(temperature: float, reference_temperature: float, c1: float
                              f"floating-point range; move temperature closer to reference_temperature "
                              f"= {reference_temperature:g} degC")
     return float(10.0 ** log_a)
-
-
-def _retardation_spectrum(g_inf: float, g: np.ndarray, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Amplitudes J_m [1/Pa] and retardation times lambda_m [s] of G = g_inf + sum g_i exp(-t/tau_i).
-
-    With r_i = 1/tau_i (ascending), G_0 = g_inf + sum g_i and w_i = g_i r_i / G_0, the retardation
-    rates x_m = 1/lambda_m are the roots of the secular equation (s G^(s) = 0 at s = -x)
-
-        f(x) = 1 - sum_i w_i / (r_i - x) = 0,
-
-    decreasing between its poles, with exactly one root in (0, r_1) and one in each (r_i, r_{i+1}).
-    Each root is bracketed and found in the offset delta = x - o from the nearer end o of its gap,
-    with r_i - x = (r_i - o) - delta, so the distance to the nearest pole keeps full relative
-    precision (as in LAPACK's dlaed4). The residue of J^(s) = 1/(s * sG^(s)) at s = -x_m gives
-    J_m = 1 / (x_m G_0 sum_i w_i / (r_i - x_m)^2).
-    """
-    from scipy.optimize import brentq  # here: scipy.optimize takes half a second to import
-
-    rates = 1.0 / tau
-    order = np.argsort(rates)
-    rates, g = rates[order], g[order]
-    g0 = g_inf + g.sum()
-    weights = g * rates / g0
-    lows = np.concatenate([[0.0], rates[:-1]])
-    amplitudes = np.empty(rates.size)
-    retardation_rates = np.empty(rates.size)
-    # the secular function is infinite at its poles: an end of a bracket within round-off of one (times
-    # 1 ulp apart, times of 1e-300 s) overflows to inf, of the right sign (numpy's warning is noise)
-    with np.errstate(over="ignore", divide="ignore"):
-        for m, (lo, hi) in enumerate(zip(lows, rates)):
-            mid = lo + 0.5 * (hi - lo)
-            below = 1.0 - np.sum(weights / (rates - mid)) > 0  # f decreasing: root above mid
-            origin = hi if below else lo
-            diff = rates - origin
-
-            def secular(delta: float) -> float:
-                return 1.0 - float(np.sum(weights / (diff - delta)))
-
-            span = mid - origin
-            tiny = abs(span) * 1e-300 if (origin > 0) else 0.0
-            a, b = (span, -tiny) if below else (tiny, span)
-            if secular(a) * secular(b) > 0:  # the root sits within round-off of mid
-                delta = span
-            else:
-                delta = brentq(secular, a, b, xtol=abs(span) * 1e-300 + 1e-320, rtol=4 * np.finfo(float).eps,
-                               maxiter=400)
-            gaps = diff - delta
-            retardation_rates[m] = origin + delta
-            amplitudes[m] = 1.0 / (retardation_rates[m] * g0 * np.sum(weights / gaps**2))
-    lam = 1.0 / retardation_rates
-    order = np.argsort(lam)
-    return amplitudes[order], lam[order]
 
 
 @dataclass(frozen=True)
@@ -260,13 +209,13 @@ class Material:
         s G^(s) = g_inf + sum_i g_i s / (s + 1/tau_i); J^(s) = 1/(s * sG^(s)) has its poles
         s_m = -1/lambda_m at the zeros of sG^(s), one between each pair of neighbouring
         relaxation rates and one below the smallest, and the residue there is -J_m
-        (:func:`_retardation_spectrum`). Terms with equal relaxation times are merged first.
+        (:func:`viscontact.physics.prony.retardation_spectrum`). Terms with equal relaxation times are merged first.
         """
         if self.is_elastic:
             return CreepSpectrum(1.0 / self.g_inf, np.zeros(0), np.zeros(0))
         tau, index = np.unique(np.asarray(self.tau), return_inverse=True)
         g = np.bincount(index, weights=np.asarray(self.g), minlength=tau.size)
-        amplitudes, lam = _retardation_spectrum(self.g_inf, g, tau)
+        amplitudes, lam = retardation_spectrum(self.g_inf, g, tau)
         return CreepSpectrum(1.0 / self.shear_modulus_instantaneous, amplitudes, lam)
 
     def creep_compliance(self, t: np.ndarray | float) -> np.ndarray:
