@@ -392,7 +392,7 @@ def _check_result_name(out: str) -> None:
 
 def _parse_positive(text: str, option: str, unit: str, example: str) -> list[float]:
     """Comma-separated finite numbers > 0, each once (``--speeds``, ``--times``)."""
-    from viscontact.running.guards import positive_values
+    from viscontact.io.values import positive_values
 
     try:
         values = [float(s) for s in text.split(",") if s.strip()]

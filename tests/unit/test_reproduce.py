@@ -10,7 +10,8 @@ import pytest
 from viscontact import cli
 from viscontact.io.case import load_case
 from viscontact.errors import ParameterError
-from viscontact.running.guards import TIME_WARNING_LIMIT, time_step_error
+from viscontact.running.guards import TIME_WARNING_LIMIT
+from viscontact.solvers.time_step_error import time_step_error
 from viscontact.problem.problem import PHASE_GROSS_SLIDING
 from viscontact.reproduce import FIGURES, find_cases_dir, load_seed_case, record_every, run_seed_cases, time_scale
 from viscontact.io.netcdf import open_result

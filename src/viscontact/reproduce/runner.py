@@ -99,13 +99,14 @@ def stable_steps(case: Case) -> tuple[Case, str]:
     At half the limit it decays by a factor 0.03 (G(0)/G(inf) = 10) to 0.3 (= 3) per step. A case
     whose ``time.dt`` follows the grid gets ``tangential.steps_per_cell`` k times larger, one that
     gives ``time.dt`` a k times smaller one. The linear scheme is stable for every step. Then (either
-    scheme) the step is halved until :func:`viscontact.running.guards.time_step_error` is under the guards'
+    scheme) the step is halved until :func:`viscontact.solvers.time_step_error.time_step_error` is under the guards'
     warning limit, so that a coarse preview is neither refused nor warned about.
     """
     from dataclasses import replace
 
     from viscontact.numerics.schemes import stable_step_limit
-    from viscontact.running.guards import TIME_WARNING_LIMIT, time_step_error
+    from viscontact.running.guards import TIME_WARNING_LIMIT
+    from viscontact.solvers.time_step_error import time_step_error
 
     dt = case.default_dt()
     k, why = 1, ""

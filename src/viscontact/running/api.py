@@ -369,7 +369,7 @@ def run_steady(case: CaseLike, speeds: Sequence[float] | None = None) -> xr.Data
         numbers > 0 m/s, each given once (key ``speeds``).
     """
     from viscontact.io.results import sweep_dataset, to_dataset
-    from viscontact.running.guards import positive_values
+    from viscontact.io.values import positive_values
     from viscontact.solvers.steady import solve_steady, speed_sweep
 
     problem, text = prepare(case, transient=False)

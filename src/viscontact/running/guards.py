@@ -24,8 +24,9 @@ closed-form contact mechanics and from the time scheme applied to one point:
   one point of a contact whose area does not change: under displacement control the traction
   responds to the approach history delta(t) through the relaxation modulus G(t); under load control the displacement
   responds to the load history W(t) through the creep compliance J(t). Both are compared with the
-  exact hereditary integrals of the piecewise-linear history (seed Eq. 5 with dt -> 0). This
-  compares dt with the relaxation and retardation times and with the time scale of the loading.
+  exact hereditary integrals of the piecewise-linear history (seed Eq. 5 with dt -> 0;
+  :mod:`viscontact.solvers.time_step_error`). This compares dt with the relaxation and retardation
+  times and with the time scale of the loading.
 
 An estimated error above the error limit raises :class:`~viscontact.errors.ParameterError` (the
 answer cannot be trusted); above the warning limit a :class:`~viscontact.errors.ViscontactWarning`
@@ -39,13 +40,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from viscontact.errors import ParameterError, warn_caller
-from viscontact.numerics.history import PronyHistory
-from viscontact.numerics.schemes import stable_step_limit, step_coefficients
+from viscontact.numerics.hereditary import hereditary_integral
+from viscontact.numerics.schemes import stable_step_limit
 from viscontact.physics.materials import Material
-from viscontact.problem.problem import PiecewiseLinear, Problem, is_number
+from viscontact.problem.problem import PiecewiseLinear, Problem
+from viscontact.solvers.time_step_error import time_step_error
 
 __all__ = ["ContactEstimate", "check_material", "check_problem", "contact_estimate",
-           "flat_face_cells", "flat_face_grid", "grid_suggestion", "peak_pressure_error", "time_step_error"]
+           "flat_face_cells", "flat_face_grid", "grid_suggestion", "peak_pressure_error"]
 
 #: estimated relative errors of the peak pressure above which a run is refused / warned about
 ERROR_LIMIT, WARNING_LIMIT = 0.10, 0.05
@@ -71,9 +73,6 @@ TURNING_POINT_MISS = 0.01
 #: launches there (seed Table 1 at 256^2 through the command line: 23.8 s on an H200 against 11.0 s
 #: on its host's 16 cores; at 1024^2 the GPU steps 5.4 times as fast: BENCHMARKS.md)
 GPU_SMALL_GRID = 512
-#: the time-step check runs the scheme over at most this many steps (the response has settled by then
-#: or the estimate is taken over the first part of the run)
-MAX_CHECKED_STEPS = 4000
 
 
 @dataclass(frozen=True)
@@ -278,107 +277,6 @@ def _check_space(problem: Problem, transient: bool) -> None:
 
 
 # --- the time step -------------------------------------------------------------------------------
-#: sub-steps per time step of the reference hereditary integrals
-REFERENCE_REFINEMENT = 16
-#: the time-step error of a step is relative to the exact value at that step, but not to less than this
-#: fraction of the largest exact value (a value that passes through zero, e.g. an approach released)
-RELATIVE_FLOOR = 0.05
-
-
-def hereditary_integral(kernel_inf: float, amplitudes: np.ndarray, times: np.ndarray, f: np.ndarray,
-                        h: float) -> np.ndarray:
-    """y(t_j) = int_0^t_j K(t_j - s) df(s) [units of K x f] on the uniform times t_j = j h, for
-    K(t) = kernel_inf + sum_i amplitudes_i exp(-t / times_i) and f linear between its samples ``f``
-    with a step of f[0] at t = 0. Exact for that f (recursion over the exponentials, seed Eq. 6)."""
-    y = kernel_inf * f
-    slope = np.diff(f, prepend=f[0]) / h
-    for amplitude, time in zip(np.atleast_1d(amplitudes), np.atleast_1d(times)):
-        drive = slope * time * -math.expm1(-h / time)
-        drive[0] = f[0]
-        y = y + amplitude * _exponential_filter(drive, h / time)
-    return y
-
-
-def _exponential_filter(drive: np.ndarray, rate: float) -> np.ndarray:
-    """y_j = exp(-rate) y_(j-1) + drive_j (y_(-1) = 0), vectorised in blocks short enough for
-    exp(rate k) not to overflow: y_(s+k) = exp(-rate k) (exp(-rate) y_(s-1) + sum_i exp(rate i) drive_(s+i))."""
-    out = np.empty_like(drive)
-    block = max(1, min(drive.size, int(200.0 / max(rate, 1e-300))))
-    carry = 0.0
-    for start in range(0, drive.size, block):
-        k = np.arange(min(block, drive.size - start))
-        seg = np.exp(-rate * k) * (math.exp(-rate) * carry + np.cumsum(drive[start:start + k.size] * np.exp(rate * k)))
-        out[start:start + k.size] = seg
-        carry = seg[-1]
-    return out
-
-
-def _scheme_response(problem: Problem, driving: np.ndarray) -> np.ndarray:
-    """The time scheme of :mod:`viscontact.solvers.transient` on one point: the traction under the
-    displacements ``driving`` (displacement control) or the displacement under the tractions
-    ``driving`` (load control), at the steps t_k = k dt."""
-    spectrum, dt, scheme = problem.material.creep, problem.time.dt, problem.time.scheme
-    first, regular = (step_coefficients(spectrum, dt, scheme, f) for f in (True, False))
-    hist = PronyHistory.zeros(spectrum.retardation_times.size, 1)
-    out = np.empty(driving.size)
-    for k, value in enumerate(driving):
-        coef = first if k == 0 else regular
-        r = float(hist.known(coef, k * dt)[0, 0])
-        if problem.normal.control == "displacement":
-            p = out[k] = (value - r) / coef.instantaneous
-        else:
-            p, out[k] = value, coef.instantaneous * value + r
-        hist = hist.advanced(np.full((1, 1), p), coef, k * dt)
-    return out
-
-
-def time_step_error(problem: Problem) -> float:
-    """Estimated relative error [-] of the transient from the time discretisation alone.
-
-    The scheme runs on one point of the Lee & Radok (1960) solution for a sphere, whose exact values
-    are hereditary integrals of the normal history computed on a grid :data:`REFERENCE_REFINEMENT`
-    times finer (:func:`hereditary_integral`):
-
-    * displacement control: the contact radius is held by the approach, the traction at a point
-      follows int G(t - s) d delta(s); the scheme is driven by delta(t_k) and returns the traction;
-    * load control: a(t)^3 ~ int J(t - s) dW(s) grows, the centre pressure is ~ int G(t - s) da(s)
-      and the centre displacement ~ a(t); the scheme is driven by the centre pressure and returns
-      the displacement.
-
-    Returns the largest difference over the run (at most :data:`MAX_CHECKED_STEPS` steps) relative to
-    the largest exact value under load control; under displacement control relative to the exact
-    value at its step, or to :data:`RELATIVE_FLOOR` of the largest where that is larger (the traction
-    relaxes by G(0)/G(inf): relative to the largest value, the first, errors of 20 % and more late in
-    the run passed unseen); 0 for an elastic material.
-    """
-    mat = problem.material
-    if mat.is_elastic:
-        return 0.0
-    n_steps = min(problem.time.n_steps, MAX_CHECKED_STEPS)
-    h = problem.time.dt / REFERENCE_REFINEMENT
-    fine = np.arange((n_steps - 1) * REFERENCE_REFINEMENT + 1) * h
-    history = np.array([problem.normal.history(t) for t in fine]) if len(problem.normal.history.times) > 1 \
-        else np.full(fine.size, problem.normal.history.reference)
-    relaxation = (mat.g_inf, np.array(mat.g), np.array(mat.tau))
-    creep = mat.creep
-    if problem.normal.control == "displacement":
-        driving = history
-        exact = hereditary_integral(*relaxation, history, h)
-    else:
-        compliance = hereditary_integral(creep.long_term, -creep.amplitudes, creep.retardation_times, history, h)
-        exact = np.cbrt(np.maximum(compliance, 0.0))
-        driving = hereditary_integral(*relaxation, exact, h)
-    driving, exact = driving[::REFERENCE_REFINEMENT], exact[::REFERENCE_REFINEMENT]
-    scale = float(np.max(np.abs(exact)))
-    if not scale > 0:
-        return 0.0
-    # under a held approach the traction relaxes by G(0)/G(inf): each step against its own value; under
-    # load control the contact only grows, and the largest value is the scale the limits were set on
-    reference = (np.maximum(np.abs(exact), RELATIVE_FLOOR * scale) if problem.normal.control == "displacement"
-                 else scale)
-    return float(np.max(np.abs(_scheme_response(problem, driving) - exact) / reference))
-
-
 def _check_time(problem: Problem) -> None:
     dt = problem.time.dt
     if dt > stable_step_limit(problem.material.creep, problem.time.scheme):
@@ -501,33 +399,6 @@ def check_material(material: Material) -> None:
     if not np.all(np.isfinite(values)) or not np.all(values > 0):
         raise ParameterError(key, "the moduli and times give no finite creep compliance; check the moduli (Pa) "
                              "and times (s)")
-
-
-def positive_values(values: object, key: str, unit: str, given: str | None = None) -> list[float]:
-    """``values`` (a sequence of numbers) as a list of floats after checking that it is not empty and
-    that each is a finite number > 0 given once (a coordinate along them, ``speed`` or a time, would
-    repeat a value): the speeds of a steady speed curve, the times of ``plot --times``.
-
-    Raises
-    ------
-    ParameterError
-        Naming ``key`` and ``unit``, quoting ``given`` (the text typed) or the values.
-    """
-    shown = given if given is not None else repr(values)
-    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
-        raise ParameterError(key, f"must be a list of numbers in {unit}, got {shown}")
-    values = list(values)
-    if not all(is_number(v) for v in values):
-        raise ParameterError(key, f"must be a list of numbers in {unit}, got {shown}")
-    values = [float(v) for v in values]
-    if not values:
-        raise ParameterError(key, f"must list at least one number in {unit}, got {shown}")
-    if any(not 0 < v < float("inf") for v in values):
-        raise ParameterError(key, f"every value must be a finite number > 0 {unit}, got {shown}")
-    twice = sorted({v for v in values if values.count(v) > 1})
-    if twice:  # a result along them would have a coordinate with repeated values
-        raise ParameterError(key, f"{', '.join(f'{v:g}' for v in twice)} {unit} is listed more than once, got {shown}")
-    return values
 
 
 def check_problem(problem: Problem, *, transient: bool = True) -> None:
