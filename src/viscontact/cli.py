@@ -19,7 +19,6 @@ shown on stderr; warnings are at level ``warning``).
 from __future__ import annotations
 
 import argparse
-import errno
 import logging
 import os
 import shlex
@@ -129,8 +128,9 @@ def _add_run(sub: Any) -> None:
                    help="continue from RESULT.nc.checkpoint.npz (same case file) and the records streamed to "
                         "RESULT.nc.partial, and overwrite RESULT.nc")
     p.add_argument("--dry-run", action="store_true",
-                   help="validate the case and print the estimated result size, peak memory and run time; "
-                        "run nothing")
+                   help="make every check of the run (this machine's too: a GPU case where CuPy or a CUDA device "
+                        "is missing is refused as its run would be) and print the estimated result size, peak "
+                        "memory and run time; run nothing")
     p.set_defaults(handler=_cmd_run)
 
 
@@ -372,16 +372,20 @@ def _writing(out: str, derived: Sequence[str] = ()) -> Iterator[None]:
 
 
 def _prepare(args: argparse.Namespace) -> Any:
-    """The case with its overrides, after checking (before any computing) that the result file may
-    be written and that plotting is available (inside :func:`_writing`)."""
-    from viscontact.io.output_files import check_output_path
+    """The :class:`~viscontact.running.preflight.Preflight` of the case with its overrides for the result
+    file ``--out``, after checking that plotting is available (inside :func:`_writing`), before any
+    computing: for ``run`` (its ``--dry-run`` too) with its resource estimate, refusing to throw away an
+    interrupted run's steps; for ``steady`` the steady solver's checks."""
+    from viscontact.running.preflight import preflight
 
     case = _load(args)
-    check_output_path(args.out, force=args.force or getattr(args, "resume", False),
-                      inputs=[args.case, *case.input_files().values()])
     if args.plots:
         _check_figures(args)
-    return case
+    checks: dict[str, bool] = ({"checkpoints": bool(args.checkpoint_every), "interrupted": True, "resources": True}
+                               if args.command == "run" else  # steady: each speed of a curve checked by the solver
+                               {"transient": False, "validate": args.speeds is None})
+    return preflight(case, out=args.out, force=args.force, resume=getattr(args, "resume", False),
+                     inputs=[args.case], **checks)
 
 
 def _check_result_name(out: str) -> None:
@@ -431,7 +435,7 @@ def _report(ds: Any, records: int, args: argparse.Namespace, started: float) -> 
     """Draw the figures of the result ``ds`` (with ``--plots``) and print what was written."""
     written = [Path(args.out)]
     if args.plots:
-        from viscontact.plotting import plot_any  # imported before the run by _prepare when --plots is given
+        from viscontact.plotting import plot_any  # imported before the run by _check_figures when --plots is given
 
         written += plot_any(ds, args.plots, fmt=args.fmt, dpi=args.dpi)
     if not args.quiet:
@@ -455,29 +459,12 @@ def _run_locked(args: argparse.Namespace, started: float) -> int:
     """``viscontact run`` once this process alone writes ``--out`` (:func:`_writing`): an
     ``OUT.partial`` there is the steps of an interrupted run, not of a run going on."""
     from viscontact.io.netcdf import open_result
-    from viscontact.io.streaming import check_partial_path
     from viscontact.running import api
-    from viscontact.running.guards import check_material
-    from viscontact.running.resources import check_resources, describe
+    from viscontact.running.resources import describe
 
-    case = _prepare(args)
-    partial = check_partial_path(args.out)  # a folder there is in the way, not an interrupted run's steps
-    if partial.exists() and not (args.force or args.resume):
-        raise FileExistsError(errno.EEXIST, "holds the steps of an interrupted run: --resume continues it (with its "
-                              "checkpoint), --force starts over", str(partial))
-    written = partial.stat().st_size if args.resume and partial.exists() else 0  # a resume's records so far
-    outline = case.problem_outline()  # the estimate's sizes, before any n x n array
-    check_material(outline.material)  # the estimate reads its creep spectrum
-    estimate = check_resources(outline, args.out, force=args.force, checkpoints=bool(args.checkpoint_every),
-                               written_bytes=written)  # the outline says whether SurfaceTopography makes its gap
-    if args.dry_run:  # a run prepares its problem in run_to_file
-        from viscontact.numerics.arrays import array_backend
-        from viscontact.solvers.transient import validate
-
-        problem, _ = api.prepare(case)
-        validate(problem)
-        array_backend(problem.solver.device)  # 'gpu' without a CUDA device: one line, as the run would
-        print(describe(problem, estimate))
+    checked = _prepare(args)
+    if args.dry_run:  # the run's every check made, this machine's included
+        print(describe(checked.problem, checked.estimate))
         return 0
     if args.resume:  # what the killed run's writes left half way
         from viscontact.io.output_files import remove_temporaries
@@ -485,7 +472,7 @@ def _run_locked(args: argparse.Namespace, started: float) -> int:
         remove_temporaries(args.out)
         remove_temporaries(api.checkpoint_path(args.out))
     with _bar(args, "step") as bar, _stop_on_signals() as signals:
-        written = api.run_to_file(case, args.out, progress=bar.update, checkpoint_every=args.checkpoint_every,
+        written = api.run_to_file(checked, args.out, progress=bar.update, checkpoint_every=args.checkpoint_every,
                                   resume=args.resume, should_stop=signals.should_stop, history=_history_note(args),
                                   require_space=not args.force, finishing=signals.finish, force=args.force)
     _report(open_result(written.path) if args.plots else None, written.records, args, started)
@@ -537,8 +524,8 @@ def _cmd_steady(args: argparse.Namespace) -> int:
     started = time.perf_counter()
     speeds = _parse_positive(args.speeds, "--speeds", "m/s", "0.01,0.1,1") if args.speeds is not None else None
     with _writing(args.out):
-        case = _prepare(args)
-        _finish(api.run_steady(case, speeds), args, started)
+        checked = _prepare(args)
+        _finish(api.run_steady(checked, speeds), args, started)
     return 0
 
 

@@ -3,7 +3,7 @@
 ``solver.device = "gpu"`` is made to mean the emulated device (tests/emulated_device.py: numpy behind
 CuPy's rules, a host array leaking into the device path raises) with the GPU backend's window sides
 (:func:`viscontact.numerics.arrays.device_fast_length`): :func:`viscontact.numerics.arrays.cupy_backend` returns it, and
-``SolverSettings``' check that CuPy is installed finds it. The command line runs in this process
+the run's check that CuPy is installed (:func:`viscontact.numerics.arrays.array_backend`) finds it. The command line runs in this process
 (``cli.main``), so the substitution holds there too.
 """
 from __future__ import annotations
@@ -129,3 +129,48 @@ def test_the_cpu_runs_memory_and_time_estimates_only_warn_on_a_gpu(gpu, tmp_path
     for key in ("grid.n", "time.t_end"):
         assert f"warning: {key}:" in err and "the CPU run's estimate: solver.device = 'gpu' runs it" in err
     assert cli.main(["run", *creep, "--quiet", *GPU]) == 0 and out.exists()
+
+
+# --- the settings describe, the run decides: a GPU case anywhere, its run refused where it cannot run ----
+
+@pytest.fixture
+def no_cupy(monkeypatch):
+    """A machine without CuPy, whether or not this one has it."""
+    find_spec = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a, **k: None if name == "cupy" else
+                        find_spec(name, *a, **k))
+
+
+def test_a_gpu_case_loads_validates_estimates_and_fingerprints_without_cupy(no_cupy):
+    """``solver.device = "gpu"`` describes the run: on a machine without CuPy the case loads, becomes a
+    problem that passes the guards and the solver's checks, is estimated and fingerprinted (a sweep's
+    plan, a laptop's estimate); only the machine's check refuses it, naming the extra to install."""
+    from viscontact.io.case import load_case
+    from viscontact.io.checkpoint import problem_fingerprint
+    from viscontact.running.preflight import check_machine, preflight
+    from viscontact.running.resources import estimate
+
+    case = load_case(CASES / "creep_indentation.toml").with_overrides({"solver.device": "gpu", "grid.n": 512})
+    checked = preflight(case, machine=False)
+    problem = checked.problem
+    assert problem.solver.device == "gpu" and checked.text == case.text
+    assert estimate(problem).result_bytes > 0
+    cpu = dataclasses.replace(problem, solver=dataclasses.replace(problem.solver, device="cpu"))
+    assert problem_fingerprint(problem) == problem_fingerprint(cpu)  # the device shapes no result
+    with pytest.raises(ParameterError) as err:
+        check_machine(problem)
+    assert err.value.key == "solver.device" and "viscontact[gpu]" in err.value.message
+
+
+@pytest.mark.parametrize("dry_run", [False, True])
+def test_a_gpu_run_without_cupy_is_one_line_and_exit_2_before_anything_is_written(no_cupy, tmp_path, capsys, dry_run):
+    """The refusal moved from the case's loading to the run's start: ``viscontact run`` and its
+    ``--dry-run`` (the run would be refused on this machine) still stop with the one line naming the
+    key and the extra, status 2, nothing written."""
+    out = tmp_path / "r.nc"
+    assert cli.main(["run", str(CASES / "creep_indentation.toml"), "--out", str(out), *GPU, "--set", "grid.n=512",
+                     *(["--dry-run"] if dry_run else [])]) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("viscontact: error: solver.device: 'gpu' needs the optional "
+                                                   "package CuPy"), lines
+    assert "viscontact[gpu]" in lines[0] and not list(tmp_path.iterdir())

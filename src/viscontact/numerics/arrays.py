@@ -115,16 +115,27 @@ CPU = ArrayBackend("cpu", np, scipy.fft, np.asarray)
 def array_backend(device: str) -> ArrayBackend:
     """The backend of ``solver.device``: :data:`CPU` for ``"cpu"``, :func:`cupy_backend` for ``"gpu"``.
 
+    The run decides here, not the case's settings: a ``"gpu"`` case loads, validates and is estimated
+    on any machine; the run (its preflight, :func:`viscontact.running.preflight.check_machine`) is
+    refused on one without CuPy or a CUDA device.
+
     Raises
     ------
     ParameterError
-        ``"gpu"`` without CuPy or a CUDA device, or an unknown device.
+        ``"gpu"`` without CuPy installed (naming the extra to install) or without a CUDA device, or an
+        unknown device.
     """
+    import importlib.util
+
     from viscontact.errors import ParameterError
 
     if device == "cpu":
         return CPU
     if device == "gpu":
+        if importlib.util.find_spec("cupy") is None:
+            raise ParameterError("solver.device", "'gpu' needs the optional package CuPy for the machine's CUDA "
+                                 "(pip install 'viscontact[gpu]' for CUDA 12, 'viscontact[gpu-cuda13]' for CUDA 13); "
+                                 "use 'cpu'")
         try:
             return cupy_backend()
         except ImportError as exc:

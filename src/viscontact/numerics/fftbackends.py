@@ -32,7 +32,7 @@ import numpy as np
 import scipy.fft
 
 __all__ = ["BACKENDS", "DCFFTTransforms", "FFTWTransforms", "SINGLE_THREAD_SIZE", "ZeroBlockTransforms",
-           "dcfft_transforms", "fft_keywords", "fft_threads"]
+           "check_fft_backend", "dcfft_transforms", "fft_keywords", "fft_threads"]
 
 #: grids of up to this many cells (n x n) transform on one thread when ``workers = -1``: a second pocketfft
 #: thread costs more wall time than it saves below (2-core machine, quiet, padded pair of the DC-FFT:
@@ -201,3 +201,22 @@ def dcfft_transforms(name: str, n: int, workers: int = -1) -> DCFFTTransforms:
     if name not in BACKENDS:
         raise ValueError(f"unknown FFT backend {name!r}; expected one of {sorted(BACKENDS)}")
     return BACKENDS[name](n, workers)
+
+
+def check_fft_backend(name: str) -> None:
+    """Refuse the backend ``name`` (``solver.fft``) where its library is not installed: ``"pyfftw"``
+    without pyFFTW (checked at the start of a run, :func:`viscontact.running.preflight.check_machine`:
+    the case's setting is valid on any machine).
+
+    Raises
+    ------
+    ParameterError
+        Key ``solver.fft``, naming the extra to install.
+    """
+    import importlib.util
+
+    from viscontact.errors import ParameterError
+
+    if name == "pyfftw" and importlib.util.find_spec("pyfftw") is None:
+        raise ParameterError("solver.fft", "'pyfftw' needs the optional package pyFFTW "
+                             "(pip install 'viscontact[fast]'); use 'scipy'")

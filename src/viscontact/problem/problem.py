@@ -5,7 +5,6 @@ case file into them; a script may build them directly. All quantities are SI (m,
 """
 from __future__ import annotations
 
-import importlib.util
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, Callable, Literal
@@ -307,7 +306,11 @@ class SolverSettings:
     """Tolerances and iteration caps. Failing to converge raises ``ConvergenceError``.
 
     Every field is checked on construction (:class:`~viscontact.errors.ParameterError` naming its
-    ``solver.`` key and the allowed range).
+    ``solver.`` key and the allowed range), and the combinations no machine can run (``device = "gpu"``
+    with ``fft = "pyfftw"`` or ``history = "direct"``). The settings describe the run; whether this
+    machine can make it (CuPy and a CUDA device for ``"gpu"``, pyFFTW for ``"pyfftw"``) is decided at
+    the start of the run (:func:`viscontact.running.preflight.check_machine`), so a case for a GPU loads,
+    validates, is estimated and fingerprinted anywhere.
     """
 
     tolerance: float = 1e-8           # relative change of the traction field per CG iteration
@@ -346,15 +349,8 @@ class SolverSettings:
         if self.device == "gpu" and self.history == "direct":  # refused here, before any file: --dry-run too
             raise ParameterError("solver.history", "'direct' (the reference sum) runs on the CPU only: with "
                                  "solver.device = 'gpu' use 'recursive' (the default)")
-        if self.device == "gpu" and importlib.util.find_spec("cupy") is None:
-            raise ParameterError("solver.device", "'gpu' needs the optional package CuPy for the machine's CUDA "
-                                 "(pip install 'viscontact[gpu]' for CUDA 12, 'viscontact[gpu-cuda13]' for CUDA 13); "
-                                 "use 'cpu'")
         if self.fft not in ("scipy", "pyfftw"):
             raise ParameterError("solver.fft", f"must be 'scipy' or 'pyfftw', got {self.fft!r}")
-        if self.fft == "pyfftw" and importlib.util.find_spec("pyfftw") is None:
-            raise ParameterError("solver.fft", "'pyfftw' needs the optional package pyFFTW "
-                                 "(pip install 'viscontact[fast]'); use 'scipy'")
 
 
 @dataclass(frozen=True)

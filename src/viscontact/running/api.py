@@ -30,6 +30,7 @@ if TYPE_CHECKING:  # xarray, pandas and pydantic load only where a Dataset or a 
     import xarray as xr
 
     from viscontact.io.case import Case  # noqa: F401 (CaseLike)
+    from viscontact.running.preflight import Preflight
 
 __all__ = ["Written", "checkpoint_path", "prepare", "run", "run_steady", "run_to_file", "steady"]
 
@@ -48,21 +49,23 @@ def __getattr__(name: str) -> Any:
 
 def prepare(case: CaseLike, *, transient: bool = True) -> tuple[Problem, str]:
     """The problem and the case text of a case file path, a :class:`Case` or a :class:`Problem`,
-    after the checks of :func:`viscontact.running.guards.check_problem` (``transient``: the time step too)."""
-    from viscontact.running.guards import check_problem
+    after the checks of :func:`viscontact.running.guards.check_problem` (``transient``: the time step too):
+    the :func:`~viscontact.running.preflight.preflight` of a problem to inspect, not yet of a run (neither the
+    solver's nor the machine's checks)."""
+    from viscontact.running.preflight import preflight
 
-    if isinstance(case, Problem):
-        problem, text = case, ""
-    else:
-        from viscontact.io.case import Case, load_case  # pydantic: only for case files and Case objects
+    checked = preflight(case, transient=transient, validate=False, machine=False)
+    return checked.problem, checked.text
 
-        if isinstance(case, (str, Path)):
-            case = load_case(case)
-        if not isinstance(case, Case):
-            raise TypeError(f"expected a case file path, a Case or a Problem, got {type(case).__name__}")
-        problem, text = case.to_problem(), case.text
-    check_problem(problem, transient=transient)
-    return problem, text
+
+def _checked(case: CaseLike | Preflight, **checks: Any) -> Preflight:
+    """``case`` after its :func:`~viscontact.running.preflight.preflight` with ``checks``, the machine's
+    included; the solver's own checks are left to the solver, which makes them before its first step
+    (:func:`viscontact.solvers.transient.init`, :func:`viscontact.solvers.steady.solve_steady`). A
+    :class:`~viscontact.running.preflight.Preflight` is the caller's, made for this run: not repeated."""
+    from viscontact.running.preflight import Preflight, preflight
+
+    return case if isinstance(case, Preflight) else preflight(case, validate=False, **checks)
 
 
 #: what :func:`checkpoint_path` adds to the result file's name
@@ -79,7 +82,7 @@ def checkpoint_path(out: str | Path) -> Path:
     return out.with_name(out.name + CHECKPOINT_SUFFIX)
 
 
-def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
+def run(case: CaseLike | Preflight, *, progress: Callable[[int, int], None] | None = None,
         checkpoint: str | Path | None = None, checkpoint_every: int = 0, resume: bool = False,
         should_stop: Callable[[], str | None] | None = None) -> xr.Dataset:
     """Run the transient simulation of ``case`` and return its result Dataset (:ref:`result-file`),
@@ -90,7 +93,8 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
     ----------
     case
         Path of a TOML case file, a :class:`~viscontact.io.case.Case` or a
-        :class:`~viscontact.problem.problem.Problem`.
+        :class:`~viscontact.problem.problem.Problem`; or its :class:`~viscontact.running.preflight.Preflight`
+        (checks made: not repeated).
     progress
         Called as ``progress(steps_done, steps_total)`` after each time step.
     checkpoint, checkpoint_every
@@ -108,8 +112,8 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
     Raises
     ------
     ParameterError
-        Invalid input (before any step is computed), or a checkpoint of another case; or input found
-        unsolvable at a step (partial slip in full contact on a periodic domain:
+        Invalid input (before any step is computed: :func:`~viscontact.running.preflight.preflight`, the
+        machine's checks included), or a checkpoint of another case; or input found unsolvable at a step (partial slip in full contact on a periodic domain:
         :func:`viscontact.solvers.transient.check_not_full_contact`), with the steps done as below.
     FileExistsError, IsADirectoryError
         ``checkpoint`` names a folder or a file that is no checkpoint (a result, a case file).
@@ -127,7 +131,8 @@ def run(case: CaseLike, *, progress: Callable[[int, int], None] | None = None,
     if checkpoint_every and checkpoint is None:  # no checkpoint would ever be written
         raise ParameterError("checkpoint", f"checkpoint_every = {checkpoint_every} needs the checkpoint file to "
                              "write (checkpoint=PATH)")
-    problem, text = prepare(case)
+    checked = _checked(case)
+    problem, text = checked.problem, checked.text
     if checkpoint is not None and not resume:
         check_checkpoint_path(checkpoint)
     start, kept = None, []
@@ -158,7 +163,7 @@ class Written(NamedTuple):
     records: int
 
 
-def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int], None] | None = None,
+def run_to_file(case: CaseLike | Preflight, out: str | Path, *, progress: Callable[[int, int], None] | None = None,
                 checkpoint_every: int = 0, resume: bool = False,
                 should_stop: Callable[[], str | None] | None = None, history: str = "",
                 require_space: bool = True, finishing: Callable[[], None] | None = None,
@@ -174,7 +179,8 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
     Parameters
     ----------
     case, progress, should_stop
-        As for :func:`run`.
+        As for :func:`run`; a :class:`~viscontact.running.preflight.Preflight` made for ``out`` (with
+        the same ``force`` and ``resume``).
     out
         The result file (netCDF-4).
     history
@@ -235,24 +241,16 @@ def run_to_file(case: CaseLike, out: str | Path, *, progress: Callable[[int, int
         ``out`` holds a complete result (never replaced by an incomplete one).
     """
     from viscontact.io.checkpoint import check_checkpoint_every, check_checkpoint_path, load_checkpoint
-    from viscontact.io.output_files import check_output_path, link_target, output_lock
-    from viscontact.io.streaming import ResultStream, check_partial_path, is_complete_result
+    from viscontact.io.output_files import link_target, output_lock
+    from viscontact.io.streaming import ResultStream, is_complete_result, partial_path
     from viscontact.problem.records import records_from_arrays
 
     check_checkpoint_every(checkpoint_every)
-    inputs: list[Path] = []
-    if not isinstance(case, Problem):  # the case file and the files it reads are never replaced
-        from viscontact.io.case import load_case
-
-        if isinstance(case, (str, Path)):
-            inputs.append(Path(case))
-            case = load_case(case)
-        inputs.extend(getattr(case, "input_files", dict)().values())
-    problem, text = prepare(case)
     out = Path(out)
     with output_lock(out):
-        check_output_path(out, force=force or resume, inputs=inputs)
-        partial, checkpoint = check_partial_path(out), checkpoint_path(out)
+        checked = _checked(case, out=out, force=force, resume=resume)
+        problem, text = checked.problem, checked.text
+        partial, checkpoint = partial_path(out), checkpoint_path(out)
         if not resume:  # removed once the streamed file is created: only an earlier run's checkpoint
             check_checkpoint_path(checkpoint)
         start, extra = None, {}
@@ -349,7 +347,7 @@ def _reason(exc: BaseException) -> str:
     return getattr(exc, "reason", None) or code or type(exc).__name__
 
 
-def run_steady(case: CaseLike, speeds: Sequence[float] | None = None) -> xr.Dataset:
+def run_steady(case: CaseLike | Preflight, speeds: Sequence[float] | None = None) -> xr.Dataset:
     """Steady sliding state(s) of ``case`` (direct steady-state solver).
 
     Parameters
@@ -365,14 +363,15 @@ def run_steady(case: CaseLike, speeds: Sequence[float] | None = None) -> xr.Data
     Raises
     ------
     ParameterError
-        Invalid input, before any solve: the case's, or ``speeds`` not a non-empty list of finite
+        Invalid input, before any solve: the case's (:func:`~viscontact.running.preflight.preflight`), or ``speeds`` not a non-empty list of finite
         numbers > 0 m/s, each given once (key ``speeds``).
     """
     from viscontact.io.results import sweep_dataset, to_dataset
     from viscontact.io.values import positive_values
     from viscontact.solvers.steady import solve_steady, speed_sweep
 
-    problem, text = prepare(case, transient=False)
+    checked = _checked(case, transient=False)
+    problem, text = checked.problem, checked.text
     if speeds is None:
         record = solve_steady(problem)
         return to_dataset([record], problem, case_text=text, attrs={"solver": "steady", "complete": 1})

@@ -21,7 +21,6 @@ import itertools
 import json
 import math
 import re
-import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping, Sequence
@@ -29,7 +28,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import tomllib
 
-from viscontact.errors import ParameterError, ViscontactWarning
+from viscontact.errors import ParameterError
 from viscontact.io.case import case_keys, closest, load_case, read_input_file
 
 __all__ = ["SOLVERS", "Plan", "Run", "SweepSpec", "check_run", "format_value", "load_sweep", "plan",
@@ -253,9 +252,9 @@ def plan(spec: SweepSpec | str | Path, *, fixed: Mapping[str, Any] | None = None
 def check_run(case: Any, solver: str) -> Any:
     """The checks the solver makes before its first step (those of ``viscontact run`` or
     ``viscontact steady``), made here so that a sweep refuses a bad run before any run starts: the
-    physical guards (:func:`viscontact.running.guards.check_problem`: material, grid, and for the transient
-    the time step), then :func:`viscontact.solvers.transient.validate` or :func:`viscontact.solvers.steady.check_steady`
-    (a sliding speed, no displacement history).
+    :func:`~viscontact.running.preflight.preflight` of the run, but this machine's (CuPy, pyFFTW: the
+    runs may go to a cluster's workers, each checks its own at its start) and the output's (each run's
+    file is the sweep's).
 
     About 1 ms per run for the steady solver and 6 ms for the transient (the time-step estimate)
     on a 64 x 64 grid. Warnings are not shown here: the run records them when it runs. Returns the
@@ -266,20 +265,9 @@ def check_run(case: Any, solver: str) -> Any:
     ParameterError
         What the run would have been refused with.
     """
-    from viscontact.running.api import prepare
+    from viscontact.running.preflight import preflight
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ViscontactWarning)
-        problem, _ = prepare(case, transient=solver == "transient")
-    if solver == "transient":
-        from viscontact.solvers.transient import validate
-
-        validate(problem)
-    else:
-        from viscontact.solvers.steady import check_steady
-
-        check_steady(problem)
-    return problem
+    return preflight(case, transient=solver == "transient", machine=False, warn=False).problem
 
 
 def run_fingerprint(solver: str, case: Any) -> str:
