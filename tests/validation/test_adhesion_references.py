@@ -5,9 +5,17 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from viscontact.physics.adhesion import (cohesive_zone_length, dmt_pull_off, jkr_approach, jkr_load, jkr_pull_off,
-                                         kendall_pull_off, maugis_dugdale, maugis_dugdale_pull_off,
-                                         maugis_parameter)
+from viscontact.physics.adhesion import (
+    cohesive_zone_length,
+    dmt_pull_off,
+    jkr_approach,
+    jkr_load,
+    jkr_pull_off,
+    kendall_pull_off,
+    maugis_dugdale,
+    maugis_dugdale_pull_off,
+    maugis_parameter,
+)
 
 R, E_STAR, W = 0.01, 5.515e6, 0.05  # a 10 mm sphere on a soft elastomer, w = 50 mJ/m^2
 
