@@ -97,7 +97,7 @@ def _write_api_page() -> None:
              "Generated from the docstrings of the package at build time.", "",
              "Public API", "----------", "",
              "``import viscontact as vc`` gives these names; they are what scripts use, and they stay stable.", "",
-             ".. autosummary::", "   :toctree: generated", ""]
+             ".. autosummary::", ""]
     for name in viscontact.__all__:
         obj = getattr(viscontact, name)
         home = getattr(obj, "__module__", None)
@@ -107,14 +107,14 @@ def _write_api_page() -> None:
     lines += ["", "Internals", "---------", "",
               "The modules behind the public API, by layer (:doc:`architecture`): for developers and for scripts",
               "that need more than the public names; they may change between releases.", ""]
-    modules = _modules(packages=False) + _modules(packages=True)
     for title, prefixes in INTERNAL_SECTIONS:
-        names = sorted(m for m in modules if any(m == p or m.startswith(p + ".") for p in prefixes))
-        if not names:
-            continue
-        lines += [title, "~" * len(title), "", ".. autosummary::", "   :toctree: generated", ""]
-        lines += [f"   {name}" for name in names]
-        lines.append("")
+        lines += [title, "~" * len(title), ""]
+        # a package's page is its docstring (its modules have their own); a module's lists its members
+        for packages, template in ((True, ["   :template: autosummary/package.rst"]), (False, [])):
+            names = [m for m in _modules(packages) if any(m == p or m.startswith(p + ".") for p in prefixes)]
+            if names:
+                lines += [".. autosummary::", "   :toctree: generated", *template, ""]
+                lines += [f"   {name}" for name in names] + [""]
     text = "\n".join(lines) + "\n"
     path = HERE / "api.rst"
     if not path.exists() or path.read_text() != text:
