@@ -1,5 +1,6 @@
-"""The contact-law seam (viscontact.solvers.contact_laws): every registered law is reachable by
-name, an unknown name is refused with the names there are, each mode and phase gets its law from the one mapping, and a law
+"""The contact-law seam (viscontact.solvers.contact_laws) and the one measurement of a solved state
+(viscontact.solvers.measure): every registered law is reachable by name, an unknown name is
+refused with the names there are, each mode and phase gets its law from the one mapping, and a law
 registered here (one class and its registration) is what the transient's stepper runs."""
 from __future__ import annotations
 
@@ -25,6 +26,7 @@ from viscontact.solvers.contact_laws import (
     law_name,
     register_contact_law,
 )
+from viscontact.solvers.measure import measure
 from viscontact.solvers.transient import steps
 
 MU = 0.3
@@ -130,3 +132,17 @@ def test_a_law_registered_here_is_what_the_stepper_runs(half_friction):
         assert a.load > 0
         assert a.friction_force == pytest.approx(0.5 * MU * a.load, rel=1e-12)
         assert b.friction_force == pytest.approx(MU * b.load, rel=1e-12)
+
+
+def test_the_stick_ratio_of_a_measurement_without_contact():
+    """No stick field: nothing sticks and the ratio is 0; a stick field without contact: NaN in
+    partial slip (undefined), 0 in the other modes."""
+    zeros = np.zeros((16, 16))
+    kw = dict(delta_z=0.0, value=0.0, step=0, t=0.0, phase=PHASE_PARTIAL_SLIP)
+    for mode, ratio in (("partial_slip", np.nan), ("gross_sliding", 0.0)):
+        problem = _sliding(mode, rate=1e-3 if mode == "partial_slip" else 0.0)
+        problem = dataclasses.replace(problem, normal=dataclasses.replace(problem.normal, control="displacement"))
+        record = measure(problem, zeros, zeros, zeros, gap=problem.gap, **kw)
+        assert record.stick_ratio == 0.0 and not record.stick.any() and record.load == 0.0 and record.mu_app == 0.0
+        with_field = measure(problem, zeros, zeros, zeros, gap=problem.gap, stick=zeros > 0, **kw)
+        np.testing.assert_equal(with_field.stick_ratio, ratio)

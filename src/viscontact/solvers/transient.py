@@ -16,7 +16,8 @@ known hereditary displacement of all earlier increments (:mod:`viscontact.numeri
 
 Each of these is a contact law, chosen by name from the problem and the phase
 (:mod:`viscontact.solvers.contact_laws`) and iterated over the coupling by
-:func:`viscontact.solvers.coupling.solve_coupled`.
+:func:`viscontact.solvers.coupling.solve_coupled`; the solved state is measured into the step's record by
+:func:`viscontact.solvers.measure.measure`.
 
 State is explicit: :func:`init` builds it, :func:`step` advances it by one time step and returns
 the step's :class:`~viscontact.problem.records.StepRecord`; :func:`simulate` loops and yields the records
@@ -24,7 +25,7 @@ the output settings ask for.
 """
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import dataclass, field, replace
 from typing import Callable, Iterator
 
 import numpy as np
@@ -38,8 +39,6 @@ from viscontact.numerics.schemes import stable_step_limit
 from viscontact.physics.periodic import check_approach
 from viscontact.problem.problem import PHASE_GROSS_SLIDING, PHASE_PARTIAL_SLIP, FrameGaps, Problem
 from viscontact.problem.records import StepRecord
-from viscontact.problem.roughness import roughness_metrics
-from viscontact.solvers.checks import check_solution
 from viscontact.solvers.contact_laws import (
     StepContext,
     check_not_full_contact,  # noqa: F401 (documented here: running.api)
@@ -47,7 +46,8 @@ from viscontact.solvers.contact_laws import (
     first_phase,
 )
 from viscontact.solvers.coupling import solve_coupled
-from viscontact.solvers.sliding import Wake, hysteresis_force, pressure_centroid
+from viscontact.solvers.measure import measure
+from viscontact.solvers.sliding import Wake
 
 
 @dataclass(frozen=True)
@@ -267,12 +267,8 @@ def step(problem: Problem, substrate: TermSubstrate, state: State,
     to_host = backend.to_host
     p_host, q_host, u_z = to_host(p), to_host(q), to_host(sol.displacement_z)
 
-    contact = p_host > 0
-    n_contact = int(contact.sum())
+    n_contact = int((p_host > 0).sum())
     stick = law.stuck(p_host, q_host)
-    # no contact: nothing sticks or slips (undefined in partial slip; zero by definition in the other modes)
-    stick_ratio = (float(stick.sum()) / n_contact if n_contact else
-                   float("nan") if tan.mode == "partial_slip" else 0.0)
 
     # -- commit: gross sliding begins when the stick zone of a contact vanishes (no contact: the phase
     # stays; once sliding, it stays)
@@ -298,21 +294,11 @@ def step(problem: Problem, substrate: TermSubstrate, state: State,
                     substrate.advanced_response(state.response, p, sol.pressure_product, t, first))
 
     # -- record
-    load = float(p_host.sum() * grid.cell_area)
-    check_solution(problem, p_host, load, ctx.value)
-    f_t = hysteresis_force(p_host, u_z, grid, grid.periodic) if tan.slides else 0.0
-    wake = _wake_loss(problem, substrate, state, p_host, f_t / load if load > 0 else 0.0, sol.delta_z)
-    record = StepRecord(
-        step=k, t=t, phase=phase, load=load, delta_z=sol.delta_z, delta_x=state.delta_x,
-        sliding_distance=state.sliding_distance, contact_area=n_contact * grid.cell_area,
-        stick_ratio=stick_ratio, friction_force=float(q_host.sum() * grid.cell_area),
-        hysteresis_force=f_t, mu_app=f_t / load if load > 0 else 0.0,
-        contact_shift=pressure_centroid(p_host, grid) - offset, frame_offset=offset, wake_loss=wake,
-        iterations=sol.iterations, coupling_iterations=sol.coupling_iterations,
-        **asdict(roughness_metrics(p_host, gap + u_z - sol.delta_z, grid.periodic)),
-        pressure=p_host, shear_x=q_host, stick=stick, displacement_z=u_z,
-    )
-    return state, record
+    record = measure(problem, p_host, q_host, u_z, delta_z=sol.delta_z, value=ctx.value, gap=gap, step=k, t=t,
+                     phase=phase, stick=stick, slides=tan.slides, delta_x=state.delta_x,
+                     sliding_distance=state.sliding_distance, frame_offset=offset, iterations=sol.iterations,
+                     coupling_iterations=sol.coupling_iterations)
+    return state, replace(record, wake_loss=_wake_loss(problem, substrate, state, p_host, record.mu_app, sol.delta_z))
 
 
 def _wake_loss(problem: Problem, substrate: TermSubstrate, state: State, pressure: np.ndarray, mu_app: float,
