@@ -9,7 +9,8 @@ import pytest
 
 from viscontact.errors import ParameterError, ViscontactWarning
 from viscontact.io.case import load_case
-from viscontact.running import api, preflight as preflight_module
+from viscontact.running import api
+from viscontact.running import preflight as preflight_module
 from viscontact.running.preflight import Preflight, preflight
 
 CASES = Path(__file__).resolve().parents[2] / "cases"
