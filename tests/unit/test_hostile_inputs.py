@@ -200,3 +200,127 @@ def test_an_endless_input_file_is_refused_before_it_fills_the_memory(capsys, tmp
         fh.truncate(17 << 20)  # sparse: 17 MiB of zeros
     code, err = _main(capsys, "run", str(big), "--out", str(tmp_path / "r.nc"), "--dry-run")
     _one_line(code, err, "case file")
+
+
+# --- issue 34: every named file through one safe reader ------------------------------------------
+MALFORMED_NPY = b"\x93NUMPY\x01\x00\x20\x00{'descr': 'zzz', 'fortran_order': False, 'shape': (32, 32), }\n"
+
+
+def _hostile_file(tmp_path: Path, kind: str, name: str | None = None) -> Path:
+    """A file of ``kind`` in ``tmp_path``: a FIFO, a symbolic link loop, a folder, a link to /dev/zero,
+    a sparse 50 GiB .npy with a valid 32 x 32 header, a sparse 8 GiB text file, a malformed .npy header."""
+    path = tmp_path / (name or f"hostile_{kind}")
+    if kind == "fifo":
+        os.mkfifo(path)
+    elif kind == "loop":
+        os.symlink(tmp_path / "hostile_loop2", path)
+        os.symlink(path, tmp_path / "hostile_loop2")  # path -> hostile_loop2 -> path
+    elif kind == "folder":
+        path.mkdir()
+    elif kind == "zero":
+        os.symlink("/dev/zero", path)
+    elif kind == "huge_npy":
+        with open(path, "wb") as fh:
+            np.lib.format.write_array_header_1_0(fh, {"descr": "<f8", "fortran_order": False, "shape": (32, 32)})
+            fh.truncate(50 << 30)  # sparse
+    elif kind == "huge_text":
+        with open(path, "wb") as fh:
+            fh.truncate(8 << 30)  # sparse
+    else:
+        path.write_bytes(MALFORMED_NPY)
+    return path
+
+
+HOSTILE = ["fifo", "loop", "folder", "zero", "huge_npy", "huge_text", "malformed"]
+#: what the one line must say of each (never "no such file" for a file that exists)
+SAYS = {"fifo": "FIFO", "loop": "loop of symbolic links", "folder": "folder", "zero": "character device",
+        "huge_npy": "GiB", "huge_text": "GiB", "malformed": "malformed"}
+
+
+def _cli_in_time(*args: str | Path) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "viscontact", *map(str, args)], capture_output=True, text=True,
+                          timeout=60)
+
+
+def _refused(proc: subprocess.CompletedProcess, key: str, says: str) -> None:
+    lines = proc.stderr.strip().splitlines()
+    assert proc.returncode == 2 and len(lines) == 1, proc.stderr[-2000:]
+    assert lines[0].startswith(f"viscontact: error: {key}") and says in lines[0], lines[0]
+
+
+@pytest.mark.parametrize("shape", ["surface", "topography"])
+@pytest.mark.parametrize("kind", HOSTILE)
+def test_a_hostile_height_file_is_one_accurate_line(tmp_path, capsys, shape, kind):
+    """Issue 34 items 1, 4, 9: a malformed .npy header ended in tokenize.TokenError; a 50 GiB .npy or
+    8 GiB text map was read whole; /dev/zero, a FIFO, a loop or a folder was "no such file"."""
+    path = _hostile_file(tmp_path, kind)
+    case = _surface_case(tmp_path, path.name)
+    if shape == "topography":
+        case.write_text(case.read_text().replace('shape = "surface"', 'shape = "topography"\nunit = "m"\n'
+                                                 'physical_size = [4e-3, 4e-3]'))
+    code, err = _main(capsys, "run", case, "--out", tmp_path / "r.nc", "--dry-run")
+    _one_line(code, err, "indenter.file")
+    says = {("topography", "huge_npy"): "16 MiB", ("surface", "huge_text"): "not a .npy file"}.get((shape, kind),
+                                                                                                SAYS[kind])
+    assert says in err[0] and "no such file" not in err[0], err[0]
+
+
+@pytest.mark.parametrize("kind", ["fifo", "loop", "folder"])
+def test_a_hostile_case_or_prony_file_is_one_line_without_a_hang(tmp_path, kind):
+    """Issue 34 item 3: a FIFO as the case file (run, steady, sweep) or as material.file hung."""
+    path = _hostile_file(tmp_path, kind)
+    for command in ("run", "steady", "sweep"):
+        key = "sweep file" if command == "sweep" else "case file"
+        _refused(_cli_in_time(command, path, "--out", tmp_path / "r.nc", "--dry-run" if command == "run" else "--quiet"),
+                 key, SAYS[kind])
+    prony = (ROOT / "cases" / "pmma_master_curve.toml").read_text().replace(
+        'file = "materials/pmma_schapery1962.csv"', f'file = "{path}"')
+    (tmp_path / "c.toml").write_text(prony)
+    _refused(_cli_in_time("run", tmp_path / "c.toml", "--out", tmp_path / "r.nc", "--dry-run"), "material.file",
+             SAYS[kind])
+
+
+def test_a_case_from_a_pipe_with_a_writer_is_still_read(tmp_path):
+    """``viscontact run <(cat case.toml)``: a pipe that has a writer is read, as before."""
+    proc = subprocess.run(["bash", "-c", f'"{sys.executable}" -m viscontact run <(cat "{ROOT}/cases/creep_indentation.'
+                           f'toml") --out "{tmp_path}/r.nc" --dry-run'], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+
+
+@pytest.mark.parametrize("kind", ["fifo", "loop", "folder", "zero"])
+@pytest.mark.parametrize("beside", [".checkpoint.npz", ".lock", ""])
+def test_hostile_files_beside_a_result_are_one_line(tmp_path, kind, beside):
+    """Issue 34 items 3, 9: a FIFO named OUT.nc.checkpoint.npz hung every run (zipfile.is_zipfile
+    opened it); a FIFO lock said "file: Invalid argument"; a FIFO result hung ``plot``."""
+    out = tmp_path / "r.nc"
+    _hostile_file(tmp_path, kind, out.name + beside)
+    if beside:
+        proc = _cli_in_time("run", ROOT / "cases" / "creep_indentation.toml", "--out", out, *SMALL, "--quiet")
+    else:
+        proc = _cli_in_time("plot", out, "--out", tmp_path / "figs")
+    assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1, proc.stderr
+    assert "Invalid argument" not in proc.stderr and "no such file" not in proc.stderr, proc.stderr
+    if beside == ".lock" and kind in ("fifo", "zero"):
+        assert "lock file" in proc.stderr and SAYS[kind] in proc.stderr, proc.stderr
+    elif beside != ".lock":  # a folder or a loop as the lock: "Is a directory", "Too many levels of symbolic links"
+        assert SAYS[kind] in proc.stderr, proc.stderr
+
+
+def test_a_checkpoint_linked_to_dev_zero_is_not_called_pickled(stopped_run, capsys):
+    """Issue 34 item 9: it said "contains pickled (object) data"."""
+    case, out = stopped_run
+    ckpt = Path(str(out) + ".checkpoint.npz")
+    ckpt.unlink()
+    os.symlink("/dev/zero", ckpt)
+    code, err = _main(capsys, "run", case, "--out", out, "--resume", *SMALL)
+    _one_line(code, err, "--resume")
+    assert "character device" in err[0] and "pickled" not in err[0]
+
+
+@pytest.mark.parametrize("kind", ["fifo", "loop", "folder"])
+def test_open_result_refuses_what_is_not_a_file(tmp_path, kind):
+    from viscontact.errors import ParameterError
+    from viscontact.io.netcdf import open_result
+
+    with pytest.raises(ParameterError, match=SAYS[kind]):
+        open_result(_hostile_file(tmp_path, kind))

@@ -23,7 +23,6 @@ from __future__ import annotations
 import copy
 import dataclasses
 import difflib
-import stat
 import typing
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -37,6 +36,7 @@ from pydantic.fields import FieldInfo
 from viscontact.bodies.bulk_elastic import BulkElasticMaterial
 from viscontact.errors import ParameterError
 from viscontact.io.prony_table import parse_prony_table
+from viscontact.io.safe_read import MAX_INPUT_BYTES, npy_layout, read_text_input, regular_input
 from viscontact.numerics.grid import Grid
 from viscontact.physics.materials import Material, shear_from_tensile, wlf_shift_factor
 from viscontact.problem.problem import (
@@ -53,8 +53,8 @@ from viscontact.problem.problem import (
 )
 from viscontact.problem.records import StepRecord
 
-__all__ = ["FILE_KEYS", "MATERIALS", "MAX_GRID_N", "MIN_GRID_N", "Case", "case_keys", "closest", "load_case",
-           "read_input_file"]
+__all__ = ["FILE_KEYS", "MATERIALS", "MAX_GRID_N", "MAX_INPUT_BYTES", "MIN_GRID_N", "Case", "case_keys", "closest",
+           "load_case", "read_input_file"]
 
 #: the case keys that name a file the case reads (:meth:`Case.input_files`)
 FILE_KEYS = ("material.file", "indenter.file")
@@ -686,6 +686,7 @@ class Case(_Section):
         if ind.shape == "self_affine":
             gap, key = gap_from_heights(ind.self_affine_heights(grid, "indenter")), ind.amplitude_key("indenter")
         elif ind.shape == "topography":
+            check_topography_file(self._base_dir / ind.file, grid.n, "indenter.file")
             heights = read_heights(self._base_dir / ind.file, grid, resample=bool(ind.resample),
                                    physical_sizes=None if ind.physical_size is None else tuple(ind.physical_size),
                                    unit={"um": "µm"}.get(ind.unit, ind.unit))
@@ -730,34 +731,19 @@ class Case(_Section):
 
 
 def read_height_file(path: Path, shape: tuple[int, int]) -> np.ndarray:
-    """Heights [m] of a .npy file of ``shape`` (real numbers, finite). The header is read first, so
-    that a file that is not a regular file (a FIFO would block), is empty, claims another shape or
-    size, or holds complex or non-numeric data is refused (key ``indenter.file``) before any data is
-    read."""
+    """Heights [m] of a .npy file of ``shape`` (real numbers, finite). The header is read first
+    (:func:`~viscontact.io.safe_read.npy_layout`), so that a file that is not a regular file (a FIFO
+    would block), is empty, has a malformed header, claims another shape or size, or holds complex or
+    non-numeric data is refused (key ``indenter.file``) before any data is read."""
     key = "indenter.file"
-    try:
-        mode = path.stat().st_mode
-    except FileNotFoundError:
-        raise ParameterError(key, f"no such file: {path}") from None
-    except OSError as exc:
-        raise ParameterError(key, f"cannot read {path}: {exc.strerror}") from None
-    if not stat.S_ISREG(mode):
-        raise ParameterError(key, f"{path} is not a regular file (a folder, FIFO or device): give a .npy file")
     expected = f"it must be (grid.n, grid.n) = {shape}, real heights in m indexed [y, x]"
+    found, dtype, _, _ = npy_layout(path, key)
+    if tuple(found) != shape:
+        raise ParameterError(key, f"{path} holds an array of shape {tuple(found)}; {expected}")
+    if not (np.issubdtype(dtype, np.floating) or np.issubdtype(dtype, np.integer)):
+        raise ParameterError(key, f"{path} holds {dtype} data; {expected}")
     try:
-        with open(path, "rb") as fh:
-            version = np.lib.format.read_magic(fh)
-            header = np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
-            found, _, dtype = header(fh)
-            if tuple(found) != shape:
-                raise ParameterError(key, f"{path} holds an array of shape {tuple(found)}; {expected}")
-            if not (np.issubdtype(dtype, np.floating) or np.issubdtype(dtype, np.integer)):
-                raise ParameterError(key, f"{path} holds {dtype} data; {expected}")
-            if path.stat().st_size < fh.tell() + dtype.itemsize * shape[0] * shape[1]:
-                raise ParameterError(key, f"{path} is shorter than its header says (truncated)")
         h0 = np.load(path, allow_pickle=False)
-    except ParameterError:
-        raise
     except (OSError, ValueError, EOFError) as exc:
         raise ParameterError(key, f"cannot read {path} as a .npy array: {str(exc) or type(exc).__name__}") from None
     if not np.all(np.isfinite(h0)):
@@ -765,28 +751,34 @@ def read_height_file(path: Path, shape: tuple[int, int]) -> np.ndarray:
     return np.asarray(h0, dtype=float)
 
 
-#: largest text input file read [bytes]: a case, sweep or Prony table is a few kB; a name that points
-#: at a result file or a device must not be read into memory whole
-MAX_INPUT_BYTES = 16 << 20
+#: largest topography file read [bytes per point of a grid whose side is RESAMPLE_RATIO (4) times the
+#: grid's]: a text map takes about 25 bytes a point; SurfaceTopography reads a file whole
+TOPOGRAPHY_BYTES_PER_POINT = 64
+
+
+def check_topography_file(path: Path, n: int, key: str) -> None:
+    """Refuse, before SurfaceTopography reads it whole, a topography file that is not a regular file
+    (:func:`~viscontact.io.safe_read.regular_input`), is larger than a map for ``n`` x ``n`` cells can
+    be (at most :data:`TOPOGRAPHY_BYTES_PER_POINT` bytes for each point of a 4n x 4n map, 16 MiB at
+    least), or is a ``.npy`` file whose header is malformed or disagrees with its size."""
+    limit = max(MAX_INPUT_BYTES, TOPOGRAPHY_BYTES_PER_POINT * (4 * n) ** 2)
+    regular_input(path, key, max_bytes=limit, need="a topography file")
+    try:
+        with open(path, "rb") as fh:
+            magic = fh.read(6)
+    except OSError as exc:
+        raise ParameterError(key, f"cannot read {path}: {exc.strerror}") from None
+    if magic == b"\x93NUMPY":
+        npy_layout(path, key)
 
 
 def read_input_file(path: str | Path, what: str) -> str:
     """The UTF-8 text of an input file (a byte-order mark is skipped); :class:`ParameterError` (key
-    ``what``, e.g. ``"case file"``) when it is missing or unreadable, or holds more than
+    ``what``, e.g. ``"case file"``) when it is missing, not a file, unreadable, or holds more than
     :data:`MAX_INPUT_BYTES` (read no further: ``/dev/zero`` or a result file named by mistake would
-    otherwise fill the memory; a pipe, e.g. ``<(...)``, is read as a file)."""
-    path = Path(path)
-    try:
-        with open(path, "rb") as fh:
-            data = fh.read(MAX_INPUT_BYTES + 1)
-        if len(data) > MAX_INPUT_BYTES:
-            raise ParameterError(what, f"{path} holds more than {MAX_INPUT_BYTES >> 20} MiB: a text input is a few "
-                                 "kB (is it the right file?)")
-        return data.decode("utf-8-sig")
-    except FileNotFoundError:
-        raise ParameterError(what, f"no such file: {path}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ParameterError(what, f"cannot read {path}: {exc}") from None
+    otherwise fill the memory; a pipe with a writer, e.g. ``<(...)``, is read as a file, a FIFO with
+    none refused): :func:`viscontact.io.safe_read.read_text_input`."""
+    return read_text_input(path, what)
 
 
 def load_case(path: str | Path) -> Case:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import errno
+import os
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -10,6 +11,7 @@ from typing import TYPE_CHECKING
 
 from viscontact.errors import ParameterError
 from viscontact.io.results import netcdf_encoding
+from viscontact.io.safe_read import regular_input
 
 if TYPE_CHECKING:  # xarray (with pandas, ~60 MiB) loads only where a Dataset is built or read
     import xarray as xr
@@ -65,15 +67,17 @@ def open_result(path: str | Path) -> xr.Dataset:
     FileNotFoundError
         ``path`` does not exist.
     ParameterError
-        ``path`` is not a netCDF-4 file written by viscontact (``run``, ``steady`` or ``sweep``).
+        ``path`` is not a regular file (a FIFO, a folder, a link loop), or not a netCDF-4 file written by
+        viscontact (``run``, ``steady`` or ``sweep``).
     """
     import xarray as xr
 
     path = Path(path)
-    if not path.exists():
+    if not os.path.lexists(path):
         raise FileNotFoundError(errno.ENOENT, "no such file", str(path))
     not_a_result = ParameterError(str(path), "is not a viscontact result file (a netCDF-4 file written by "
                                   "viscontact run, steady or sweep)")
+    regular_input(path, str(path), need="a viscontact result file")  # a FIFO would block h5py
     try:
         with xr.open_dataset(path, engine="h5netcdf") as ds:
             ds = ds.load()

@@ -43,6 +43,8 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import BinaryIO
 
+from viscontact.io.safe_read import file_kind
+
 try:
     import fcntl
 except ImportError:  # pragma: no cover - Windows: no inode flags, no advisory lock
@@ -321,7 +323,12 @@ def _acquire(lock: Path, out: Path) -> int:
     """Open and ``flock`` the lock file ``lock`` of ``out``; its file descriptor. A file removed or
     replaced between the open and the lock (its holder ended) is opened again."""
     while True:
-        fd = os.open(lock, os.O_RDWR | os.O_CREAT | getattr(os, "O_CLOEXEC", 0), 0o644 & ~_umask())
+        fd = os.open(lock, os.O_RDWR | os.O_CREAT | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0), 0o644 & ~_umask())
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):  # flock of a FIFO or a device fails with EINVAL
+            os.close(fd)
+            raise FileExistsError(errno.EEXIST, f"its lock file {lock} is {file_kind(mode)}, not a lock file: remove "
+                                  "it or choose another --out", str(out))
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
