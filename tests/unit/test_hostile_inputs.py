@@ -12,6 +12,7 @@ import pytest
 import xarray as xr
 
 from viscontact import cli
+from viscontact.errors import ParameterError
 
 ROOT = Path(__file__).resolve().parents[2]
 CREEP_TEXT = (ROOT / "cases" / "creep_indentation.toml").read_text()
@@ -324,3 +325,17 @@ def test_open_result_refuses_what_is_not_a_file(tmp_path, kind):
 
     with pytest.raises(ParameterError, match=SAYS[kind]):
         open_result(_hostile_file(tmp_path, kind))
+
+
+def test_an_empty_list_of_subsurface_times_is_refused_before_the_first_step(tmp_path, capsys):
+    """Issue 34 item 2: ``output.subsurface_times = []`` passed --dry-run, computed every step, then
+    failed in streaming.finish (need at least one array to stack), leaving only OUT.nc.partial."""
+    from viscontact.problem.problem import OutputSettings
+
+    case = ROOT / "cases" / "creep_subsurface_stress.toml"
+    for dry in (["--dry-run"], []):
+        code, err = _main(capsys, "run", case, "--out", tmp_path / "e.nc", "--set", "output.subsurface_times=[]", *dry)
+        _one_line(code, err, "output.subsurface_times")
+    assert list(tmp_path.iterdir()) == []
+    with pytest.raises(ParameterError, match="output.subsurface_times"):
+        OutputSettings(subsurface_depths=(1e-4,), subsurface_times=())

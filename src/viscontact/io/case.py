@@ -50,6 +50,7 @@ from viscontact.problem.problem import (
     TimeStepping,
     check_history,
     check_subsurface_body,
+    check_subsurface_times,
 )
 from viscontact.problem.records import StepRecord
 
@@ -576,6 +577,7 @@ class Case(_Section):
                                  "does not slide, so no sliding speed sets it)")
         if self.time.dt is not None and self.time.dt > self.time.t_end:
             raise ParameterError("time.dt", f"must be <= time.t_end = {self.time.t_end:g} s, got {self.time.dt:g} s")
+        check_subsurface_times(self.output.subsurface_times)
         if self.output.subsurface_depths:
             check_subsurface_body(self.output.subsurface_depths, self.layer is not None,
                                   self.material.bulk_modulus is not None)

@@ -6,6 +6,7 @@ case file into them; a script may build them directly. All quantities are SI (m,
 from __future__ import annotations
 
 import importlib.util
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, Callable, Literal
@@ -381,6 +382,16 @@ class OutputSettings:
         for key, values in (("subsurface_depths", self.subsurface_depths), ("subsurface_times", self.subsurface_times)):
             for value in values or ():
                 _check_number(f"output.{key}", value, " m" if key == "subsurface_depths" else " s", strict=False)
+        check_subsurface_times(self.subsurface_times)
+
+
+def check_subsurface_times(times: Sequence[float] | None) -> None:
+    """Refuse an empty ``output.subsurface_times`` (:class:`ParameterError`): it would select no step,
+    and the subsurface output fail after the last step; None (the key left out) means the last
+    recorded step."""
+    if times is not None and len(times) == 0:
+        raise ParameterError("output.subsurface_times", "must list at least one time [s], got []; leave the key out "
+                             "for the last recorded step")
 
 
 @dataclass(frozen=True)
