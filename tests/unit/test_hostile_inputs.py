@@ -339,3 +339,109 @@ def test_an_empty_list_of_subsurface_times_is_refused_before_the_first_step(tmp_
     assert list(tmp_path.iterdir()) == []
     with pytest.raises(ParameterError, match="output.subsurface_times"):
         OutputSettings(subsurface_depths=(1e-4,), subsurface_times=())
+
+
+# --- issue 34 items 1 and 7: extreme values refused before anything is derived from them ----------
+PMMA = ROOT / "cases" / "pmma_master_curve.toml"
+
+
+@pytest.mark.parametrize("case, change, key", [
+    (PMMA, "grid.half_width=1e-300", "grid.half_width"),
+    (CREEP_TEXT, "grid.half_width=1e-300", "grid.half_width"),
+    (PMMA, "grid.half_width=1e300", "grid.half_width"),
+    (PMMA, "indenter.radius=1e300", "grid.half_width"),
+    (PMMA, "normal.value=1e300", "normal.value"),
+    (CREEP_TEXT, "time.t_end=1e300", "time.dt"),
+    (PMMA, "tangential.sliding_speed=1e300", "time.dt"),
+])
+def test_extreme_values_are_one_line_before_the_estimate(tmp_path, capsys, case, change, key):
+    """An OverflowError (resources.window_cells -> window_side -> next_fast_len, or the guards'
+    cells per radius) came before the guards; refusals printed 300-digit record counts."""
+    if isinstance(case, str):
+        (tmp_path / "c.toml").write_text(case)
+        case = tmp_path / "c.toml"
+    code, err = _main(capsys, "run", case, "--out", tmp_path / "x.nc", "--dry-run", "--set", change)
+    _one_line(code, err, key)
+    assert not any(len(word) > 20 and word.isdigit() for word in err[0].split()), err[0]
+
+
+def test_a_run_that_would_end_at_t_0_is_refused(tmp_path, capsys):
+    """Item 7: a sliding speed of 1e-6 m/s with t_end = 0.04 s made the default step 62.5 s: the run
+    "ended at t = 0 s, 100 % short" with one record and exit 0 (here: 1e-9 m/s makes PMMA's step 48.8 s)."""
+    code, err = _main(capsys, "run", PMMA, "--out", tmp_path / "x.nc", "--set", "tangential.sliding_speed=1e-9",
+                      "--set", "time.t_end=0.04", "--quiet")
+    _one_line(code, err, "time.dt")
+    assert "100 % short" in err[0] and not (tmp_path / "x.nc").exists()
+
+
+def test_force_does_not_accept_a_run_of_centuries(tmp_path, capsys):
+    """Item 7: ``--force`` let ``--dry-run`` accept a run estimated at 1e296 days."""
+    code, err = _main(capsys, "run", ROOT / "cases" / "creep_indentation.toml", "--out", tmp_path / "x.nc",
+                      "--dry-run", "--force", "--set", "time.t_end=2e5", "--set", "grid.n=4096")
+    _one_line(code, err, "time.t_end")
+    assert "not even --force" in err[0]
+
+
+def test_a_wake_bias_that_is_most_of_the_result_stops_the_run():
+    """Item 7: partial slip at 10 m/s on a 2 mm domain warned of a bias "up to about 190 %" and
+    returned the result; above WAKE_REFUSAL the run stops (the steps done kept by the caller)."""
+    import dataclasses
+
+    from viscontact.errors import NumericalGuardError
+    from viscontact.problem.records import StepRecord
+    from viscontact.running.observers import WAKE_REFUSAL, WakeWarning
+
+    observer = WakeWarning()
+    fields = {f.name: 0.0 for f in dataclasses.fields(StepRecord) if f.name not in ("t", "wake_loss")}
+    with pytest.raises(NumericalGuardError, match="mostly that bias"):
+        observer.on_step(None, StepRecord(**{**fields, "t": 1.0, "wake_loss": WAKE_REFUSAL * 1.01}))
+
+
+# --- issue 34 item 6: refusals in time -------------------------------------------------------------
+def test_a_history_of_20000_alternating_points_is_refused_in_time():
+    """``normal.history`` of 20,000 alternating points took 25.6 s to be refused (turning steps and
+    the time-step estimate point by point); 1,000 points 7.9 s."""
+    import time
+
+    from viscontact.running.api import load_case, prepare
+
+    case = load_case(ROOT / "cases" / "creep_indentation.toml").with_overrides({"grid.n": 32})
+    points = [[i * 1e-4, 0.15 if i % 2 else 0.05] for i in range(20000)]
+    started = time.perf_counter()
+    with pytest.raises(ParameterError, match="misses the turning point of normal.history"):
+        prepare(case.with_overrides({"normal.history": points}))
+    assert time.perf_counter() - started < 5.0
+
+
+def test_turning_steps_at_once_are_those_point_by_point():
+    """The vectorised turning steps against the definition, step by step (plateaus, ties, ints)."""
+    from viscontact.problem.problem import PiecewiseLinear
+
+    rng = np.random.default_rng(3)
+    for _ in range(300):
+        times = tuple(np.cumsum(rng.choice([0.1, 0.25, 1.0], int(rng.integers(1, 10)))).tolist())
+        history = PiecewiseLinear(times, tuple(rng.choice([0, 1, 2, -1], len(times)).tolist()))
+        for dt, last in ((0.1, 1000), (0.3, 4), (1.0, 1000), (0.07, 2)):
+            expected = []
+            for first, held_until, _, direction in history.turning_points():
+                k = int(np.ceil(first / dt - 1e-9))
+                if k > last:
+                    break
+                if k * dt <= held_until + 1e-9 * dt:
+                    expected.append((k, history(k * dt)))
+                    continue
+                value, k = max((direction * history(m * dt), m) for m in (k, k - 1))
+                expected.append((k, direction * value))
+            assert history.turning_steps(dt, last) == tuple(expected)
+
+
+def test_a_million_subsurface_depths_are_refused_before_the_run(capsys, tmp_path):
+    """1.2 million ``output.subsurface_depths`` were estimated at 1.5 s and the run killed at 120 s."""
+    from viscontact.problem.problem import MAX_SUBSURFACE_POINTS, OutputSettings
+
+    with pytest.raises(ParameterError, match="output.subsurface_depths"):
+        OutputSettings(subsurface_depths=tuple(np.linspace(0, 1e-3, MAX_SUBSURFACE_POINTS + 1)))
+    depths = "[" + ", ".join(["1e-4"] * (MAX_SUBSURFACE_POINTS + 1)) + "]"
+    code, err = _main(capsys, "run", ROOT / "cases" / "creep_subsurface_stress.toml", "--out", tmp_path / "e.nc",
+                      "--dry-run", "--set", f"output.subsurface_depths={depths}")
+    _one_line(code, err, "output.subsurface_depths")

@@ -50,7 +50,7 @@ from viscontact.problem.problem import (
     TimeStepping,
     check_history,
     check_subsurface_body,
-    check_subsurface_times,
+    check_subsurface_output,
 )
 from viscontact.problem.records import StepRecord
 
@@ -61,6 +61,9 @@ __all__ = ["FILE_KEYS", "MATERIALS", "MAX_GRID_N", "MAX_INPUT_BYTES", "MIN_GRID_
 FILE_KEYS = ("material.file", "indenter.file")
 #: smallest and largest grids accepted (cells per side); 16384^2 already needs ~100 GiB of kernels
 MIN_GRID_N, MAX_GRID_N = 8, 16384
+#: smallest and largest grid.half_width [m] accepted (1 nm to 1 km): beyond them the estimates drawn
+#: from the grid (cells per contact radius, steps per cell of sliding) overflow
+MIN_HALF_WIDTH, MAX_HALF_WIDTH = 1e-9, 1e3
 _SLIDING_MODES = ("frictionless_sliding", "gross_sliding", "partial_slip")
 
 
@@ -354,7 +357,8 @@ class GridSection(_Section):
     """n x n cells on [-half_width, half_width]^2 [m]; ``periodic``: one period of a repeated surface."""
 
     n: int = _int(ge=MIN_GRID_N, le=MAX_GRID_N, description="cells per side")
-    half_width: float = _num(unit="m", gt=0, description="the domain is [-half_width, half_width]^2")
+    half_width: float = _num(unit="m", ge=MIN_HALF_WIDTH, le=MAX_HALF_WIDTH,
+                             description="the domain is [-half_width, half_width]^2")
     periodic: bool = Field(False, description="the domain is one period of an infinitely repeated surface "
                            "(periodic kernels, the moving frame wrapping around)")
 
@@ -575,9 +579,10 @@ class Case(_Section):
         if self.time.dt is None and self.tangential.displacement_history is not None:
             raise ParameterError("time.dt", "required (> 0 s) with tangential.displacement_history (the indenter "
                                  "does not slide, so no sliding speed sets it)")
+        TimeStepping(self.time.t_end, self.default_dt())  # at most MAX_STEPS steps
         if self.time.dt is not None and self.time.dt > self.time.t_end:
             raise ParameterError("time.dt", f"must be <= time.t_end = {self.time.t_end:g} s, got {self.time.dt:g} s")
-        check_subsurface_times(self.output.subsurface_times)
+        check_subsurface_output(self.output.subsurface_depths, self.output.subsurface_times)
         if self.output.subsurface_depths:
             check_subsurface_body(self.output.subsurface_depths, self.layer is not None,
                                   self.material.bulk_modulus is not None)
