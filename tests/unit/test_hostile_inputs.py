@@ -445,3 +445,28 @@ def test_a_million_subsurface_depths_are_refused_before_the_run(capsys, tmp_path
     code, err = _main(capsys, "run", ROOT / "cases" / "creep_subsurface_stress.toml", "--out", tmp_path / "e.nc",
                       "--dry-run", "--set", f"output.subsurface_depths={depths}")
     _one_line(code, err, "output.subsurface_depths")
+
+
+# --- issue 34 item 8: the API's misuse is a TypeError with a sentence -------------------------------
+def test_api_misuse_is_a_sentence_not_an_attribute_error():
+    import viscontact as vc
+    from viscontact.io.case import Case
+
+    case = vc.load_case(ROOT / "cases" / "creep_indentation.toml")
+    problem = case.with_overrides({"grid.n": 16, "time.t_end": 5e-4}).to_problem()
+    misuses = [lambda: vc.shipped_case(None), lambda: vc.write_netcdf(None, "p.nc"),
+               lambda: vc.to_dataset([1, 2], problem), lambda: vc.to_dataset(None, problem),
+               lambda: case.with_overrides(None), lambda: case.with_overrides([("grid.n", 16)]),
+               lambda: case.with_overrides({1: 2}), lambda: Case.from_toml_text(None, ".")]
+    for misuse in misuses:
+        with pytest.raises(TypeError, match=r"must be .*, got "):
+            misuse()
+
+
+def test_a_numpy_array_override_is_taken_as_its_list():
+    """``with_overrides({"normal.history": np.array(...)})`` said "must be an array, got ndarray"."""
+    import viscontact as vc
+
+    case = vc.load_case(ROOT / "cases" / "creep_indentation.toml")
+    history = np.array([[0.0, 0.1], [1e-3, 0.15]])
+    assert case.with_overrides({"normal.history": history}).normal.history == history.tolist()

@@ -34,7 +34,7 @@ from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError,
 from pydantic.fields import FieldInfo
 
 from viscontact.bodies.bulk_elastic import BulkElasticMaterial
-from viscontact.errors import ParameterError
+from viscontact.errors import ParameterError, check_type
 from viscontact.io.prony_table import parse_prony_table
 from viscontact.io.safe_read import MAX_INPUT_BYTES, npy_layout, read_text_input, regular_input
 from viscontact.numerics.grid import Grid
@@ -597,7 +597,10 @@ class Case(_Section):
     # --- construction -------------------------------------------------------------------------
     @classmethod
     def from_toml_text(cls, text: str, base_dir: str | Path = ".", *, source: str = "case file") -> Case:
-        """Parse and validate TOML ``text``; relative paths in it are taken from ``base_dir``."""
+        """Parse and validate TOML ``text``; relative paths in it are taken from ``base_dir``
+        (:class:`TypeError` when ``text`` is not a str or ``base_dir`` not a path)."""
+        check_type(text, str, "Case.from_toml_text's text", "the TOML text of a case (a str)")
+        check_type(base_dir, (str, Path), "Case.from_toml_text's base_dir", "a folder (a str or Path)")
         try:
             data = tomllib.loads(text.removeprefix("\ufeff"))
         except tomllib.TOMLDecodeError as exc:
@@ -632,12 +635,24 @@ class Case(_Section):
 
         A value of ``None`` removes the key (its default applies). Setting ``normal.value`` drops
         ``normal.history`` and vice versa. The new case is validated
-        as a whole; its ``text`` is the original one followed by the overrides as comments.
+        as a whole; its ``text`` is the original one followed by the overrides as comments. A numpy
+        array or scalar is taken as the list or number it holds.
+
+        Raises
+        ------
+        TypeError
+            ``overrides`` is not a mapping of dotted keys (str) to values.
+        ParameterError
+            A key or value the case refuses.
         """
+        check_type(overrides, Mapping, "with_overrides's overrides", "a dict of dotted case keys to values, e.g. "
+                   "{'grid.n': 64}")
         data = copy.deepcopy(self._data)
         lines = []
         for key, value in overrides.items():
+            check_type(key, str, "each key of with_overrides's overrides", "a dotted case key such as 'grid.n'")
             value = value.item() if isinstance(value, np.generic) else value
+            value = value.tolist() if isinstance(value, np.ndarray) else value
             parts = key.split(".")
             node = data
             for i, part in enumerate(parts[:-1]):

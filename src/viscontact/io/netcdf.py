@@ -9,7 +9,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from viscontact.errors import ParameterError
+from viscontact.errors import ParameterError, check_type
 from viscontact.io.results import netcdf_encoding
 from viscontact.io.safe_read import regular_input
 
@@ -34,9 +34,14 @@ def write_netcdf(ds: xr.Dataset, path: str | Path, *, force: bool = False) -> Pa
         regular netCDF file (never replaced).
     OSError
         The file cannot be written (no space left, read-only folder, ...); nothing is left behind.
+    TypeError
+        ``ds`` is not an xarray.Dataset.
     """
+    import xarray as xr
+
     from viscontact.io.output_files import check_output_path, signals_deferred, write_atomically
 
+    check_type(ds, xr.Dataset, "write_netcdf's ds", "an xarray.Dataset (viscontact.to_dataset of a run's records)")
     check_output_path(path, force=force)
     with signals_deferred(), _local_scheduler():
         data = ds.to_netcdf(engine="h5netcdf", encoding=netcdf_encoding(ds))
