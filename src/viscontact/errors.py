@@ -59,6 +59,26 @@ class ViscontactWarning(UserWarning):
     """A result is usable but something may bias it (history dropped, coarse time step, ...)."""
 
 
+def check_type(value: object, expected: type | tuple[type, ...], what: str, described: str) -> None:
+    """Raise :class:`TypeError` with a sentence (``"{what} must be {described}, got {type}"``) unless
+    ``value`` is an instance of ``expected``: what the API says of a misused argument, in place of
+    an AttributeError from deep inside.
+
+    Parameters
+    ----------
+    value
+        The argument given.
+    expected
+        The type, or types, it must have.
+    what
+        Its name in the sentence, e.g. ``"shipped_case's name"``.
+    described
+        What it must be, in words, e.g. ``"a str such as 'creep_indentation'"``.
+    """
+    if not isinstance(value, expected):
+        raise TypeError(f"{what} must be {described}, got {type(value).__name__} {value!r:.60}")
+
+
 #: the folder of the package's modules: :func:`warn_caller` skips the frames of files under it
 _PACKAGE_PREFIX = os.path.dirname(os.path.abspath(__file__)) + os.sep
 

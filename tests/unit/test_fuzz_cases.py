@@ -11,6 +11,7 @@ test runs 600 structural examples through the command line.
 """
 from __future__ import annotations
 
+import io
 import math
 import tomllib
 from pathlib import Path
@@ -202,3 +203,124 @@ def test_huge_grid_is_refused_before_any_allocation(n):
     with pytest.raises(ParameterError) as err:
         Case.from_toml_text(BASE_TEXT.replace("n = 128", f"n = {n}"), ROOT / "cases").to_problem()
     assert err.value.key == "grid.n" and "16384" in err.value.message
+
+
+# --- issue 34: the files a case names and the files beside a result --------------------------------
+#: what a named file may be: each either works or is refused in one line, never a hang or a traceback
+FILE_KINDS = ["fifo", "loop", "dangling", "folder", "dev_zero", "dev_null", "empty", "sparse_huge", "npy_huge",
+              "npy_malformed", "npy_truncated", "text", "valid"]
+
+
+def _make_file(path: Path, kind: str, valid: bytes) -> None:
+    """Put a file of ``kind`` at ``path`` (``valid``: the content of a good one)."""
+    import os
+
+    import numpy as np
+
+    if kind == "fifo":
+        os.mkfifo(path)
+    elif kind == "loop":
+        os.symlink(path.with_name(path.name + ".2"), path)
+        os.symlink(path, path.with_name(path.name + ".2"))
+    elif kind == "dangling":
+        os.symlink(path.with_name("missing"), path)
+    elif kind == "folder":
+        path.mkdir()
+    elif kind in ("dev_zero", "dev_null"):
+        os.symlink("/dev/zero" if kind == "dev_zero" else "/dev/null", path)
+    elif kind == "sparse_huge":
+        with open(path, "wb") as fh:
+            fh.truncate(8 << 30)
+    elif kind in ("npy_huge", "npy_truncated"):
+        with open(path, "wb") as fh:
+            np.lib.format.write_array_header_1_0(fh, {"descr": "<f8", "fortran_order": False, "shape": (32, 32)})
+            fh.write(b"\0" * 100) if kind == "npy_truncated" else fh.truncate(50 << 30)
+    elif kind == "npy_malformed":
+        path.write_bytes(b"\x93NUMPY\x01\x00\x20\x00{'descr': 'zzz', 'fortran_order': False, 'shape': (32, 32), }\n")
+    elif kind == "text":
+        path.write_text("tau,g\ninf,1e5\n0.1,2e5,9\n")
+    elif kind == "valid":
+        path.write_bytes(valid)
+    else:
+        path.write_bytes(b"")
+
+
+def _named_file_case(folder: Path, key: str, kind: str) -> Path:
+    """A 32^2 case whose ``key`` names a file of ``kind`` in ``folder``."""
+    import numpy as np
+
+    text = BASE_TEXT.replace("n = 128", "n = 32")
+    if key == "material.file":
+        text = text.replace('type = "zener"', 'type = "prony"\nfile = "named"\nmodulus = "shear"')
+        for line in ("shear_modulus_instantaneous", "shear_modulus_long_term", "retardation_time"):
+            text = "\n".join(x for x in text.splitlines() if not x.startswith(line))
+        valid = b"tau,g\ninf,193000\n0.04,1737000\n"
+    else:
+        shape = "surface" if key == "indenter.file" else "topography"
+        extra = "" if shape == "surface" else '\nunit = "m"\nphysical_size = [4e-3, 4e-3]'
+        text = text.replace('shape = "sphere"\nradius = 0.01', f'shape = "{shape}"\nfile = "named"{extra}')
+        x = -2e-3 + (np.arange(32) + 0.5) * 4e-3 / 32
+        heights = (x[:, None] ** 2 + x ** 2) / 0.02
+        buffer = io.BytesIO()
+        np.save(buffer, heights)
+        valid = buffer.getvalue() if shape == "surface" else (
+            "\n".join(" ".join(f"{-v:.9e}" for v in row) for row in heights) + "\n").encode()
+    _make_file(folder / "named", kind, valid)
+    case = folder / "case.toml"
+    case.write_text(text)
+    return case
+
+
+def _one_line_in_time(capsys, args: list[str], seconds: int = 60) -> int:
+    """Run the command line in this process with an alarm: a hang fails the test, never blocks it."""
+    import signal
+
+    def hung(signum, frame):
+        raise AssertionError(f"viscontact {' '.join(args)} hung")
+
+    previous = signal.signal(signal.SIGALRM, hung)
+    signal.alarm(seconds)
+    try:
+        code = cli.main(args)
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, previous)
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    errors = [line for line in err if not line.startswith("viscontact: warning:")]
+    assert code in (0, 2), err
+    assert "Traceback" not in "\n".join(err)
+    assert len(errors) == (1 if code == 2 else 0) and all(e.startswith("viscontact: error:") for e in errors), err
+    return code
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(st.sampled_from(["material.file", "indenter.file", "indenter.file (topography)"]), st.sampled_from(FILE_KINDS))
+def test_the_files_a_case_names_are_read_safely(tmp_path, capsys, key, kind):
+    """Every kind of file as the Prony table, the height file or the topography: a dry run works or
+    refuses it in one line naming the key, never a hang, a traceback or a read of gigabytes."""
+    import tempfile
+
+    folder = Path(tempfile.mkdtemp(dir=tmp_path))
+    case = _named_file_case(folder, key, kind)
+    code = _one_line_in_time(capsys, ["run", str(case), "--out", str(folder / "r.nc"), "--dry-run"])
+    assert code == 0 or kind != "valid", (key, kind)
+
+
+@settings(max_examples=16, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(st.sampled_from([".checkpoint.npz", ".lock", ".partial", ""]),
+       st.sampled_from(["fifo", "loop", "dangling", "folder", "dev_zero", "dev_null", "empty", "text"]))
+def test_the_files_beside_a_result_are_handled_safely(tmp_path, capsys, suffix, kind):
+    """Every kind of file named OUT.nc, OUT.nc.checkpoint.npz, OUT.nc.lock or OUT.nc.partial: the run
+    works or is refused in one line, never a hang or a traceback, and the file is left as it was."""
+    import os
+    import tempfile
+
+    folder = Path(tempfile.mkdtemp(dir=tmp_path))
+    beside = folder / ("r.nc" + suffix)
+    _make_file(beside, kind, b"")
+    before = os.lstat(beside)
+    _one_line_in_time(capsys, ["run", str(ROOT / "cases" / "creep_indentation.toml"), "--out", str(folder / "r.nc"),
+                               "--set", "grid.n=16", "--set", "time.t_end=0.001", "--quiet", "--checkpoint-every", "2"])
+    if suffix != ".lock" and os.path.lexists(beside):  # a lock file is the run's to replace
+        after = os.lstat(beside)
+        assert (after.st_ino, after.st_mode) == (before.st_ino, before.st_mode) or kind in ("empty", "dangling")

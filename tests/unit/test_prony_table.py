@@ -223,3 +223,15 @@ def test_rounded_alpha_that_shift_the_long_term_modulus_are_refused(tmp_path: Pa
 def test_numbers_and_columns_python_would_read_otherwise(tmp_path: Path, text: str, words: str) -> None:
     with pytest.raises(ParameterError, match=words):
         case_with('type = "prony"\nfile = "terms.csv"\npoisson_ratio = 0.3\n', tmp_path, {"terms.csv": text})
+
+
+def test_a_row_with_an_extra_column_is_refused():
+    """Issue 34 item 9: a Prony row with an extra column was accepted without a word."""
+    import pytest
+
+    from viscontact.errors import ParameterError
+    from viscontact.io.prony_table import parse_prony_table
+
+    with pytest.raises(ParameterError, match=r"line 3 has 3 columns, more than the 2 named in line 1"):
+        parse_prony_table("tau,g\ninf,1e5\n0.1,2e5,7\n")
+    assert parse_prony_table("tau,g\ninf,1e5\n0.1,2e5,\n").moduli == (2e5,)  # an empty trailing cell is none

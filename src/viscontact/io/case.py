@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import copy
 import dataclasses
-import stat
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Annotated, Any, Callable, Literal
@@ -34,9 +33,10 @@ from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError,
 from pydantic.fields import FieldInfo
 
 from viscontact.bodies.bulk_elastic import BulkElasticMaterial
-from viscontact.errors import ParameterError
+from viscontact.errors import ParameterError, check_type
 from viscontact.io.case_errors import closest, model_of, parameter_error
 from viscontact.io.prony_table import parse_prony_table
+from viscontact.io.safe_read import MAX_INPUT_BYTES, npy_layout, read_text_input, regular_input
 from viscontact.numerics.grid import Grid
 from viscontact.physics.materials import Material, shear_from_tensile, wlf_shift_factor
 from viscontact.problem.problem import (
@@ -50,16 +50,20 @@ from viscontact.problem.problem import (
     TimeStepping,
     check_history,
     check_subsurface_body,
+    check_subsurface_output,
 )
 from viscontact.problem.records import StepRecord
 
-__all__ = ["FILE_KEYS", "MATERIALS", "MAX_GRID_N", "MIN_GRID_N", "Case", "case_keys", "closest", "load_case",
-           "read_input_file"]
+__all__ = ["FILE_KEYS", "MATERIALS", "MAX_GRID_N", "MAX_INPUT_BYTES", "MIN_GRID_N", "Case", "case_keys", "closest",
+           "load_case", "read_input_file"]
 
 #: the case keys that name a file the case reads (:meth:`Case.input_files`)
 FILE_KEYS = ("material.file", "indenter.file")
 #: smallest and largest grids accepted (cells per side); 16384^2 already needs ~100 GiB of kernels
 MIN_GRID_N, MAX_GRID_N = 8, 16384
+#: smallest and largest grid.half_width [m] accepted (1 nm to 1 km): beyond them the estimates drawn
+#: from the grid (cells per contact radius, steps per cell of sliding) overflow
+MIN_HALF_WIDTH, MAX_HALF_WIDTH = 1e-9, 1e3
 _SLIDING_MODES = ("frictionless_sliding", "gross_sliding", "partial_slip")
 
 
@@ -353,7 +357,8 @@ class GridSection(_Section):
     """n x n cells on [-half_width, half_width]^2 [m]; ``periodic``: one period of a repeated surface."""
 
     n: int = _int(ge=MIN_GRID_N, le=MAX_GRID_N, description="cells per side")
-    half_width: float = _num(unit="m", gt=0, description="the domain is [-half_width, half_width]^2")
+    half_width: float = _num(unit="m", ge=MIN_HALF_WIDTH, le=MAX_HALF_WIDTH,
+                             description="the domain is [-half_width, half_width]^2")
     periodic: bool = Field(False, description="the domain is one period of an infinitely repeated surface "
                            "(periodic kernels, the moving frame wrapping around)")
 
@@ -574,8 +579,10 @@ class Case(_Section):
         if self.time.dt is None and self.tangential.displacement_history is not None:
             raise ParameterError("time.dt", "required (> 0 s) with tangential.displacement_history (the indenter "
                                  "does not slide, so no sliding speed sets it)")
+        TimeStepping(self.time.t_end, self.default_dt())  # at most MAX_STEPS steps
         if self.time.dt is not None and self.time.dt > self.time.t_end:
             raise ParameterError("time.dt", f"must be <= time.t_end = {self.time.t_end:g} s, got {self.time.dt:g} s")
+        check_subsurface_output(self.output.subsurface_depths, self.output.subsurface_times)
         if self.output.subsurface_depths:
             check_subsurface_body(self.output.subsurface_depths, self.layer is not None,
                                   self.material.bulk_modulus is not None)
@@ -590,7 +597,10 @@ class Case(_Section):
     # --- construction -------------------------------------------------------------------------
     @classmethod
     def from_toml_text(cls, text: str, base_dir: str | Path = ".", *, source: str = "case file") -> Case:
-        """Parse and validate TOML ``text``; relative paths in it are taken from ``base_dir``."""
+        """Parse and validate TOML ``text``; relative paths in it are taken from ``base_dir``
+        (:class:`TypeError` when ``text`` is not a str or ``base_dir`` not a path)."""
+        check_type(text, str, "Case.from_toml_text's text", "the TOML text of a case (a str)")
+        check_type(base_dir, (str, Path), "Case.from_toml_text's base_dir", "a folder (a str or Path)")
         try:
             data = tomllib.loads(text.removeprefix("\ufeff"))
         except tomllib.TOMLDecodeError as exc:
@@ -625,12 +635,24 @@ class Case(_Section):
 
         A value of ``None`` removes the key (its default applies). Setting ``normal.value`` drops
         ``normal.history`` and vice versa. The new case is validated
-        as a whole; its ``text`` is the original one followed by the overrides as comments.
+        as a whole; its ``text`` is the original one followed by the overrides as comments. A numpy
+        array or scalar is taken as the list or number it holds.
+
+        Raises
+        ------
+        TypeError
+            ``overrides`` is not a mapping of dotted keys (str) to values.
+        ParameterError
+            A key or value the case refuses.
         """
+        check_type(overrides, Mapping, "with_overrides's overrides", "a dict of dotted case keys to values, e.g. "
+                   "{'grid.n': 64}")
         data = copy.deepcopy(self._data)
         lines = []
         for key, value in overrides.items():
+            check_type(key, str, "each key of with_overrides's overrides", "a dotted case key such as 'grid.n'")
             value = value.item() if isinstance(value, np.generic) else value
+            value = value.tolist() if isinstance(value, np.ndarray) else value
             parts = key.split(".")
             node = data
             for i, part in enumerate(parts[:-1]):
@@ -686,6 +708,7 @@ class Case(_Section):
         if ind.shape == "self_affine":
             gap, key = gap_from_heights(ind.self_affine_heights(grid, "indenter")), ind.amplitude_key("indenter")
         elif ind.shape == "topography":
+            check_topography_file(self._base_dir / ind.file, grid.n, "indenter.file")
             heights = read_heights(self._base_dir / ind.file, grid, resample=bool(ind.resample),
                                    physical_sizes=None if ind.physical_size is None else tuple(ind.physical_size),
                                    unit={"um": "µm"}.get(ind.unit, ind.unit))
@@ -730,34 +753,19 @@ class Case(_Section):
 
 
 def read_height_file(path: Path, shape: tuple[int, int]) -> np.ndarray:
-    """Heights [m] of a .npy file of ``shape`` (real numbers, finite). The header is read first, so
-    that a file that is not a regular file (a FIFO would block), is empty, claims another shape or
-    size, or holds complex or non-numeric data is refused (key ``indenter.file``) before any data is
-    read."""
+    """Heights [m] of a .npy file of ``shape`` (real numbers, finite). The header is read first
+    (:func:`~viscontact.io.safe_read.npy_layout`), so that a file that is not a regular file (a FIFO
+    would block), is empty, has a malformed header, claims another shape or size, or holds complex or
+    non-numeric data is refused (key ``indenter.file``) before any data is read."""
     key = "indenter.file"
-    try:
-        mode = path.stat().st_mode
-    except FileNotFoundError:
-        raise ParameterError(key, f"no such file: {path}") from None
-    except OSError as exc:
-        raise ParameterError(key, f"cannot read {path}: {exc.strerror}") from None
-    if not stat.S_ISREG(mode):
-        raise ParameterError(key, f"{path} is not a regular file (a folder, FIFO or device): give a .npy file")
     expected = f"it must be (grid.n, grid.n) = {shape}, real heights in m indexed [y, x]"
+    found, dtype, _, _ = npy_layout(path, key)
+    if tuple(found) != shape:
+        raise ParameterError(key, f"{path} holds an array of shape {tuple(found)}; {expected}")
+    if not (np.issubdtype(dtype, np.floating) or np.issubdtype(dtype, np.integer)):
+        raise ParameterError(key, f"{path} holds {dtype} data; {expected}")
     try:
-        with open(path, "rb") as fh:
-            version = np.lib.format.read_magic(fh)
-            header = np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
-            found, _, dtype = header(fh)
-            if tuple(found) != shape:
-                raise ParameterError(key, f"{path} holds an array of shape {tuple(found)}; {expected}")
-            if not (np.issubdtype(dtype, np.floating) or np.issubdtype(dtype, np.integer)):
-                raise ParameterError(key, f"{path} holds {dtype} data; {expected}")
-            if path.stat().st_size < fh.tell() + dtype.itemsize * shape[0] * shape[1]:
-                raise ParameterError(key, f"{path} is shorter than its header says (truncated)")
         h0 = np.load(path, allow_pickle=False)
-    except ParameterError:
-        raise
     except (OSError, ValueError, EOFError) as exc:
         raise ParameterError(key, f"cannot read {path} as a .npy array: {str(exc) or type(exc).__name__}") from None
     if not np.all(np.isfinite(h0)):
@@ -765,28 +773,34 @@ def read_height_file(path: Path, shape: tuple[int, int]) -> np.ndarray:
     return np.asarray(h0, dtype=float)
 
 
-#: largest text input file read [bytes]: a case, sweep or Prony table is a few kB; a name that points
-#: at a result file or a device must not be read into memory whole
-MAX_INPUT_BYTES = 16 << 20
+#: largest topography file read [bytes per point of a grid whose side is RESAMPLE_RATIO (4) times the
+#: grid's]: a text map takes about 25 bytes a point; SurfaceTopography reads a file whole
+TOPOGRAPHY_BYTES_PER_POINT = 64
+
+
+def check_topography_file(path: Path, n: int, key: str) -> None:
+    """Refuse, before SurfaceTopography reads it whole, a topography file that is not a regular file
+    (:func:`~viscontact.io.safe_read.regular_input`), is larger than a map for ``n`` x ``n`` cells can
+    be (at most :data:`TOPOGRAPHY_BYTES_PER_POINT` bytes for each point of a 4n x 4n map, 16 MiB at
+    least), or is a ``.npy`` file whose header is malformed or disagrees with its size."""
+    limit = max(MAX_INPUT_BYTES, TOPOGRAPHY_BYTES_PER_POINT * (4 * n) ** 2)
+    regular_input(path, key, max_bytes=limit, need="a topography file")
+    try:
+        with open(path, "rb") as fh:
+            magic = fh.read(6)
+    except OSError as exc:
+        raise ParameterError(key, f"cannot read {path}: {exc.strerror}") from None
+    if magic == b"\x93NUMPY":
+        npy_layout(path, key)
 
 
 def read_input_file(path: str | Path, what: str) -> str:
     """The UTF-8 text of an input file (a byte-order mark is skipped); :class:`ParameterError` (key
-    ``what``, e.g. ``"case file"``) when it is missing or unreadable, or holds more than
+    ``what``, e.g. ``"case file"``) when it is missing, not a file, unreadable, or holds more than
     :data:`MAX_INPUT_BYTES` (read no further: ``/dev/zero`` or a result file named by mistake would
-    otherwise fill the memory; a pipe, e.g. ``<(...)``, is read as a file)."""
-    path = Path(path)
-    try:
-        with open(path, "rb") as fh:
-            data = fh.read(MAX_INPUT_BYTES + 1)
-        if len(data) > MAX_INPUT_BYTES:
-            raise ParameterError(what, f"{path} holds more than {MAX_INPUT_BYTES >> 20} MiB: a text input is a few "
-                                 "kB (is it the right file?)")
-        return data.decode("utf-8-sig")
-    except FileNotFoundError:
-        raise ParameterError(what, f"no such file: {path}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ParameterError(what, f"cannot read {path}: {exc}") from None
+    otherwise fill the memory; a pipe with a writer, e.g. ``<(...)``, is read as a file, a FIFO with
+    none refused): :func:`viscontact.io.safe_read.read_text_input`."""
+    return read_text_input(path, what)
 
 
 def load_case(path: str | Path) -> Case:

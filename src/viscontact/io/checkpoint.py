@@ -30,6 +30,7 @@ import numpy as np
 
 from viscontact.errors import ParameterError
 from viscontact.io.output_files import write_atomically
+from viscontact.io.safe_read import file_kind, regular_input
 from viscontact.numerics.arrays import CPU, ArrayBackend, array_backend
 from viscontact.problem.problem import Problem, is_integer
 from viscontact.solvers.transient import State
@@ -222,7 +223,10 @@ def check_checkpoint_path(path: str | Path) -> None:
     if path.is_dir():
         raise IsADirectoryError(errno.EISDIR, "is a folder; give a checkpoint file name (e.g. run.checkpoint.npz)",
                                 str(path))
-    if path.is_file() and path.stat().st_size == 0:
+    if not path.is_file():  # a FIFO would block zipfile.is_zipfile, a device never end
+        raise FileExistsError(errno.EEXIST, f"exists and is {_what_is(path)}, not a viscontact checkpoint; refusing "
+                              "to replace it with one: choose another checkpoint path", str(path))
+    if path.stat().st_size == 0:
         return
     ours = False
     if zipfile.is_zipfile(path):  # a checkpoint is an .npz archive; np.load reads a .npy file as an array
@@ -236,6 +240,16 @@ def check_checkpoint_path(path: str | Path) -> None:
                               "with one: choose another checkpoint path", str(path))
 
 
+def _what_is(path: Path) -> str:
+    """What ``path`` (links followed) is, in words: a folder, a FIFO, a link loop..."""
+    try:
+        return file_kind(path.stat().st_mode)
+    except FileNotFoundError:
+        return "a symbolic link to a missing file"
+    except OSError as exc:
+        return "a loop of symbolic links" if exc.errno == errno.ELOOP else f"unreadable ({exc.strerror})"
+
+
 def load_checkpoint(path: str | Path, problem: Problem,
                     backend: ArrayBackend | None = None) -> tuple[State, dict[str, np.ndarray]]:
     """Read a checkpoint; refuses one written for a different problem. Returns (state, extra arrays),
@@ -243,6 +257,7 @@ def load_checkpoint(path: str | Path, problem: Problem,
     path = Path(path)
     if not path.exists():
         raise ParameterError("--resume", f"no checkpoint at {path}")
+    regular_input(path, "--resume", need="a viscontact checkpoint (delete it and run without --resume)")
     try:
         with np.load(path, allow_pickle=False) as data:
             version = int(data["format_version"])

@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 import errno
+import os
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from viscontact.errors import ParameterError
+from viscontact.errors import ParameterError, check_type
 from viscontact.io.results import netcdf_encoding
+from viscontact.io.safe_read import regular_input
 
 if TYPE_CHECKING:  # xarray (with pandas, ~60 MiB) loads only where a Dataset is built or read
     import xarray as xr
@@ -32,9 +34,14 @@ def write_netcdf(ds: xr.Dataset, path: str | Path, *, force: bool = False) -> Pa
         regular netCDF file (never replaced).
     OSError
         The file cannot be written (no space left, read-only folder, ...); nothing is left behind.
+    TypeError
+        ``ds`` is not an xarray.Dataset.
     """
+    import xarray as xr
+
     from viscontact.io.output_files import check_output_path, signals_deferred, write_atomically
 
+    check_type(ds, xr.Dataset, "write_netcdf's ds", "an xarray.Dataset (viscontact.to_dataset of a run's records)")
     check_output_path(path, force=force)
     with signals_deferred(), _local_scheduler():
         data = ds.to_netcdf(engine="h5netcdf", encoding=netcdf_encoding(ds))
@@ -65,15 +72,17 @@ def open_result(path: str | Path) -> xr.Dataset:
     FileNotFoundError
         ``path`` does not exist.
     ParameterError
-        ``path`` is not a netCDF-4 file written by viscontact (``run``, ``steady`` or ``sweep``).
+        ``path`` is not a regular file (a FIFO, a folder, a link loop), or not a netCDF-4 file written by
+        viscontact (``run``, ``steady`` or ``sweep``).
     """
     import xarray as xr
 
     path = Path(path)
-    if not path.exists():
+    if not os.path.lexists(path):
         raise FileNotFoundError(errno.ENOENT, "no such file", str(path))
     not_a_result = ParameterError(str(path), "is not a viscontact result file (a netCDF-4 file written by "
                                   "viscontact run, steady or sweep)")
+    regular_input(path, str(path), need="a viscontact result file")  # a FIFO would block h5py
     try:
         with xr.open_dataset(path, engine="h5netcdf") as ds:
             ds = ds.load()

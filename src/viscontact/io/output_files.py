@@ -43,6 +43,8 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import BinaryIO
 
+from viscontact.io.safe_read import file_kind
+
 try:
     import fcntl
 except ImportError:  # pragma: no cover - Windows: no inode flags, no advisory lock
@@ -321,7 +323,12 @@ def _acquire(lock: Path, out: Path) -> int:
     """Open and ``flock`` the lock file ``lock`` of ``out``; its file descriptor. A file removed or
     replaced between the open and the lock (its holder ended) is opened again."""
     while True:
-        fd = os.open(lock, os.O_RDWR | os.O_CREAT | getattr(os, "O_CLOEXEC", 0), 0o644 & ~_umask())
+        fd = os.open(lock, os.O_RDWR | os.O_CREAT | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0), 0o644 & ~_umask())
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):  # flock of a FIFO or a device fails with EINVAL
+            os.close(fd)
+            raise FileExistsError(errno.EEXIST, f"its lock file {lock} is {file_kind(mode)}, not a lock file: remove "
+                                  "it or choose another --out", str(out))
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
@@ -365,8 +372,9 @@ class SpaceClaim:
     """Disk space claimed ahead in the folder of ``path`` for a file that grows as a run goes.
 
     The claim is an unnamed file (``O_TMPFILE``: nothing is left behind, even after ``kill -9``)
-    of ``size`` bytes allocated at once (``posix_fallocate``). :meth:`take` hands back a piece just
-    before it is written and checks that the folder has it free; the last ``reserve`` bytes stay
+    of ``size`` bytes allocated at once (``posix_fallocate``). :meth:`check` says, keeping the claim,
+    whether a piece can be written, :meth:`release` hands it back just before it is written
+    (:meth:`take`: both at once); the last ``reserve`` bytes stay
     claimed until :meth:`close`, for the file's last write (finishing it, or saving it when a write
     failed). Where the filesystem cannot make unnamed or allocated files, nothing is claimed and
     :meth:`take` only checks the free space.
@@ -418,8 +426,20 @@ class SpaceClaim:
         os.close(fd)
 
     def take(self, nbytes: int, *, needed: int | None = None) -> None:
-        """Hand back ``nbytes`` of the claim (down to the reserve) for the write about to happen,
-        and check that the folder has ``nbytes`` free.
+        """:meth:`check` then :meth:`release` ``nbytes``: for a write that happens at once.
+
+        Raises
+        ------
+        OSError
+            ``ENOSPC`` (:meth:`check`): the write must not be attempted.
+        """
+        self.check(nbytes, needed=needed)
+        self.release(nbytes)
+
+    def check(self, nbytes: int, *, needed: int | None = None) -> None:
+        """Check, keeping the claim, that ``nbytes`` can be written: the claim above the reserve holds
+        them, or the folder has what the claim lacks free. The free space is measured with the claim
+        still held (what another program sees), so that the error says what is free for this write.
 
         Raises
         ------
@@ -427,11 +447,18 @@ class SpaceClaim:
             ``ENOSPC`` naming the file, ``needed`` (what it still needs, default ``nbytes``) and the
             space free: the write must not be attempted.
         """
+        held = max(self.claimed - self.reserve, 0) if self._fd >= 0 else 0
+        if held >= nbytes:
+            return
+        if shutil.disk_usage(self.path.parent).free + held < nbytes:
+            raise disk_full_error(self.path, needed or nbytes, self.hint)
+
+    def release(self, nbytes: int) -> None:
+        """Hand back ``nbytes`` of the claim (whole blocks, down to the reserve), just before the
+        write that uses them: until then another program filling the disk cannot take them."""
         if self._fd >= 0 and self.claimed > self.reserve:
             self.claimed = max(self.claimed - self._blocks(nbytes), self.reserve)  # whole blocks: all freed
             os.ftruncate(self._fd, self.claimed)
-        if shutil.disk_usage(self.path.parent).free < nbytes:
-            raise disk_full_error(self.path, needed or nbytes, self.hint)
 
     def _blocks(self, nbytes: int) -> int:
         """``nbytes`` rounded up to whole blocks of the filesystem."""

@@ -71,6 +71,15 @@ class _Table:
         self.fail(f"missing column {needed} (columns found: {', '.join(h for h in header if h) or 'none'})")
         raise AssertionError  # unreachable
 
+    def check_widths(self, columns: int) -> None:
+        """Refuse a row with a value beyond the ``columns`` of the header (line 1): a value out of its
+        column, or a column without a name, is not read silently."""
+        for line, row in self.rows[1:]:
+            extra = [cell for cell in row[columns:] if cell]
+            if extra:
+                self.fail(f"line {line} has {len(row)} columns, more than the {columns} named in line 1 "
+                          f"({extra[0]!r} is in no named column)")
+
     def number(self, line: int, row: list[str], col: int, name: str, *, allow_inf: bool = False) -> float:
         if col >= len(row) or not row[col]:
             self.fail(f"column {name}, line {line}: missing value")
@@ -112,6 +121,7 @@ def parse_prony_table(text: str, source: str = "Prony table") -> PronyTable:
     """Parse the text of a Prony table (pyvisco's or a plain CSV); ``source`` names it in errors."""
     table = _Table(source, text.lstrip("\ufeff"))
     header = table.rows[0][1]
+    table.check_widths(len(header))
     if "tau_i" in header:
         return _parse_pyvisco(table, header)
     if "tau" in header:

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from viscontact.errors import check_type
 from viscontact.physics.materials import Material
 from viscontact.problem.problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP, Problem
 from viscontact.problem.records import StepRecord
@@ -320,6 +321,10 @@ def to_dataset(records: Sequence[StepRecord], problem: Problem, *, case_text: st
     """
     import xarray as xr
 
+    check_type(problem, Problem, "to_dataset's problem", "a viscontact Problem (Case.to_problem())")
+    check_type(records, Sequence, "to_dataset's records", "a list of StepRecord (what viscontact.run returns)")
+    for record in records:
+        check_type(record, StepRecord, "each of to_dataset's records", "a StepRecord")
     variables, coords, ds_attrs = result_layout(records, problem, case_text=case_text, attrs=attrs)
     ds = xr.Dataset(variables, coords=coords)
     ds.attrs.update(ds_attrs)

@@ -20,7 +20,7 @@ from __future__ import annotations
 from importlib.resources import files
 from pathlib import Path
 
-from viscontact.errors import ParameterError
+from viscontact.errors import ParameterError, check_type
 
 __all__ = ["shipped_case", "shipped_case_names", "shipped_cases_dir"]
 
@@ -50,7 +50,10 @@ def shipped_case(name: str) -> Path:
     ------
     ParameterError
         No shipped case has that name (the message lists those that exist).
+    TypeError
+        ``name`` is not a str.
     """
+    check_type(name, str, "shipped_case's name", "a str such as 'creep_indentation'")
     stem = name[:-len(".toml")] if name.endswith(".toml") else name
     names = shipped_case_names()
     if stem not in names:

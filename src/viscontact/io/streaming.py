@@ -354,6 +354,7 @@ class ResultStream:
         self.pool: ThreadPoolExecutor | None = None
         #: the record appended last, not yet written: (record, its fields, their encodings' futures)
         self.queued: tuple[StepRecord, dict[str, np.ndarray], dict[str, Future]] | None = None
+        self._queued_bytes = 0  # what the queued record may take on disk, claimed until it is written
         self.count = int(self.along_t["t"].shape[0])
         self.total = recorded_steps(problem)
         self._hold_metadata_until_flush()
@@ -463,10 +464,13 @@ class ResultStream:
         ------
         OSError
             ``ENOSPC`` before anything is queued when the disk has not the room this record may
-            take (the file stays as it was after the previous record).
+            take (the file stays as it was after the previous record). That room stays claimed
+            (:class:`~viscontact.io.output_files.SpaceClaim`) until :meth:`drain` writes the record.
         """
         self.drain()
-        self.space.take(stream_bytes(self.problem, 1, first=self.count, finishing=False), needed=self._needed())
+        nbytes = stream_bytes(self.problem, 1, first=self.count, finishing=False)
+        self.space.check(nbytes, needed=self._needed())  # claimed until drain writes it
+        self._queued_bytes = nbytes
         steps = {name: (np.zeros(self.tails[name], dtype=self.dtypes[name]) if getattr(record, name) is None
                         else getattr(record, name)) for name in self.fields}
         self.queued = (record, steps, self._encode(steps))
@@ -485,6 +489,7 @@ class ResultStream:
         (record, steps, encoded), self.queued, k = self.queued, None, self.count
         with signals_deferred():
             try:
+                self.space.release(self._queued_bytes)  # the claim kept until now: the bytes go to disk next
                 self._resize(k + 1)
                 self._put("t", k, record.t)
                 self._put("step", k, record.step)
@@ -517,7 +522,9 @@ class ResultStream:
         """A write failed (the disk filled beyond the claim, an I/O error): give back the reserve and
         flush again, so that the file holds the steps before this one and can be finished, then
         raise one :class:`OSError` naming the file. When even that fails, the file is left as its
-        last flush wrote it (``complete = 0``) and never touched again (:attr:`broken`)."""
+        last flush wrote it (``complete = 0``) and never touched again (:attr:`broken`). A full disk's
+        error measures the free space before the reserve is given back (what this write found)."""
+        full = disk_full_error(self.path, self._needed(), DISK_FULL_HINT)
         self.space.close()
         try:
             self._resize(self.count)
@@ -525,7 +532,7 @@ class ResultStream:
         except (OSError, RuntimeError):
             self.broken = True
         if getattr(exc, "errno", None) in (errno.ENOSPC, errno.EDQUOT) or "No space left" in str(exc):
-            raise disk_full_error(self.path, self._needed(), DISK_FULL_HINT) from None
+            raise full from None
         raise OSError(errno.EIO, f"writing the result failed ({' '.join(str(exc).split())[:200]})",
                       str(self.path)) from None
 

@@ -5,6 +5,7 @@ case file into them; a script may build them directly. All quantities are SI (m,
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, Callable, Literal
@@ -68,6 +69,10 @@ class PiecewiseLinear:
     def __call__(self, t: float) -> float:
         return float(np.interp(t, self.times, self.values))
 
+    def sample(self, t: np.ndarray) -> np.ndarray:
+        """f at each of the times ``t`` [s] at once (float64, what calling it at each gives)."""
+        return np.interp(np.asarray(t, dtype=float), self.times, self.values).astype(float)
+
     @property
     def reference(self) -> float:
         """The largest value of the history (used to normalise: Hertz a0, p0)."""
@@ -77,32 +82,39 @@ class PiecewiseLinear:
         """The history's reversals, in time order: (first time [s], last time [s] of the extreme held
         there — the same time unless a plateau holds it —, the extreme, +1 for a peak or -1 for a
         trough). A change of slope without a change of direction is none."""
+        return tuple(zip(*(a.tolist() for a in self.turning_arrays())))
+
+    def turning_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`turning_points` as four arrays (first times, last times, extremes, directions),
+        computed at once (a history of 20,000 points took seconds point by point)."""
         values = np.asarray(self.values)
+        times = np.asarray(self.times, dtype=float)
         starts = np.flatnonzero(np.r_[True, np.diff(values) != 0])  # plateaus of equal values: [start, end]
         ends = np.r_[starts[1:] - 1, values.size - 1]
-        found = []
-        for g in range(1, starts.size - 1):
-            i, j = starts[g], ends[g]
-            before, after = np.sign(values[i] - values[i - 1]), np.sign(values[starts[g + 1]] - values[j])
-            if before != after:
-                found.append((float(self.times[i]), float(self.times[j]), float(values[i]), int(before)))
-        return tuple(found)
+        g = np.arange(1, max(starts.size - 1, 1))
+        i, j = starts[g], ends[g]
+        before, after = np.sign(values[i] - values[i - 1]), np.sign(values[starts[g + 1]] - values[j])
+        keep = before != after
+        return (times[i[keep]], times[j[keep]], values[i[keep]].astype(float), before[keep].astype(int))
+
+    def turning_reach(self, dt: float, last: int) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`turning_steps` as two arrays (the steps, the values the steps reach there), computed
+        at once."""
+        first, held_until, _, direction = self.turning_arrays()
+        steps = np.ceil(first / dt - 1e-9)  # the first step on or after each turning point
+        beyond = np.flatnonzero(steps > last)
+        k = steps[:beyond[0] if beyond.size else steps.size].astype(np.int64)
+        held_until, direction = held_until[:k.size], direction[:k.size]
+        at_k, before_k = np.interp(k * dt, self.times, self.values), np.interp((k - 1) * dt, self.times, self.values)
+        on = k * dt <= held_until + 1e-9 * dt  # a step on the turning point or its plateau
+        later = on | (direction * at_k >= direction * before_k)  # else the more extreme of the steps around it
+        return np.where(later, k, k - 1), np.where(later, at_k, before_k)
 
     def turning_steps(self, dt: float, last: int) -> tuple[tuple[int, float], ...]:
         """For each turning point that steps t = k ``dt`` (k <= ``last``) reach: (the step nearest to it,
         the value the steps reach there): the first step on its plateau where one falls there, else the
         more extreme of the steps just before and after it."""
-        found = []
-        for first, held_until, _, direction in self.turning_points():
-            k = int(np.ceil(first / dt - 1e-9))  # the first step on or after the turning point
-            if k > last:
-                break
-            if k * dt <= held_until + 1e-9 * dt:  # a step on the turning point or its plateau
-                found.append((k, self(k * dt)))
-                continue
-            value, k = max((direction * self(m * dt), m) for m in (k, k - 1))
-            found.append((k, direction * value))
-        return tuple(found)
+        return tuple(zip(*(a.tolist() for a in self.turning_reach(dt, last))))
 
 
 def check_history(history: PiecewiseLinear, key: str) -> None:
@@ -276,6 +288,13 @@ class TangentialLoading:
         return self.friction_coefficient if self.has_shear else 0.0
 
 
+#: most depths, and most times, of the subsurface stress output (output.subsurface_depths, _times)
+MAX_SUBSURFACE_POINTS = 4096
+#: most steps a run may take (t_end / dt): beyond, the counts and estimates drawn from it overflow, and
+#: no run would end
+MAX_STEPS = 10**9
+
+
 @dataclass(frozen=True)
 class TimeStepping:
     """Time discretisation.
@@ -294,6 +313,11 @@ class TimeStepping:
         """``time.t_end`` a finite number >= 0 s, ``time.dt`` > 0 s (else :class:`ParameterError`)."""
         _check_number("time.t_end", self.t_end, " s", strict=False)
         _check_number("time.dt", self.dt, " s")
+        if self.t_end / self.dt > MAX_STEPS:
+            raise ParameterError("time.dt", f"time.t_end / time.dt = {self.t_end:.4g} s / {self.dt:.4g} s is "
+                                 f"{self.t_end / self.dt:.3g} steps, more than the {MAX_STEPS:.0e} a run can take: "
+                                 "check time.t_end and time.dt (when sliding, dt defaults to one cell of sliding per "
+                                 "tangential.steps_per_cell steps: check tangential.sliding_speed and grid.half_width)")
 
     @property
     def n_steps(self) -> int:
@@ -377,6 +401,21 @@ class OutputSettings:
         for key, values in (("subsurface_depths", self.subsurface_depths), ("subsurface_times", self.subsurface_times)):
             for value in values or ():
                 _check_number(f"output.{key}", value, " m" if key == "subsurface_depths" else " s", strict=False)
+        check_subsurface_output(self.subsurface_depths, self.subsurface_times)
+
+
+def check_subsurface_output(depths: Sequence[float], times: Sequence[float] | None) -> None:
+    """Refuse (:class:`ParameterError`) an empty ``output.subsurface_times`` (it would select no
+    step, and the subsurface output fail after the last step; None, the key left out, means the last
+    recorded step) and more than :data:`MAX_SUBSURFACE_POINTS` depths or times (each depth at each
+    time is a solve over the section: a million took minutes, after an estimate that saw none)."""
+    if times is not None and len(times) == 0:
+        raise ParameterError("output.subsurface_times", "must list at least one time [s], got []; leave the key out "
+                             "for the last recorded step")
+    for key, values in (("subsurface_depths", depths), ("subsurface_times", times or ())):
+        if len(values) > MAX_SUBSURFACE_POINTS:
+            raise ParameterError(f"output.{key}", f"lists {len(values)} entries, more than the "
+                                 f"{MAX_SUBSURFACE_POINTS} a run computes: give fewer")
 
 
 @dataclass(frozen=True)

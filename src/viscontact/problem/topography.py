@@ -22,6 +22,7 @@ SurfaceTopography is imported when needed (it takes seconds to import).
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
 
 import numpy as np
@@ -180,7 +181,8 @@ def read_heights(path: str | Path, grid: Grid, *, resample: bool = False, physic
 
     path = Path(path)
     if not path.is_file():
-        raise ParameterError(key, f"no such file: {path}")
+        raise ParameterError(key, f"{path} is not a regular file (a folder, FIFO, device or link loop): give a "
+                             "topography file" if os.path.lexists(path) else f"no such file: {path}")
     extra = {k: v for k, v in (("physical_sizes", physical_sizes), ("unit", unit)) if v is not None}
     try:
         topography = SurfaceTopography.read_topography(str(path), **extra)

@@ -27,7 +27,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from viscontact.errors import warn_caller
+from viscontact.errors import NumericalGuardError, warn_caller
 from viscontact.problem.problem import PHASE_PARTIAL_SLIP, Problem
 from viscontact.problem.records import StepRecord
 
@@ -35,6 +35,9 @@ from viscontact.problem.records import StepRecord
 WAKE_WARNING = 0.01
 #: growth of that estimate, over the first warning's, above which the end of the run warns again
 WAKE_GROWTH = 1.5
+#: the same estimate above which the run is stopped (:class:`~viscontact.errors.NumericalGuardError`,
+#: the steps done kept): a result that would be mostly the bias is not returned
+WAKE_REFUSAL = 0.5
 #: growth of the contact area during partial slip, relative to its first area, above which the total
 #: slip warns (:class:`ContactGrowthWarning`)
 CONTACT_GROWTH = 0.05
@@ -93,7 +96,8 @@ class StreamWriter(Recorder):
 
 
 class WakeWarning(Observer):
-    """Warns when :attr:`StepRecord.wake_loss` first exceeds :data:`WAKE_WARNING`, and at the end of
+    """Stops the run when :attr:`StepRecord.wake_loss` exceeds :data:`WAKE_REFUSAL`; warns when it
+    first exceeds :data:`WAKE_WARNING`, and at the end of
     the run with the largest estimate when it exceeds :data:`WAKE_GROWTH` times the first one's (the
     bias grows as the wake lengthens: one first warning of 1.2 % was followed by 12 % at the end)."""
 
@@ -104,6 +108,11 @@ class WakeWarning(Observer):
         self.largest, self.largest_t = 0.0, 0.0
 
     def on_step(self, state, record: StepRecord) -> None:
+        if record.wake_loss > WAKE_REFUSAL:
+            raise NumericalGuardError(
+                f"history dropped at the trailing edge biases the result by about {100 * record.wake_loss:.2g}% "
+                f"at t = {record.t:.4g} s (more than {100 * WAKE_REFUSAL:.0f}%: the result would be mostly that "
+                f"bias); {self.ADVICE}")
         if record.wake_loss > self.largest:
             self.largest, self.largest_t = record.wake_loss, record.t
         if self.first is None and record.wake_loss > WAKE_WARNING:

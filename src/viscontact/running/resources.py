@@ -46,6 +46,8 @@ PERIODIC_TRANSFORMS = 5.0
 TIMED_SIDE_LIMIT = 512
 #: runs estimated to take longer than this [s] are refused unless forced
 MAX_RUN_SECONDS = 24 * 3600.0
+#: runs estimated (on the CPU) to take longer than this [s] are refused even when forced: a year
+MAX_FORCED_RUN_SECONDS = 365 * 24 * 3600.0
 #: a run's memory before its arrays [bytes]: the interpreter with numpy, scipy, h5py, pydantic and
 #: the solver imported; a run loads no xarray (108 MiB measured for a 32^2 ``viscontact run``,
 #: 2026-11-23, 107 MiB on 2026-11-28; BENCHMARKS.md)
@@ -245,7 +247,8 @@ def window_cells(problem: Problem) -> int:
     contact = contact_estimate(problem)
     if contact is None or not math.isfinite(contact.largest):
         return int(FULL_FRACTION * n)
-    return window_side(math.ceil(2 * contact.largest / problem.grid.spacing), n) or 0
+    cells = 2 * contact.largest / problem.grid.spacing  # beyond 2 n (or not finite) the box is the whole grid
+    return window_side(math.ceil(cells), n) or 0 if cells < 2 * n else 0
 
 
 def available_memory() -> int | None:
@@ -290,6 +293,10 @@ def check_resources(problem: Problem, out: str | Path, *, force: bool = False, c
     # a GPU run's memory and time are not estimated: the CPU run's, which hold its fields in host memory
     # and take 5-11 times as long at 1024^2 and above (docs/gpu.md), refuse nothing; the disk is the same
     cpu_only = {"grid.n", "time.t_end"} if problem.solver.device == "gpu" else set()
+    if est.seconds > MAX_FORCED_RUN_SECONDS and problem.solver.device != "gpu":
+        raise ParameterError("time.t_end", f"{problem.time.n_steps} steps on {problem.grid.n}^2 cells would take about "
+                             f"{_duration(est.seconds)}, more than a year, which not even --force runs: check "
+                             "time.t_end and time.dt (and grid.n)")
     for key, message in problems:
         if key in cpu_only:
             warn_caller(f"{key}: {message} (the CPU run's estimate: solver.device = 'gpu' runs it)")

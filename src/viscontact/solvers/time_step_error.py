@@ -73,7 +73,7 @@ def time_step_error(problem: Problem) -> float:
     n_steps = min(problem.time.n_steps, MAX_CHECKED_STEPS)
     h = problem.time.dt / REFERENCE_REFINEMENT
     fine = np.arange((n_steps - 1) * REFERENCE_REFINEMENT + 1) * h
-    history = np.array([problem.normal.history(t) for t in fine]) if len(problem.normal.history.times) > 1 \
+    history = problem.normal.history.sample(fine) if len(problem.normal.history.times) > 1 \
         else np.full(fine.size, problem.normal.history.reference)
     relaxation = (mat.g_inf, np.array(mat.g), np.array(mat.tau))
     creep = mat.creep

@@ -30,6 +30,7 @@ import tomllib
 
 from viscontact.errors import ParameterError
 from viscontact.io.case import case_keys, closest, load_case, read_input_file
+from viscontact.io.safe_read import regular_input
 
 __all__ = ["SOLVERS", "Plan", "Run", "SweepSpec", "check_run", "format_value", "load_sweep", "plan",
            "run_file_name"]
@@ -275,6 +276,7 @@ def run_fingerprint(solver: str, case: Any) -> str:
     content of every file it reads (a changed height file makes its runs stale)."""
     digest = hashlib.sha256(f"{solver}\n{case.model_dump_json()}".encode())
     for key, path in case.input_files().items():
+        regular_input(path, key)  # a FIFO would block the read
         try:
             digest.update(Path(path).read_bytes())
         except OSError as exc:
