@@ -52,6 +52,7 @@ from viscontact.errors import ParameterError
 from viscontact.numerics.arrays import CPU, ArrayBackend, cpu_fast_length
 from viscontact.numerics.convolution import Convolver, FourierPreconditioner
 from viscontact.numerics.exponentials import CreepSpectrum
+from viscontact.numerics.fftbackends import DCFFTTransforms, ZeroBlockTransforms, dcfft_transforms
 from viscontact.numerics.grid import Grid
 from viscontact.numerics.history import DirectHistory, History, PronyHistory
 from viscontact.numerics.schemes import StepCoefficients, TimeScheme, get_scheme
@@ -69,6 +70,16 @@ RESPONSE_MODES = 8
 #: a periodic kernel whose mean (its q = 0 spectral value) is below this fraction of its largest
 #: spectral value has zero mean up to round-off (:meth:`TermSubstrate.free_mean`)
 FREE_MEAN_TOLERANCE = 1e-9
+
+
+#: the kernel components, in the order a body builds them: u_z of p and of q_x, u_x of p and of q_x
+COMPONENT_ORDER = ("zz", "zx", "xz", "xx")
+
+
+def ordered_components(components: Iterable[str]) -> tuple[str, ...]:
+    """``components`` and ``zz`` (always built) in :data:`COMPONENT_ORDER`."""
+    wanted = set(components) | {"zz"}
+    return tuple(c for c in COMPONENT_ORDER if c in wanted)
 
 
 @dataclass(frozen=True)
@@ -496,15 +507,27 @@ def history_key(term: ComplianceTerm) -> str:
     return f"{term.traction}:{label}"
 
 
+def grid_transforms(n: int, workers: int, fft: str = "scipy", backend: ArrayBackend = CPU) -> DCFFTTransforms:
+    """The DC-FFT transforms of an n x n grid's fields: those of ``solver.fft`` by name on the CPU
+    (:func:`~viscontact.numerics.fftbackends.dcfft_transforms`), on a device ``backend`` its own FFT
+    module's zero-block transforms (``fft`` must then be ``"scipy"``, as
+    :class:`~viscontact.problem.problem.SolverSettings` checks)."""
+    if backend.is_cpu:
+        return dcfft_transforms(fft, n, workers)
+    return ZeroBlockTransforms(n, workers, backend.fft)
+
+
 def term_substrate(grid, terms: Iterable[ComplianceTerm], scheme, dt: float, *, workers: int = -1,
-                   direct: bool = False, backend=None):
+                   direct: bool = False, backend=None, fft: str = "scipy"):
     """A :class:`~viscontact.bodies.compliance.TermSubstrate` of compliance terms: each term a kernel named
     after it, terms with the same :func:`history_key` sharing one history (they must share the
     response), Fourier preconditioners for the self (zz, xx) kernels, the terms' steady shapes. On
     a periodic grid the kernels are periodic (n x n) and the convolver is the unpadded
     :class:`~viscontact.physics.periodic.PeriodicConvolver`; otherwise DC-FFT. For the solvers'
     ``substrate=`` argument (e.g. :func:`viscontact.solvers.transient.steps`). ``backend``: where the fields
-    live (an :class:`~viscontact.numerics.arrays.ArrayBackend`; None: the CPU)."""
+    live (an :class:`~viscontact.numerics.arrays.ArrayBackend`; None: the CPU). ``fft``: the DC-FFT
+    transforms by name (``solver.fft``, :func:`grid_transforms`); a periodic grid's unpadded
+    transforms are its backend's FFT module's whatever the name, as for every body."""
     terms = list(terms)
     responses: dict[str, CreepSpectrum] = {}
     for term in terms:
@@ -519,7 +542,8 @@ def term_substrate(grid, terms: Iterable[ComplianceTerm], scheme, dt: float, *, 
         conv = PeriodicConvolver.from_kernels(grid.n, kernels, workers, xp=backend.xp, fft=backend.fft)
         precond = {name: conv.preconditioner(name) for name in selves}
     else:
-        conv = Convolver.from_kernels(grid.n, kernels, workers, xp=backend.xp, fft=backend.fft)
+        conv = Convolver.from_kernels(grid.n, kernels, workers, xp=backend.xp, fft=backend.fft,
+                                      transforms=grid_transforms(grid.n, workers, fft, backend))
         precond = {name: FourierPreconditioner.for_kernel(kernels[name], 1.0, workers, fft=backend.fft)
                    for name in selves}
     core_terms = [Term(t.displacement, t.traction, t.name, history_key(t)) for t in terms]

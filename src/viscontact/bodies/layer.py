@@ -93,22 +93,31 @@ and integrated by the same recursion over its box.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
-from typing import Callable
+from functools import cached_property
+from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 import numpy as np
 import scipy.fft
 import scipy.linalg
+import scipy.optimize
 
 from viscontact.bodies.bulk_elastic import prony_creep_spectra, prony_creep_spectrum
-from viscontact.bodies.compliance import ComplianceTerm
+from viscontact.bodies.base import described_fingerprint
+from viscontact.bodies.compliance import ComplianceTerm, TermSubstrate, ordered_components, term_substrate
 from viscontact.errors import ParameterError
+from viscontact.numerics.arrays import ArrayBackend
 from viscontact.numerics.exponentials import CreepSpectrum, linear_combination
 from viscontact.numerics.grid import Grid
+from viscontact.numerics.schemes import TimeScheme
 from viscontact.physics.kernels import rectangle_influence
 from viscontact.physics.materials import Material
 from viscontact.physics.periodic import periodic_influence_coefficients
 from viscontact.physics.steady_kernels import SteadyKernelBuilder, SteadyShape, lagrange_basis, lobatto_nodes
+
+if TYPE_CHECKING:  # the case's [layer], as the problem holds it (a layer above: for the reader only)
+    from viscontact.problem.problem import LayerSettings
 
 SUBSTRATES = ("rigid", "elastic")
 INTERFACES = ("bonded", "frictionless")
@@ -1003,3 +1012,138 @@ def elastic_substrate_terms(grid: Grid, layer: Layer, shear: Material, component
         label = "elastic" if p == 0 else f"node{p}"
         terms += [ComplianceTerm(c[0], c[1], kernels[c], response, f"{c}:{label}", shapes.get(c)) for c in components]
     return rigid + terms
+
+
+# --- the body ------------------------------------------------------------------------------------
+
+#: k a of the wavenumber whose compliance stands for a contact of radius a in :meth:`LayerOnBase.contact_radius`:
+#: 32/(3 pi) makes the estimate the thin-layer (Winkler) limit exactly
+CONTACT_WAVENUMBER = 32.0 / (3.0 * math.pi)
+#: k h below which :meth:`LayerOnBase.contact_radius` takes the compliance at this k h (the layer's
+#: system loses digits below it; the thin limit h/M is reached to ~(k h)^2 there)
+THIN_KH = 1e-3
+
+
+@dataclass(frozen=True)
+class LayerOnBase:
+    """A viscoelastic layer (``material``, constant nu) on a rigid or elastic base (``settings``, the
+    case's ``[layer]``: a :class:`~viscontact.problem.problem.LayerSettings`, whose field names are the
+    case keys: ``substrate`` there is the base here): a :class:`~viscontact.bodies.base.Body`.
+
+    Its compliance: on a rigid base, or for an elastic layer, the layer's unit-modulus kernels times
+    the creep compliance (:func:`rigid_base_terms`, :func:`factored_terms`: one term per component);
+    a viscoelastic layer on an elastic base, the rigid-base terms and one kernel per shift node,
+    each with its own creep function (:func:`elastic_substrate_terms`).
+    """
+
+    material: Material
+    settings: LayerSettings
+
+    subsurface_stresses = False
+    contact_model = "layer compliance at k = 32/(3 pi a): Winkler when thin, Hertz when thick; Lee & Radok creep"
+
+    @property
+    def layer(self) -> Layer:
+        """The elastic layer at G(0) on its base (checks the settings)."""
+        return self.layer_at(self.material.shear_modulus_instantaneous)
+
+    def layer_at(self, shear_modulus: float) -> Layer:
+        """The elastic layer of shear modulus ``shear_modulus`` [Pa] on the base."""
+        s = self.settings
+        return Layer(s.thickness, shear_modulus, self.material.poisson_ratio, s.substrate, s.interface,
+                     s.substrate_shear_modulus, s.substrate_poisson_ratio)
+
+    @property
+    def _shift_nodes(self) -> ShiftNodes | None:
+        """The shift nodes of a viscoelastic layer on an elastic base (:func:`shift_nodes`); None when
+        the time response factors (rigid base, elastic layer)."""
+        if self.settings.substrate == "elastic" and not self.material.is_elastic:
+            return shift_nodes(self.material)
+        return None
+
+    @property
+    def description(self) -> Mapping[str, Any]:
+        return {"layer": self.settings}
+
+    def compliance(self, grid: Grid, components: Sequence[str], scheme: str | TimeScheme, dt: float, *,
+                   workers: int = -1, direct: bool = False, fft: str = "scipy",
+                   backend: ArrayBackend | None = None) -> TermSubstrate:
+        """The terms (class docstring) as a :class:`~viscontact.bodies.compliance.TermSubstrate`."""
+        layer, comps = self.layer, ordered_components(components)
+        if layer.substrate == "rigid":
+            terms = rigid_base_terms(grid, layer, self.material, comps)
+        elif not self.material.is_elastic:
+            terms = elastic_substrate_terms(grid, layer, self.material, comps)
+        else:
+            terms = factored_terms(grid, layer, self.material.creep, comps)
+        return term_substrate(grid, terms, scheme, dt, workers=workers, direct=direct, backend=backend, fft=fft)
+
+    def stability_responses(self) -> list[CreepSpectrum]:
+        """J(t), and on an elastic base the responses of the shift nodes (times of G(t) + s_p) [1/Pa]."""
+        nodes = self._shift_nodes
+        extra = [] if nodes is None else [nodes.response(self.material, p) for p in range(nodes.nodes.size)]
+        return [self.material.creep] + extra
+
+    def size(self) -> tuple[int, int]:
+        """M history fields and one kernel per component; D M and D + 1 for a viscoelastic layer on an
+        elastic base with D + 1 shift nodes."""
+        modes = self.material.creep.retardation_times.size
+        nodes = self._shift_nodes
+        return (modes, 1) if nodes is None else ((nodes.nodes.size - 1) * modes, nodes.nodes.size)
+
+    def result_attributes(self) -> dict[str, Any]:
+        """The ``[layer]`` keys, prefixed ``layer_``."""
+        s = self.settings
+        return {"layer_thickness": float(s.thickness), "layer_substrate": s.substrate,
+                "layer_interface": s.interface, "layer_substrate_shear_modulus": float(s.substrate_shear_modulus),
+                "layer_substrate_poisson_ratio": float(s.substrate_poisson_ratio)}
+
+    def fingerprint(self) -> bytes:
+        """{"bulk_modulus": None, "layer": LayerSettings(...)} (:func:`~viscontact.bodies.base.described_fingerprint`)."""
+        return described_fingerprint(self.description)
+
+    def material_summary(self) -> str:
+        return f"poisson_ratio = {self.material.poisson_ratio:g}"
+
+    def contact_radius(self, load: float, sphere_radius: float, compliance_factor: float = 1.0) -> float:
+        """Contact radius a [m] of a sphere (radius R [m], load W [N]) on the layer with G(0)/c
+        (c = ``compliance_factor``; the base does not creep).
+
+        Hertz in terms of the compliance: a half-space has A_zz(k) = (1 - nu)/(G k) = 2/(E* k), so
+        Hertz's a^3 = 3 W R/(4 E*) reads a^3 = 3 W R k A_zz(k)/8 for any k. Here A_zz is the layer's
+        (:func:`in_plane_compliance`) at the wavenumber k = kappa/a of the contact, and a solves
+
+            a^3 = 3 W R (kappa/a) A_zz(kappa/a) / 8,   kappa = 32/(3 pi) (:data:`CONTACT_WAVENUMBER`).
+
+        Limits: a thick layer (k h >> 1) is the half-space, Hertz for any kappa. A thin bonded
+        compressible layer on a rigid base has A_zz -> h/M (oedometric M = 2 G (1 - nu)/(1 - 2 nu)),
+        a Winkler foundation of stiffness M/h: p(r) = (M/h)(delta - r^2/2R), zero at r = a, so
+        delta = a^2/2R and W = pi M a^4/(4 R h) (:func:`viscontact.physics.reference.winkler_sphere`);
+        the equation gives a^4 = 3 kappa W R h/(8 M), the same for this kappa. A thin incompressible
+        layer (A_zz -> h^3 k^2/(3 G): squeeze flow; exact a^6 = 32 W R h^3/(pi G), cf. Jaffar 1989;
+        tests/validation/test_layer_contact.py) comes out 11-14 % small. On a softer elastic base the
+        compliance at long wavelengths is the base's (1 - nu_s)/(G_s k), so the estimate moves from
+        the layer's to the base's half-space as the contact outgrows h: the layer and its base are
+        judged together, by the one compliance, rather than by the smaller or larger of two Hertz
+        radii. Below k h = :data:`THIN_KH` the compliance at that k h is used.
+        """
+        layer = self.layer_at(self.material.shear_modulus_instantaneous / compliance_factor)
+        h, k_floor = layer.thickness, THIN_KH / layer.thickness
+
+        def excess(log_a: float) -> float:
+            a = math.exp(log_a)
+            k = max(CONTACT_WAVENUMBER / a, k_floor)
+            ka = k * float(in_plane_compliance(layer, np.array([k]))["zz"][0].real)
+            return math.log(3.0 * load * sphere_radius * ka / 8.0) - 3.0 * log_a
+
+        # the half-space of the layer or of the base brackets the radius within a few decades
+        low, high = math.log(1e-3 * min(h, sphere_radius)), math.log(10.0 * sphere_radius)
+        if excess(low) <= 0.0 or excess(high) >= 0.0:
+            return math.exp(low if excess(low) <= 0.0 else high)
+        return math.exp(scipy.optimize.brentq(excess, low, high, xtol=1e-12))
+
+    def contact_radius_at_approach(self, approach: float, sphere_radius: float) -> float:
+        """a = sqrt(R delta) [m], the half-space's (Hertz) relation: a thin compressible layer on a
+        rigid base reaches sqrt(2 R delta) (Winkler), a thin incompressible one 2 sqrt(R delta); this
+        estimate takes the half-space's (a known shortfall for thin layers under an approach)."""
+        return math.sqrt(sphere_radius * approach)
