@@ -128,8 +128,11 @@ def contact_estimate(problem: Problem, *, transient: bool = True) -> ContactEsti
 
 def _creep_ratio(problem: Problem, duration: float) -> float:
     """max over 0 <= t <= duration of int J(t - s) dW(s) / (J(0) max W) [-] (1 for an elastic
-    material, G(0)/G(inf) for a held load after a long time)."""
+    material, G(0)/G(inf) for a held load after a long time; 1 for a run of one step at t = 0, which
+    has no time to creep)."""
     mat = problem.material
+    if duration <= 0.0:
+        return 1.0
     if mat.is_elastic or not math.isfinite(duration):
         return mat.shear_modulus_instantaneous / mat.shear_modulus_long_term
     creep = mat.creep
