@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 from vc_testing import sphere_problem
 
+from viscontact.errors import ParameterError
 from viscontact.physics.materials import Material
 from viscontact.physics.reference import winkler_sphere
 from viscontact.problem.problem import LayerSettings
@@ -28,8 +29,8 @@ H, G, NU, R, W, HALF_WIDTH = 20e-6, 1.93e6, 0.3, 0.01, 0.679, 0.88e-3
 MATERIALS = {"elastic": Material.elastic(G, NU), "zener": Material.zener(G, G / 10, 0.01, NU)}
 
 
-def _problem(material: Material, t_end: float = 0.0, n: int = 64):
-    problem = sphere_problem(material, n, HALF_WIDTH, value=W, t_end=t_end, dt=1e-3, scheme="linear")
+def _problem(material: Material, t_end: float = 0.0, n: int = 64, half_width: float = HALF_WIDTH):
+    problem = sphere_problem(material, n, half_width, value=W, t_end=t_end, dt=1e-3, scheme="linear")
     return dataclasses.replace(problem, layer=LayerSettings(H))
 
 
@@ -38,6 +39,13 @@ def test_the_thin_layer_estimates_its_own_contact():
     est = guards.contact_estimate(_problem(MATERIALS["elastic"]))
     assert est.smallest == pytest.approx(winkler_sphere(W, R, H, G, NU).radius, rel=1e-3)
     assert est.largest < 0.5 * 0.974e-3  # Hertz: 0.974 mm
+
+
+def test_the_grid_advice_holds_the_layers_contact():
+    """Too narrow a domain is refused with the layer's radius and a half-width of 1.5 times it (the
+    half-space's Hertz estimate would ask for 1.5 mm)."""
+    with pytest.raises(ParameterError, match=r"reaches about 0\.0004 m \(layer compliance.*half_width = 0\.00061 m"):
+        guards.check_problem(_problem(MATERIALS["elastic"], half_width=0.3e-3))
 
 
 @pytest.mark.parametrize("name", MATERIALS)

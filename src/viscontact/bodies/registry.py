@@ -2,7 +2,7 @@
 
 A body is described by its material and at most one case key beside it: none for the homogeneous
 half-space, ``material.bulk_modulus`` (K [Pa]) for the half-space with nu(t), ``[layer]`` (a
-:class:`~viscontact.bodies.layer.LayerSettings`) for a layer on a base. :data:`BODIES` maps each key
+:class:`~viscontact.problem.problem.LayerSettings`) for a layer on a base. :data:`BODIES` maps each key
 to the class built from the material and the key's value; a new kind of body adds its key here.
 """
 from __future__ import annotations
