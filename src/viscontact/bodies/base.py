@@ -19,9 +19,10 @@ body is one module with such a class and one entry in :data:`viscontact.bodies.r
 """
 from __future__ import annotations
 
-from typing import Any, Mapping, Protocol, Sequence, runtime_checkable
+from collections.abc import Mapping, Sequence
+from typing import Any, Protocol, runtime_checkable
 
-from viscontact.bodies.compliance import TermSubstrate
+from viscontact.bodies.compliance import ComplianceTerm, TermSubstrate, ordered_components, term_substrate
 from viscontact.numerics.arrays import ArrayBackend
 from viscontact.numerics.exponentials import CreepSpectrum
 from viscontact.numerics.grid import Grid
@@ -115,3 +116,27 @@ def described_fingerprint(description: Mapping[str, Any]) -> bytes:
     full = {key: None for key in DESCRIPTION_KEYS}
     full.update(description)
     return repr(full).encode()
+
+
+class TermBody:
+    """What a body of :class:`~viscontact.bodies.compliance.ComplianceTerm` s shares (a base class of
+    the bodies whose compliance is :func:`~viscontact.bodies.compliance.term_substrate` of their
+    :meth:`terms`; the half-space with constant nu builds its own): :meth:`compliance` and the
+    :meth:`fingerprint` of its :attr:`~Body.description`."""
+
+    description: Mapping[str, Any]
+
+    def terms(self, grid: Grid, components: tuple[str, ...]) -> list[ComplianceTerm]:
+        """The compliance terms of the kernels ``components`` (ordered, ``zz`` first) on ``grid``."""
+        raise NotImplementedError
+
+    def compliance(self, grid: Grid, components: Sequence[str], scheme: str | TimeScheme, dt: float, *,
+                   workers: int = -1, direct: bool = False, fft: str = "scipy",
+                   backend: ArrayBackend | None = None) -> TermSubstrate:
+        """:meth:`terms` as a :class:`~viscontact.bodies.compliance.TermSubstrate` (:meth:`Body.compliance`)."""
+        terms = self.terms(grid, ordered_components(components))
+        return term_substrate(grid, terms, scheme, dt, workers=workers, direct=direct, backend=backend, fft=fft)
+
+    def fingerprint(self) -> bytes:
+        """:func:`described_fingerprint` of the description."""
+        return described_fingerprint(self.description)

@@ -43,17 +43,16 @@ traction component, each with one internal field per retardation time, :mod:`vis
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
-from viscontact.bodies.base import described_fingerprint
-from viscontact.bodies.compliance import ComplianceTerm, TermSubstrate, ordered_components, term_substrate
+from viscontact.bodies.base import TermBody
+from viscontact.bodies.compliance import ComplianceTerm
 from viscontact.bodies.half_space import hertz_radius
-from viscontact.numerics.arrays import ArrayBackend
-from viscontact.numerics.schemes import TimeScheme
 from viscontact.errors import ParameterError
 from viscontact.numerics.exponentials import CreepSpectrum, linear_combination
 from viscontact.numerics.grid import Grid
@@ -276,11 +275,11 @@ def half_space_terms(grid: Grid, material: BulkElasticMaterial,
 
 
 @dataclass(frozen=True)
-class BulkElasticHalfSpace:
+class BulkElasticHalfSpace(TermBody):
     """The homogeneous half-space of a material whose shear modulus relaxes while its bulk modulus K
     stays elastic, so that nu(t) rises from nu(0) to nu(inf) (module docstring): a
     :class:`~viscontact.bodies.base.Body` of the terms of :func:`half_space_terms` (two histories per
-    traction component, J(t) and L(t)).
+    traction component, J(t) and L(t)). Its fingerprint part: {"bulk_modulus": K, "layer": None}.
 
     Parameters
     ----------
@@ -306,12 +305,9 @@ class BulkElasticHalfSpace:
     def description(self) -> Mapping[str, Any]:
         return {"bulk_modulus": self.bulk_modulus}
 
-    def compliance(self, grid: Grid, components: Sequence[str], scheme: str | TimeScheme, dt: float, *,
-                   workers: int = -1, direct: bool = False, fft: str = "scipy",
-                   backend: ArrayBackend | None = None) -> TermSubstrate:
-        """:func:`half_space_terms` as a :class:`~viscontact.bodies.compliance.TermSubstrate`."""
-        terms = half_space_terms(grid, self.elastic_bulk, ordered_components(components))
-        return term_substrate(grid, terms, scheme, dt, workers=workers, direct=direct, backend=backend, fft=fft)
+    def terms(self, grid: Grid, components: tuple[str, ...]) -> list[ComplianceTerm]:
+        """:func:`half_space_terms`."""
+        return half_space_terms(grid, self.elastic_bulk, components)
 
     def stability_responses(self) -> list[CreepSpectrum]:
         """J(t) and the normal (1 - nu)/G and tangential 1/G factors (:meth:`BulkElasticMaterial.factor`;
@@ -329,10 +325,6 @@ class BulkElasticHalfSpace:
         nu = BulkElasticMaterial.poisson_ratio_of
         return {"bulk_modulus": float(k), "poisson_ratio_instantaneous": nu(mat.shear_modulus_instantaneous, k),
                 "poisson_ratio_long_term": nu(mat.shear_modulus_long_term, k)}
-
-    def fingerprint(self) -> bytes:
-        """{"bulk_modulus": K, "layer": None} (:func:`~viscontact.bodies.base.described_fingerprint`)."""
-        return described_fingerprint(self.description)
 
     def material_summary(self) -> str:
         bulk = self.elastic_bulk

@@ -94,23 +94,21 @@ and integrated by the same recursion over its box.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
-from functools import cached_property
-from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import scipy.fft
 import scipy.linalg
 import scipy.optimize
 
+from viscontact.bodies.base import TermBody
 from viscontact.bodies.bulk_elastic import prony_creep_spectra, prony_creep_spectrum
-from viscontact.bodies.base import described_fingerprint
-from viscontact.bodies.compliance import ComplianceTerm, TermSubstrate, ordered_components, term_substrate
+from viscontact.bodies.compliance import ComplianceTerm
 from viscontact.errors import ParameterError
-from viscontact.numerics.arrays import ArrayBackend
 from viscontact.numerics.exponentials import CreepSpectrum, linear_combination
 from viscontact.numerics.grid import Grid
-from viscontact.numerics.schemes import TimeScheme
 from viscontact.physics.kernels import rectangle_influence
 from viscontact.physics.materials import Material
 from viscontact.physics.periodic import periodic_influence_coefficients
@@ -1025,7 +1023,7 @@ THIN_KH = 1e-3
 
 
 @dataclass(frozen=True)
-class LayerOnBase:
+class LayerOnBase(TermBody):
     """A viscoelastic layer (``material``, constant nu) on a rigid or elastic base (``settings``, the
     case's ``[layer]``: a :class:`~viscontact.problem.problem.LayerSettings`, whose field names are the
     case keys: ``substrate`` there is the base here): a :class:`~viscontact.bodies.base.Body`.
@@ -1033,7 +1031,8 @@ class LayerOnBase:
     Its compliance: on a rigid base, or for an elastic layer, the layer's unit-modulus kernels times
     the creep compliance (:func:`rigid_base_terms`, :func:`factored_terms`: one term per component);
     a viscoelastic layer on an elastic base, the rigid-base terms and one kernel per shift node,
-    each with its own creep function (:func:`elastic_substrate_terms`).
+    each with its own creep function (:func:`elastic_substrate_terms`). Its fingerprint part:
+    {"bulk_modulus": None, "layer": LayerSettings(...)}.
     """
 
     material: Material
@@ -1065,18 +1064,14 @@ class LayerOnBase:
     def description(self) -> Mapping[str, Any]:
         return {"layer": self.settings}
 
-    def compliance(self, grid: Grid, components: Sequence[str], scheme: str | TimeScheme, dt: float, *,
-                   workers: int = -1, direct: bool = False, fft: str = "scipy",
-                   backend: ArrayBackend | None = None) -> TermSubstrate:
-        """The terms (class docstring) as a :class:`~viscontact.bodies.compliance.TermSubstrate`."""
-        layer, comps = self.layer, ordered_components(components)
+    def terms(self, grid: Grid, components: tuple[str, ...]) -> list[ComplianceTerm]:
+        """The terms of the class docstring."""
+        layer = self.layer
         if layer.substrate == "rigid":
-            terms = rigid_base_terms(grid, layer, self.material, comps)
-        elif not self.material.is_elastic:
-            terms = elastic_substrate_terms(grid, layer, self.material, comps)
-        else:
-            terms = factored_terms(grid, layer, self.material.creep, comps)
-        return term_substrate(grid, terms, scheme, dt, workers=workers, direct=direct, backend=backend, fft=fft)
+            return rigid_base_terms(grid, layer, self.material, components)
+        if not self.material.is_elastic:
+            return elastic_substrate_terms(grid, layer, self.material, components)
+        return factored_terms(grid, layer, self.material.creep, components)
 
     def stability_responses(self) -> list[CreepSpectrum]:
         """J(t), and on an elastic base the responses of the shift nodes (times of G(t) + s_p) [1/Pa]."""
@@ -1097,10 +1092,6 @@ class LayerOnBase:
         return {"layer_thickness": float(s.thickness), "layer_substrate": s.substrate,
                 "layer_interface": s.interface, "layer_substrate_shear_modulus": float(s.substrate_shear_modulus),
                 "layer_substrate_poisson_ratio": float(s.substrate_poisson_ratio)}
-
-    def fingerprint(self) -> bytes:
-        """{"bulk_modulus": None, "layer": LayerSettings(...)} (:func:`~viscontact.bodies.base.described_fingerprint`)."""
-        return described_fingerprint(self.description)
 
     def material_summary(self) -> str:
         return f"poisson_ratio = {self.material.poisson_ratio:g}"

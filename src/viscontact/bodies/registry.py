@@ -8,7 +8,8 @@ to the class built from the material and the key's value; a new kind of body add
 from __future__ import annotations
 
 import dataclasses
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from viscontact.bodies.base import Body
 from viscontact.bodies.bulk_elastic import BulkElasticHalfSpace
