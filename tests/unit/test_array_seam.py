@@ -33,7 +33,7 @@ from viscontact.io.checkpoint import load_checkpoint, save_checkpoint
 from viscontact.problem.problem import LayerSettings, SolverSettings
 from viscontact.io.shipped import shipped_case
 from viscontact.bodies.body import substrate_for
-from viscontact.solvers import transient
+from viscontact.solvers import contact_laws, transient
 from viscontact.solvers.transient import steps
 from vc_testing import SEED_A0, SEED_RADIUS, SEED_TAU, seed_material, sphere_problem
 
@@ -335,8 +335,8 @@ def test_the_transient_on_the_device_equals_numpy(backend, mode, monkeypatch):
     problem = _solved_to_round_off(_transient(mode), backend)
     reference = list(steps(problem, substrate=substrate_for(problem, backend=_host_twin(backend))))
     direct_solves = []
-    solve_direct = transient.NormalContact.solve_direct
-    monkeypatch.setattr(transient.NormalContact, "solve_direct",
+    solve_direct = contact_laws.NormalContact.solve_direct
+    monkeypatch.setattr(contact_laws.NormalContact, "solve_direct",
                         lambda self, ctx, p: direct_solves.append(ctx.k) or solve_direct(self, ctx, p))
     ours = list(steps(problem, substrate=substrate_for(problem, backend=backend)))
     assert len(ours) == problem.time.n_steps

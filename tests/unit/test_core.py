@@ -177,7 +177,7 @@ def test_relaxation_weight_converges_the_rotation_the_coupling_makes():
     """The coupling's fixed point x <- b - A x with A = gamma [[0, -1], [1, 0]] (the skew form mu_f K_zx
     takes relative to K_zz) diverges for gamma > 1; relaxed with the weight read off the observed
     ratio it converges to the solution of (I + A) x = b (numpy's), at gamma / sqrt(1 + gamma^2) a pass."""
-    from viscontact.solvers.transient import relaxation_weight
+    from viscontact.solvers.coupling import relaxation_weight
 
     gamma = 3.0
     a = gamma * np.array([[0.0, -1.0], [1.0, 0.0]])

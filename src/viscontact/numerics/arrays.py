@@ -30,7 +30,7 @@ the numpy runs bit for bit and that a step after the first copies no field to th
 runs to round-off (1e-10 of each field's peak, both solved to 1e-13: validated on an NVIDIA H200,
 2026-11-28). Checkpoints save a device state through ``to_host`` and restore it to the device
 (:mod:`viscontact.io.checkpoint`); the GMRES of the direct solve of strongly coupled gross sliding
-(:meth:`~viscontact.solvers.transient.NormalContact.solve_direct`) keeps its Krylov vectors on the device
+(:meth:`~viscontact.solvers.contact_laws.NormalContact.solve_direct`) keeps its Krylov vectors on the device
 and its small Hessenberg system on the host. The support windows of a device run take their padded
 sides from :func:`device_fast_length`, whose few lengths keep cuFFT's plans (about 0.2 s each to
 make) in use as a contact grows. CPU-only: the literal hereditary sum (the reference,

@@ -46,7 +46,7 @@ approach must stay below mean(h0): at delta_z = mean(h0) the contact is complete
 undetermined (use load control for complete contact). Tangentially, a uniform shear is in the null
 space of the xx kernel: under a prescribed delta_x (partial slip) only q_x = 0 out of contact fixes
 the mean shear, and a contact covering the period is refused
-(:func:`viscontact.solvers.transient.check_not_full_contact`).
+(:func:`viscontact.solvers.contact_laws.check_not_full_contact`).
 """
 from __future__ import annotations
 

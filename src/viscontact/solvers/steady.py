@@ -36,11 +36,11 @@ What makes it fast:
 For gross sliding (q_x = mu_f p) the operator is K_zz + mu_f K_zx.
 
 The fields are those of the substrate's array backend (:mod:`viscontact.numerics.arrays`); the record comes
-back to the host.
+back to the host, measured by :func:`viscontact.solvers.measure.measure` as a transient step is.
 """
 from __future__ import annotations
 
-from dataclasses import asdict, replace
+from dataclasses import replace
 from typing import Sequence
 
 import numpy as np
@@ -53,9 +53,8 @@ from viscontact.numerics.convolution import Convolver, FourierPreconditioner
 from viscontact.numerics.grid import Grid
 from viscontact.problem.problem import PHASE_GROSS_SLIDING, Problem
 from viscontact.problem.records import StepRecord
-from viscontact.problem.roughness import roughness_metrics
-from viscontact.solvers.checks import check_solution
-from viscontact.solvers.sliding import check_speed, hysteresis_force, pressure_centroid
+from viscontact.solvers.measure import measure
+from viscontact.solvers.sliding import check_speed
 
 
 def steady_convolver(problem: Problem, speed: float, substrate: TermSubstrate | None = None
@@ -226,17 +225,9 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
                                                        max_iterations=problem.solver.max_iterations,
                                                        preconditioner=precondition)
         p, u_z = backend.to_host(p), backend.to_host(apply_k(p))
-    load = float(p.sum() * grid.cell_area)
-    check_solution(problem, p, load, value, where=f" at v = {v:.4g} m/s")
-    f_t = hysteresis_force(p, u_z, grid, grid.periodic)
-    q = mu * p
-    return StepRecord(step=0, t=problem.time.t_end, phase=PHASE_GROSS_SLIDING, load=load, delta_z=delta,
-                      delta_x=0.0, sliding_distance=float("inf"), contact_area=float((p > 0).sum() * grid.cell_area),
-                      stick_ratio=0.0, friction_force=float(q.sum() * grid.cell_area), hysteresis_force=f_t,
-                      mu_app=f_t / load if load > 0 else 0.0, contact_shift=pressure_centroid(p, grid),
-                      iterations=krylov, coupling_iterations=1,
-                      **asdict(roughness_metrics(p, problem.gap + u_z - delta, grid.periodic)),
-                      pressure=p, shear_x=q, stick=np.zeros(p.shape, dtype=bool), displacement_z=u_z)
+    return measure(problem, p, mu * p, u_z, delta_z=delta, value=value, gap=problem.gap, step=0, t=problem.time.t_end,
+                   phase=PHASE_GROSS_SLIDING, sliding_distance=float("inf"), iterations=krylov,
+                   where=f" at v = {v:.4g} m/s")
 
 
 def speed_sweep(problem: Problem, speeds: Sequence[float]) -> list[StepRecord]:

@@ -14,33 +14,40 @@ known hereditary displacement of all earlier increments (:mod:`viscontact.numeri
   Polonsky-Keer solves (contraction factor about mu_f (1 - 2 nu) / (2 (1 - nu)) < 0.1 for the
   seed's case), each warm-started.
 
+Each of these is a contact law, chosen by name from the problem and the phase
+(:mod:`viscontact.solvers.contact_laws`) and iterated over the coupling by
+:func:`viscontact.solvers.coupling.solve_coupled`; the solved state is measured into the step's record by
+:func:`viscontact.solvers.measure.measure`.
+
 State is explicit: :func:`init` builds it, :func:`step` advances it by one time step and returns
 the step's :class:`~viscontact.problem.records.StepRecord`; :func:`simulate` loops and yields the records
 the output settings ask for.
 """
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field, replace
-from typing import Callable, Iterator, Protocol
+from dataclasses import dataclass, field, replace
+from typing import Callable, Iterator
 
 import numpy as np
 
 from viscontact.bodies.body import substrate_for
 from viscontact.bodies.compliance import TermSubstrate
-from viscontact.errors import ConvergenceError, ParameterError
+from viscontact.errors import ParameterError
 from viscontact.numerics.allocator import tune_allocator
 from viscontact.numerics.history import History
 from viscontact.numerics.schemes import stable_step_limit
-from viscontact.numerics.support_window import windowed_bounded_cg, windowed_cg
 from viscontact.physics.periodic import check_approach
-from viscontact.problem.problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP, FrameGaps, Problem
+from viscontact.problem.problem import PHASE_GROSS_SLIDING, PHASE_PARTIAL_SLIP, FrameGaps, Problem
 from viscontact.problem.records import StepRecord
-from viscontact.problem.roughness import roughness_metrics
-from viscontact.solvers.checks import check_solution
-from viscontact.solvers.sliding import Wake, hysteresis_force, pressure_centroid
-
-#: relative margin under mu_f p below which a node counts as stuck
-STICK_MARGIN = 1e-9
+from viscontact.solvers.contact_laws import (
+    StepContext,
+    check_not_full_contact,  # noqa: F401 (documented here: running.api)
+    contact_law,
+    first_phase,
+)
+from viscontact.solvers.coupling import solve_coupled
+from viscontact.solvers.measure import measure
+from viscontact.solvers.sliding import Wake
 
 
 @dataclass(frozen=True)
@@ -116,8 +123,7 @@ def init(problem: Problem, substrate: TermSubstrate | None = None) -> State:
     validate(problem)
     substrate = substrate or substrate_for(problem)
     n, xp = problem.grid.n, substrate.xp
-    mode = problem.tangential.mode
-    phase = {"none": PHASE_INDENTATION, "partial_slip": PHASE_PARTIAL_SLIP}.get(mode, PHASE_GROSS_SLIDING)
+    phase = first_phase(problem.tangential)
     return State(step=-1, t=-problem.time.dt, phase=phase, pressure=xp.zeros((n, n)),
                  shear_x=xp.zeros((n, n)), histories=substrate.initial_histories(),
                  pressure_previous=xp.zeros((n, n)), shear_previous=xp.zeros((n, n)),
@@ -155,176 +161,7 @@ def validate(problem: Problem) -> None:
     # the accuracy of dt (against the material times and the loading) is checked by viscontact.running.guards
 
 
-# --- one step: frame -> known displacement -> phase solver -> commit -> record -------------------
-
-@dataclass(frozen=True)
-class StepContext:
-    """What the phase solvers of step ``k`` at time ``t`` [s] see (all given, nothing solved yet)."""
-
-    problem: Problem
-    substrate: TermSubstrate
-    k: int
-    t: float
-    first: bool
-    gap: np.ndarray          # undeformed gap at the frame offset [m]
-    known_uz: np.ndarray     # history displacement [m]
-    known_ux: np.ndarray | None
-    value: float             # normal condition: load [N] or approach [m]
-    delta_x: float           # tangential displacement [m] the contact sees (total slip: since it began)
-    slip_x: np.ndarray | None = None  # incremental slip: s_x [m] of the last step, which a stuck point keeps
-
-
-@dataclass(frozen=True)
-class StepSolution:
-    """Tractions [Pa], approach delta_z [m], total u_z [m] and the iteration counts of one step;
-    ``pressure_product``: the step's normal operator applied to the pressure [m], where the solve
-    computed it in double precision (else None); ``slip``: partial slip's s_x - ``ctx.slip_x`` [m]
-    at every point (the tangential solve's gradient: the slip, or with the incremental slip its
-    change over the step), else None."""
-
-    pressure: np.ndarray
-    shear_x: np.ndarray
-    delta_z: float
-    displacement_z: np.ndarray
-    iterations: int = 0
-    coupling_iterations: int = 1
-    pressure_product: np.ndarray | None = None
-    slip: np.ndarray | None = None
-
-
-class PhaseSolver(Protocol):
-    """One phase's contact problem, iterated by :func:`solve_coupled` as a fixed point on (p, q).
-
-    ``name`` names it in errors; ``coupled`` says whether a pass depends on the previous iterate
-    (else one pass is the solution); ``solves_shear`` whether q is an unknown of its own.
-    """
-
-    name: str
-    coupled: bool
-    solves_shear: bool
-
-    def solve(self, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray, product: np.ndarray | None
-              ) -> tuple[np.ndarray, np.ndarray, float, int, np.ndarray, np.ndarray | None, np.ndarray | None]:
-        """One pass from the iterate (p, q), ``product`` the normal operator applied to p where known:
-        returns (p, q, delta_z, CG iterations, u_z, the normal operator applied to the new p or None,
-        the slip :attr:`StepSolution.slip` or None)."""
-
-    def finish(self, ctx: StepContext, solution: StepSolution) -> StepSolution:
-        """The converged solution, completed (e.g. u_z with the final coupling term)."""
-
-
-def _solve_normal(ctx: StepContext, known_uz: np.ndarray, warm: np.ndarray, warm_product: np.ndarray | None):
-    """Polonsky-Keer solve of the normal problem (seed Eqs. 7-8, 10) with known displacement
-    ``known_uz`` [m], on a box around the warm start's support (:mod:`viscontact.numerics.support_window`);
-    ``warm_product``: the step's normal operator applied to ``warm`` where known.
-    Returns (pressure [Pa], approach delta_z [m], iterations, total u_z [m], the operator applied to
-    the pressure or None)."""
-    problem, s, gap = ctx.problem, ctx.problem.solver, ctx.gap
-    op = ctx.substrate.elastic_operator("z", ctx.first)
-    if problem.normal.control == "load":
-        sol = windowed_cg(op, -(gap + known_uz), warm, total=ctx.value, cell_area=problem.grid.cell_area,
-                          tolerance=s.tolerance, max_iterations=s.max_iterations, what="normal contact (load control)",
-                          mixed_precision=s.mixed_precision, start_product=warm_product)
-        return sol.x, sol.multiplier, sol.iterations, sol.gradient + sol.multiplier - gap, sol.product
-    sol = windowed_cg(op, ctx.value - (gap + known_uz), warm, tolerance=s.tolerance, max_iterations=s.max_iterations,
-                      what="normal contact (displacement control)", mixed_precision=s.mixed_precision,
-                      start_product=warm_product)
-    return sol.x, ctx.value, sol.iterations, sol.gradient + ctx.value - gap, sol.product
-
-
-def _plus(known: np.ndarray, coupling: np.ndarray | None) -> np.ndarray:
-    return known if coupling is None else known + coupling
-
-
-@dataclass(frozen=True)
-class NormalContact:
-    """Indentation, frictionless sliding and gross sliding (seed Eq. 12): q_x = mu_f p.
-
-    With friction and coupling terms, u_z = J_inst (IC_zz + mu_f IC_zx) p + history is not
-    symmetric; the coupling term is iterated as a fixed point around symmetric Polonsky-Keer solves
-    (contraction factor about mu_f (1 - 2 nu) / (2 (1 - nu)) < 0.1 for the seed's case)."""
-
-    friction: float
-    coupled: bool
-    name: str = "gross sliding"
-    solves_shear: bool = False
-
-    def solve(self, ctx, pressure, shear, product):
-        cross = ctx.substrate.cross_displacement("z", "x", pressure, ctx.first, self.friction) if self.coupled else None
-        p, delta_z, its, u_z, product = _solve_normal(ctx, _plus(ctx.known_uz, cross), pressure, product)
-        return p, (self.friction * p if self.friction else np.zeros_like(p)), delta_z, its, u_z, product, None
-
-    def solve_direct(self, ctx, pressure):
-        """The step's normal problem with the coupling inside the operator, J_inst (K_zz + mu_f K_zx),
-        which is not symmetric: the primal-dual active set with GMRES of the steady solver
-        (:func:`viscontact.numerics.active_set.solve_contact_active_set`), from ``pressure``. For a coupling too
-        strong for the fixed point. Returns (p, q, delta_z, Krylov iterations, u_z, K_zz p, None)."""
-        from viscontact.numerics.active_set import solve_contact_active_set
-
-        problem, s, sub = ctx.problem, ctx.problem.solver, ctx.substrate
-        op = sub.elastic_operator("z", ctx.first)
-
-        def apply_k(p: np.ndarray) -> np.ndarray:
-            return op.apply(p) + sub.cross_displacement("z", "x", p, ctx.first, self.friction)
-
-        p, delta_z, krylov, _ = solve_contact_active_set(
-            apply_k, ctx.gap + ctx.known_uz, control=problem.normal.control, value=ctx.value,
-            cell_area=problem.grid.cell_area, initial=pressure, tolerance=min(s.tolerance, 1e-10),
-            max_iterations=s.max_iterations, preconditioner=op.preconditioner,
-            what=f"{self.name} with the coupling in the operator")
-        product = op.apply(p)
-        u_z = product + sub.cross_displacement("z", "x", p, ctx.first, self.friction) + ctx.known_uz
-        return p, self.friction * p, delta_z, krylov, u_z, product, None
-
-    def finish(self, ctx, solution):
-        return solution
-
-
-@dataclass(frozen=True)
-class PartialSlip:
-    """Partial slip (seed Eqs. 9, 11): bounded CG for q_x in [-mu_f p, mu_f p] with slip
-    s = u_x - delta_x, alternated with the normal solve (semi-coupled: IC_zx, IC_xz ~ (1 - 2 nu)).
-
-    Total slip (the seed's): the CG's gradient is s itself, zero where stuck; delta_x is measured
-    from the first step of the contact (:attr:`State.slip_origin`): the indenter that moved before
-    it touched has dragged nothing. Incremental slip (``ctx.slip_x``, the last step's s): the
-    right-hand side is delta_x + s_prev - u_known, so the gradient is the step's change of s, zero
-    where stuck (a stuck point keeps its slip) and opposed to q where slipping (Mindlin-Deresiewicz);
-    with nothing entering the contact and a monotonic loading both give the same solution.
-    ``free_mean``: a uniform shear is in the null space of the tangential operator
-    (:meth:`~viscontact.bodies.compliance.TermSubstrate.free_mean`), so a contact over every cell is refused
-    (:func:`check_not_full_contact`)."""
-
-    friction: float
-    coupled: bool
-    name: str = "partial slip"
-    solves_shear: bool = True
-    free_mean: bool = False
-
-    def solve(self, ctx, pressure, shear, product):
-        sub, s = ctx.substrate, ctx.problem.solver
-        cross_z = sub.cross_displacement("z", "x", shear, ctx.first) if self.coupled else None
-        p, delta_z, it_n, u_z, product = _solve_normal(ctx, _plus(ctx.known_uz, cross_z), pressure, product)
-        if self.free_mean:
-            check_not_full_contact(p, ctx.t)
-        cross_x = sub.cross_displacement("x", "z", p, ctx.first) if self.coupled else None
-        bound = self.friction * p
-        op = sub.elastic_operator("x", ctx.first)
-        target = ctx.delta_x - _plus(ctx.known_ux, cross_x)
-        if ctx.slip_x is not None:
-            target += ctx.slip_x
-        sol = windowed_bounded_cg(op, target, np.clip(shear, -bound, bound),
-                                  -bound, bound, tolerance=s.tolerance, max_iterations=s.max_iterations,
-                                  what="tangential contact (partial slip)", mixed_precision=s.mixed_precision)
-        return p, sol.x, delta_z, it_n + sol.iterations, u_z, product, sol.gradient
-
-    def finish(self, ctx, solution):
-        if not self.coupled:
-            return solution
-        # the last tangential update changed the coupling term of u_z: recompute it
-        u_z = ctx.substrate.instantaneous_displacement({"z": solution.pressure, "x": solution.shear_x}, ctx.first)
-        return replace(solution, displacement_z=u_z + ctx.known_uz)
-
+# --- one step: frame -> known displacement -> contact law -> commit -> record -------------------
 
 def gross_slip_under_history(t: float, delta_x: float, force: float, load: float, mu: float) -> ParameterError:
     """The error that stops partial slip under ``tangential.displacement_history`` at the step ``t`` [s]
@@ -336,110 +173,6 @@ def gross_slip_under_history(t: float, delta_x: float, force: float, load: float
         f"Q / (mu_f W) = {force / (mu * load) if load > 0 else float('nan'):.3g}): the amplitude exceeds gross slip, "
         "and a displacement history does not slide on; lower its amplitude, or use tangential.displacement_rate "
         "(a ramp into gross sliding)")
-
-
-def check_not_full_contact(pressure: np.ndarray, t: float) -> None:
-    """Raise :class:`~viscontact.errors.ParameterError` when the contact covers every cell of a
-    periodic partial-slip problem whose tangential operator has a free mean: a uniform shear then
-    moves the surface by an undetermined mean displacement, q = 0 pins it nowhere, and delta_x
-    cannot fix the friction force (the solve returned any mean shear between 0 and mu_f min p:
-    Q = 0 at every delta_x, or, on an earlier solver, mu_f min p everywhere at 5e-14 m). Under a
-    prescribed delta_x nothing else determines it (a prescribed tangential force would); where part
-    of the period is out of contact, q = 0 there does. Under displacement control the contact never
-    covers the period (:func:`viscontact.physics.periodic.check_approach`)."""
-    if bool((pressure > 0).all()):
-        raise ParameterError(
-            "tangential.mode", f"partial slip with the contact covering the whole period (t = {t:.6g} s): a uniform "
-            "shear moves the periodic surface by an undetermined mean displacement, so delta_x cannot fix the "
-            "friction force; use tangential.mode = 'gross_sliding', a normal load low enough to leave part of the "
-            "period out of contact, or grid.periodic = false")
-
-
-def phase_solver(phase: int, problem: Problem, substrate: TermSubstrate) -> PhaseSolver:
-    """The solver of a phase: partial slip with friction, else the normal problem (q = mu_f p
-    when gross sliding, 0 otherwise)."""
-    mu = problem.tangential.effective_friction
-    coupled = substrate.has_coupling() and mu > 0
-    if phase == PHASE_PARTIAL_SLIP and mu > 0:
-        return PartialSlip(mu, coupled, free_mean=substrate.free_mean("x"))
-    if phase == PHASE_GROSS_SLIDING:
-        return NormalContact(mu, coupled)
-    return NormalContact(0.0, False, name="indentation")
-
-
-def _relative_change(new: np.ndarray, old: np.ndarray) -> float:
-    scale = float(np.sum(np.abs(new)))
-    return float(np.sum(np.abs(new - old))) / scale if scale > 0 else 0.0
-
-
-#: smallest relaxation weight of the coupling iteration (:func:`relaxation_weight`)
-MIN_RELAXATION = 0.02
-#: a coupling pass whose change is above this fraction of the last pass's contracts too slowly for
-#: the plain fixed point (:func:`solve_coupled`; the seed's cases shrink by about 0.1 a pass)
-SLOW_CONTRACTION = 0.7
-
-
-def relaxation_weight(weight: float, ratio: float) -> float:
-    """Relaxation weight omega of the coupling iteration x <- (1 - omega) x + omega S(x) after a pass
-    whose change shrank by ``ratio`` (>= 1: it did not shrink) under ``weight``.
-
-    The coupling term mu_f K_zx is odd in x (a skew operator), so about the solution the map S acts
-    on x through a matrix of imaginary eigenvalues +-i gamma, gamma ~ mu_f (1 - 2 nu) / (2 (1 - nu))
-    relative to K_zz: the plain iteration (omega = 1) shrinks the change by gamma, diverging beyond 1.
-    Relaxed, the change shrinks by |1 - omega -+ i omega gamma| = sqrt((1 - omega)^2 + omega^2 gamma^2),
-    smallest, gamma / sqrt(1 + gamma^2) < 1, at omega = 1 / (1 + gamma^2). gamma is read off the
-    observed ratio, gamma^2 = (ratio^2 - (1 - weight)^2) / weight^2; the weight never grows and
-    stays above :data:`MIN_RELAXATION`.
-    """
-    gamma2 = max(ratio**2 - (1.0 - weight) ** 2, 0.0) / weight**2
-    return max(min(weight, 1.0 / (1.0 + gamma2)), MIN_RELAXATION)
-
-
-def solve_coupled(solver: PhaseSolver, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray,
-                  product: np.ndarray | None = None) -> StepSolution:
-    """Fixed-point iteration of ``solver`` from (p, q) until both change by less than
-    ``solver.coupling_tolerance`` (one pass when it is not coupled); ``product``: the step's normal
-    operator applied to p, where known (each pass hands its own on to the next).
-
-    While the change shrinks from pass to pass, each pass starts from the last one's solution (the
-    seed's cases: mu_f (1 - 2 nu) / (2 (1 - nu)) < 0.1). After a pass whose change did not shrink
-    (a large mu_f (1 - 2 nu)), a solver with a direct method for the coupled operator
-    (``solve_direct``: gross sliding) solves the step with it; otherwise (partial slip)
-    under-relaxation turns on (:func:`relaxation_weight`): the next pass starts from a weighted mean
-    of its start and its solution (both satisfy the bounds and the load, so the mean does), which
-    converges where the plain iteration diverges. A converged pass's own solution is returned."""
-    settings = ctx.problem.solver
-    iterations = 0
-    change = previous = np.inf
-    weight = 1.0
-    for count in range(1, settings.max_coupling_iterations + 1):
-        p, q, delta_z, its, u_z, solved_product, slip = solver.solve(ctx, pressure, shear, product)
-        iterations += its
-        change = _relative_change(p, pressure)
-        if solver.solves_shear:
-            change = max(change, _relative_change(q, shear))
-        if not solver.coupled or change < settings.coupling_tolerance:
-            return solver.finish(ctx, StepSolution(p, q, float(delta_z), u_z, iterations, count, solved_product,
-                                                   slip))
-        if change >= SLOW_CONTRACTION * previous:
-            if hasattr(solver, "solve_direct"):  # the coupling is too strong for the fixed point
-                p, q, delta_z, its, u_z, solved_product, slip = solver.solve_direct(ctx, p)
-                return solver.finish(ctx, StepSolution(p, q, float(delta_z), u_z, iterations + its, count + 1,
-                                                       solved_product, slip))
-            weight = relaxation_weight(weight, change / previous)
-        previous = change
-        if weight == 1.0:
-            pressure, shear, product = p, q, solved_product
-        else:
-            pressure = (1.0 - weight) * pressure + weight * p
-            shear = (1.0 - weight) * shear + weight * q
-            product = (None if product is None or solved_product is None
-                       else (1.0 - weight) * product + weight * solved_product)
-    hint = ("raise solver.max_coupling_iterations" if weight == 1.0 else
-            f"it converges slowly (under-relaxed by {weight:.2g}: a large mu_f (1 - 2 nu)); raise "
-            "solver.max_coupling_iterations")
-    raise ConvergenceError(f"normal/tangential coupling ({solver.name})", settings.max_coupling_iterations,
-                           change, settings.coupling_tolerance, hint=hint)
 
 
 #: clipped points of the extrapolated warm start whose product is added by direct sums; more: one
@@ -504,15 +237,15 @@ def step(problem: Problem, substrate: TermSubstrate, state: State,
 
     state = _advance_frame(problem, substrate, state, k, t)
     offset = state.substep * grid.spacing / tan.steps_per_cell if tan.slides else 0.0
-    solver = phase_solver(state.phase, problem, substrate)
-    if solver.solves_shear and state.response is not None:
+    law = contact_law(problem, substrate, state.phase)
+    if law.solves_shear and state.response is not None:
         # partial slip needs u_x of the traction history anyway, and ends in sliding, whose first
         # frame shift would drop the response history: it is not kept up
         state = replace(state, response=None)
     if state.response is not None:
         known_uz, known_ux = substrate.known_from_response(state.response, t, first), None
     else:
-        known_uz, known_ux = substrate.known_displacement(state.histories, t, first, need_x=solver.solves_shear)
+        known_uz, known_ux = substrate.known_displacement(state.histories, t, first, need_x=law.solves_shear)
     gap = problem.frame_gap(offset)  # on the host, for the record
     backend = substrate.backend
     if backend.is_cpu:
@@ -522,25 +255,20 @@ def step(problem: Problem, substrate: TermSubstrate, state: State,
     # partial slip, total slip: the stuck points move with the indenter since the contact began (this
     # step, when the last one had none); incremental slip: they keep the slip of the last step
     origin = state.delta_x if state.slip_origin is None else state.slip_origin
-    incremental = solver.solves_shear and state.slip_x is not None
+    incremental = law.solves_shear and state.slip_x is not None
     ctx = StepContext(problem, substrate, k, t, first, device_gap, known_uz, known_ux,
                       problem.normal.history(t), state.delta_x if incremental else state.delta_x - origin,
                       state.slip_x if incremental else None)
     p0, p0_product = _warm_start(substrate, state, k)
     q0 = 2.0 * state.shear_x - state.shear_previous if k > 1 else state.shear_x
-    sol = solve_coupled(solver, ctx, p0, q0, p0_product)
+    sol = solve_coupled(law, ctx, p0, q0, p0_product)
     p, q = sol.pressure, sol.shear_x
     # what the record keeps, on the host (the same arrays on the CPU: :mod:`viscontact.numerics.arrays`)
     to_host = backend.to_host
     p_host, q_host, u_z = to_host(p), to_host(q), to_host(sol.displacement_z)
 
-    contact = p_host > 0
-    n_contact = int(contact.sum())
-    stick = (contact & (np.abs(q_host) < mu * p_host * (1 - STICK_MARGIN)) if solver.solves_shear
-             else np.zeros_like(contact))
-    # no contact: nothing sticks or slips (undefined in partial slip; zero by definition in the other modes)
-    stick_ratio = (float(stick.sum()) / n_contact if n_contact else
-                   float("nan") if tan.mode == "partial_slip" else 0.0)
+    n_contact = int((p_host > 0).sum())
+    stick = law.stuck(p_host, q_host)
 
     # -- commit: gross sliding begins when the stick zone of a contact vanishes (no contact: the phase
     # stays; once sliding, it stays)
@@ -554,8 +282,7 @@ def step(problem: Problem, substrate: TermSubstrate, state: State,
     if incremental and phase == PHASE_PARTIAL_SLIP:
         # s_x at the end of the step: a stuck point keeps the last step's exactly (its change is zero
         # to the solve's tolerance), the others add the change the solve found
-        stuck = (p > 0) & (np.abs(q) < mu * p * (1 - STICK_MARGIN))
-        slip_x = np.where(stuck, state.slip_x, state.slip_x + sol.slip)
+        slip_x = np.where(law.stuck(p, q), state.slip_x, state.slip_x + sol.slip)
     state = replace(state, step=k, t=t, phase=phase, t_gross_sliding=t_gross,
                     slip_origin=origin if n_contact else None, slip_x=slip_x,
                     histories=substrate.advanced(state.histories, {"z": p, "x": q}, t, first),
@@ -567,21 +294,11 @@ def step(problem: Problem, substrate: TermSubstrate, state: State,
                     substrate.advanced_response(state.response, p, sol.pressure_product, t, first))
 
     # -- record
-    load = float(p_host.sum() * grid.cell_area)
-    check_solution(problem, p_host, load, ctx.value)
-    f_t = hysteresis_force(p_host, u_z, grid, grid.periodic) if tan.slides else 0.0
-    wake = _wake_loss(problem, substrate, state, p_host, f_t / load if load > 0 else 0.0, sol.delta_z)
-    record = StepRecord(
-        step=k, t=t, phase=phase, load=load, delta_z=sol.delta_z, delta_x=state.delta_x,
-        sliding_distance=state.sliding_distance, contact_area=n_contact * grid.cell_area,
-        stick_ratio=stick_ratio, friction_force=float(q_host.sum() * grid.cell_area),
-        hysteresis_force=f_t, mu_app=f_t / load if load > 0 else 0.0,
-        contact_shift=pressure_centroid(p_host, grid) - offset, frame_offset=offset, wake_loss=wake,
-        iterations=sol.iterations, coupling_iterations=sol.coupling_iterations,
-        **asdict(roughness_metrics(p_host, gap + u_z - sol.delta_z, grid.periodic)),
-        pressure=p_host, shear_x=q_host, stick=stick, displacement_z=u_z,
-    )
-    return state, record
+    record = measure(problem, p_host, q_host, u_z, delta_z=sol.delta_z, value=ctx.value, gap=gap, step=k, t=t,
+                     phase=phase, stick=stick, slides=tan.slides, delta_x=state.delta_x,
+                     sliding_distance=state.sliding_distance, frame_offset=offset, iterations=sol.iterations,
+                     coupling_iterations=sol.coupling_iterations)
+    return state, replace(record, wake_loss=_wake_loss(problem, substrate, state, p_host, record.mu_app, sol.delta_z))
 
 
 def _wake_loss(problem: Problem, substrate: TermSubstrate, state: State, pressure: np.ndarray, mu_app: float,
