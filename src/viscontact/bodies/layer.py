@@ -82,7 +82,7 @@ move with |q| (:func:`modulus_poles`: A(k; G) = alpha0/G + sum_j alpha_j/(G + sh
 pole j brings the creep function of G(t) + shift_j(k)). :func:`viscoelastic_periodic_modes` gives
 that data per wavevector and states the cost: one kernel (spectrum) and one history field per mode
 and component, M (1 + number of poles) modes for an M-term Prony series. The solvers need fixed
-times: :func:`elastic_substrate_terms` interpolates h = (s + G_ref)/(G + s) in u = G_ref/(G_ref + s)
+times: :func:`elastic_base_terms` interpolates h = (s + G_ref)/(G + s) in u = G_ref/(G_ref + s)
 at fixed nodes (:func:`shift_nodes`), so each node is a real-space kernel (DC-FFT or periodic) with
 one creep function: D + 1 kernels per component and D M history fields per traction component for
 D + 1 nodes.
@@ -117,7 +117,7 @@ from viscontact.physics.steady_kernels import SteadyKernelBuilder, SteadyShape, 
 if TYPE_CHECKING:  # the case's [layer], as the problem holds it (a layer above: for the reader only)
     from viscontact.problem.problem import LayerSettings
 
-SUBSTRATES = ("rigid", "elastic")
+BASES = ("rigid", "elastic")
 INTERFACES = ("bonded", "frictionless")
 COMPONENTS = ("zz", "xx", "xz", "zx")
 #: sum over the square lattice Z^2 without 0 of 1/|m|^3 = 4 zeta(3/2) beta(3/2)
@@ -126,7 +126,8 @@ _LATTICE_ZETA3 = 9.033621683100950
 
 @dataclass(frozen=True)
 class Layer:
-    """An elastic layer on a substrate (module docstring).
+    """An elastic layer on a base (module docstring; the case keys, and the keys of its errors, call
+    the base ``substrate``).
 
     Parameters
     ----------
@@ -134,12 +135,13 @@ class Layer:
         h [m], > 0.
     shear_modulus, poisson_ratio
         G [Pa] and nu of the layer.
-    substrate
-        ``"rigid"`` or ``"elastic"``.
+    base
+        ``"rigid"`` or ``"elastic"`` (case key ``layer.substrate``).
     interface
         ``"bonded"`` or ``"frictionless"``.
-    substrate_shear_modulus, substrate_poisson_ratio
-        G_s [Pa] and nu_s (elastic substrate only).
+    base_shear_modulus, base_poisson_ratio
+        G_s [Pa] and nu_s (elastic base only; case keys ``layer.substrate_shear_modulus``,
+        ``layer.substrate_poisson_ratio``).
 
     Examples
     --------
@@ -156,10 +158,10 @@ class Layer:
     thickness: float
     shear_modulus: float
     poisson_ratio: float
-    substrate: str = "rigid"
+    base: str = "rigid"
     interface: str = "bonded"
-    substrate_shear_modulus: float = float("inf")
-    substrate_poisson_ratio: float = 0.3
+    base_shear_modulus: float = float("inf")
+    base_poisson_ratio: float = 0.3
 
     def __post_init__(self) -> None:
         if not (np.isfinite(self.thickness) and self.thickness > 0):
@@ -168,12 +170,12 @@ class Layer:
             raise ParameterError("material.shear_modulus", f"must be > 0 Pa, got {self.shear_modulus}")
         if not 0.0 <= self.poisson_ratio <= 0.5:
             raise ParameterError("material.poisson_ratio", f"must be in [0, 0.5], got {self.poisson_ratio}")
-        if self.substrate not in SUBSTRATES:
-            raise ParameterError("layer.substrate", f"must be one of {SUBSTRATES}, got {self.substrate!r}")
+        if self.base not in BASES:
+            raise ParameterError("layer.substrate", f"must be one of {BASES}, got {self.base!r}")
         if self.interface not in INTERFACES:
             raise ParameterError("layer.interface", f"must be one of {INTERFACES}, got {self.interface!r}")
-        if self.substrate == "elastic":
-            gs, nus = self.substrate_shear_modulus, self.substrate_poisson_ratio
+        if self.base == "elastic":
+            gs, nus = self.base_shear_modulus, self.base_poisson_ratio
             if not (np.isfinite(gs) and gs > 0):
                 raise ParameterError("layer.substrate_shear_modulus", f"must be > 0 Pa, got {gs}")
             if not 0.0 <= nus <= 0.5:
@@ -219,14 +221,14 @@ def _in_plane_system(layer: Layer, kh: np.ndarray, modulus_ratio: float
     top_far = _family_rows(-kh, -1.0, 1.0, nu)       # layer family from z0 = h, at z = 0
     bot_near = _family_rows(zero, -1.0, 1.0, nu)     # layer family from z0 = h, at z = h
     bot_far = _family_rows(kh, 1.0, 1.0, nu)         # layer family from z0 = 0, at z = h
-    elastic = layer.substrate == "elastic"
+    elastic = layer.base == "elastic"
     size = 6 if elastic else 4
     mat = np.zeros(kh.shape + (size, size))
     mat[..., 0, 0:2], mat[..., 0, 2:4] = -top_near["szz"], -top_far["szz"]   # -sigma_zz = p
     mat[..., 1, 0:2], mat[..., 1, 2:4] = top_near["sxz"], top_far["sxz"]     # sigma_xz/(ik) = -tau
     layer_at_h = {key: np.concatenate([bot_far[key], bot_near[key]], axis=-1) for key in bot_far}
     if elastic:
-        sub = _family_rows(zero, 1.0, modulus_ratio, layer.substrate_poisson_ratio)
+        sub = _family_rows(zero, 1.0, modulus_ratio, layer.base_poisson_ratio)
         keys = ("uz", "ux", "szz", "sxz") if layer.interface == "bonded" else ("uz", "szz")
         row = 2
         for key in keys:
@@ -255,7 +257,7 @@ _IN_PLANE = {"zz": (0, 0, 1.0), "ze": (0, 1, -1j), "ez": (1, 0, 1j), "ee": (1, 1
 def in_plane_compliance(layer: Layer, k: np.ndarray) -> dict[str, np.ndarray]:
     """A_zz, A_ze, A_ez, A_ee [m/Pa] at wavenumbers k [1/m] (> 0); A_ze, A_ez are imaginary."""
     k = np.asarray(k, dtype=float)
-    mat, rhs, out = _in_plane_system(layer, k * layer.thickness, layer.substrate_shear_modulus / layer.shear_modulus)
+    mat, rhs, out = _in_plane_system(layer, k * layer.thickness, layer.base_shear_modulus / layer.shear_modulus)
     response = out @ np.linalg.solve(mat, rhs)  # (..., 2 outputs, 2 loads)
     scale = 1.0 / (layer.shear_modulus * k)
     return {key: factor * response[..., o, i] * scale for key, (o, i, factor) in _IN_PLANE.items()}
@@ -267,10 +269,10 @@ def anti_plane_compliance(layer: Layer, k: np.ndarray) -> np.ndarray:
     t = np.tanh(k * layer.thickness)
     if layer.interface == "frictionless":
         factor = 1.0 / t
-    elif layer.substrate == "rigid":
+    elif layer.base == "rigid":
         factor = t
     else:
-        r = layer.substrate_shear_modulus / layer.shear_modulus
+        r = layer.base_shear_modulus / layer.shear_modulus
         factor = (1 + r * t) / (t + r)
     return factor / (layer.shear_modulus * k)
 
@@ -350,7 +352,7 @@ def uniform_compliance(layer: Layer) -> dict[str, float]:
     displacement then being free): a rigid base gives h/M normally (lateral strain is zero in a
     uniformly loaded layer, bonded or not) and h/G tangentially when bonded."""
     h = layer.thickness
-    rigid = layer.substrate == "rigid"
+    rigid = layer.base == "rigid"
     nu = layer.poisson_ratio
     zz = h * (1 - 2 * nu) / (2 * layer.shear_modulus * (1 - nu)) if rigid else 0.0
     xx = h / layer.shear_modulus if rigid and layer.interface == "bonded" else 0.0
@@ -386,16 +388,16 @@ def _cell_average(func, dx: np.ndarray, dy: np.ndarray, cell: float, points: int
 def _long_wave_coefficients(layer: Layer) -> dict[str, dict[int, float]]:
     """Coefficients [1/Pa] of the 1/k behaviour as k -> 0, by angular order: zz {0}, xx {0, 2},
     xz, zx {1} (M_xz ~ i c d/k, M_zx ~ -i c d'/k written as i c (-d')/k)."""
-    if layer.substrate == "elastic":
+    if layer.base == "elastic":
         if layer.interface == "bonded":
-            return _half_space_coefficients(layer.substrate_shear_modulus, layer.substrate_poisson_ratio)
+            return _half_space_coefficients(layer.base_shear_modulus, layer.base_poisson_ratio)
     if layer.interface == "bonded":
         return {"zz": {0: 0.0}, "xx": {0: 0.0, 2: 0.0}, "xz": {1: 0.0}, "zx": {1: 0.0}}
     # frictionless: k A(k) extrapolated linearly to k = 0 from k h = 1e-4, 2e-4; the tangential
     # compliance grows as 1/k^2 (no 1/k coefficient: NaN, the non-periodic kernel refuses it)
     k = np.array([1e-4, 2e-4]) / layer.thickness
     lim = {key: 2 * (k * v)[0] - (k * v)[1] for key, v in in_plane_compliance(layer, k).items()}
-    zz = float(lim["zz"].real) if layer.substrate == "elastic" else 0.0
+    zz = float(lim["zz"].real) if layer.base == "elastic" else 0.0
     return {"zz": {0: zz}, "xz": {1: float(lim["ez"].imag)}, "zx": {1: float(lim["ze"].imag)},
             "xx": {0: np.nan, 2: np.nan}}
 
@@ -529,7 +531,7 @@ def influence_coefficients(grid: Grid, layer: Layer, components: tuple[str, ...]
     ``depth`` is the smoothing depth H [m] (default max(2h, 2dx)); ``box`` the periodic box of
     the remainder in domain widths (at least 8 max(H, h)); ``max_fine`` caps the refined
     transform (ParameterError beyond it). ``spectral``: another compliance than the layer's (the
-    parts of :func:`elastic_substrate_terms`).
+    parts of :func:`elastic_base_terms`).
     """
     n, dx = grid.n, grid.spacing
     spectral = spectral or _layer_spectral(layer)
@@ -562,7 +564,7 @@ def periodic_spectra(grid: Grid, layer: Layer, components: tuple[str, ...] = COM
     space on a refined grid (Nyquist wavenumber >= 7/h, :func:`_refinement`) and folded (no
     aliasing). The mean (q = 0) is the uniform compliance (:func:`uniform_compliance`), 0 where
     unbounded. ``max_fine`` caps the refined transform (ParameterError beyond it). ``spectral``:
-    another compliance than the layer's (the parts of :func:`elastic_substrate_terms`, without a
+    another compliance than the layer's (the parts of :func:`elastic_base_terms`, without a
     half-space part: all of it in Fourier space).
     """
     n = grid.n
@@ -643,7 +645,7 @@ def rigid_base_terms(grid: Grid, layer: Layer, shear: Material, components: tupl
     times the shear creep compliance J(t): one history per traction component, as for the
     half-space. (On an elastic substrate the response does not factor: see
     :func:`viscoelastic_periodic_modes`.)"""
-    if layer.substrate != "rigid":
+    if layer.base != "rigid":
         raise ParameterError("layer.substrate", "kernel x J(t) terms exist for a rigid substrate only; an elastic "
                              "substrate needs one term per relaxation mode (viscoelastic_periodic_modes)")
     return factored_terms(grid, layer, prony_creep_spectrum(shear.g_inf, shear.g, shear.tau), components)
@@ -679,7 +681,7 @@ class ModulusPoles:
 
 
 def _pole_count(layer: Layer, key: str) -> int:
-    if layer.substrate == "rigid":
+    if layer.base == "rigid":
         return 0
     if key == "pp":
         return 1 if layer.interface == "bonded" else 0
@@ -726,7 +728,7 @@ def modulus_poles(layer: Layer, k: np.ndarray, key: str) -> ModulusPoles:
         if count == 0:
             return ModulusPoles(layer.shear_modulus * anti_plane_compliance(layer, k), np.zeros(k.shape + (0,)),
                                 np.zeros(k.shape + (0,)))
-        gs = layer.substrate_shear_modulus
+        gs = layer.base_shear_modulus
         return ModulusPoles(t / k, ((1 - t**2) / (t * k))[..., None], (gs / t)[..., None])
     o_row, i_col, factor = _IN_PLANE[key]
     sign = (factor / 1j).real if key in ("ze", "ez") else 1.0
@@ -747,7 +749,7 @@ def modulus_poles(layer: Layer, k: np.ndarray, key: str) -> ModulusPoles:
             r, v, w = _refined_eigentriple(mat0[idx], mat1[idx], rho[e].real, right[:, e], left[:, e])
             c = (out[idx][o_row] @ v) * (w.conj() @ rhs[idx][:, i_col]) / (w.conj() @ mat1[idx] @ v)
             alpha[idx + (j,)] = sign * c.real / (k[idx] * r)
-            shift[idx + (j,)] = -r * layer.substrate_shear_modulus
+            shift[idx + (j,)] = -r * layer.base_shear_modulus
     return ModulusPoles(alpha0, alpha, shift)
 
 
@@ -792,7 +794,7 @@ def viscoelastic_periodic_modes(grid: Grid, layer: Layer, shear: Material, compo
     multiply-add per wavevector and step, no extra transforms. This is exact on a periodic domain. For
     the non-periodic DC-FFT domain the same spectra on the 2n x 2n padded grid give the convolution
     with period 2 x domain (error: the kernel's tail beyond one domain width); the solvers use
-    instead fixed-time terms that interpolate the pole shifts (:func:`elastic_substrate_terms`),
+    instead fixed-time terms that interpolate the pole shifts (:func:`elastic_base_terms`),
     on both grids.
     """
     n, dx = grid.n, grid.spacing
@@ -929,7 +931,7 @@ class _LogInterpolant:
 
 
 def _node_spectra(layer: Layer, nodes: ShiftNodes, samples_per_decade: int = 40) -> list[_Spectral]:
-    """The compliance of each node (:func:`elastic_substrate_terms`) as a :class:`_Spectral` at the
+    """The compliance of each node (:func:`elastic_base_terms`) as a :class:`_Spectral` at the
     layer's G: c_p(k)/G with c_p = G_ref sum_j beta_j(k) l_p(u_j(k)), beta_j = alpha_j/(shift_j + G_ref)
     (:func:`modulus_poles`), sampled at k h from 1e-2 to 18 (beyond, alpha_j < exp(-36)) and
     interpolated (:class:`_LogInterpolant`)."""
@@ -948,7 +950,7 @@ def _node_spectra(layer: Layer, nodes: ShiftNodes, samples_per_decade: int = 40)
     zero = {"zz": {0: 0.0}, "xx": {0: 0.0, 2: 0.0}, "xz": {1: 0.0}, "zx": {1: 0.0}}
     # periodic kernels: the rigid-base term's bounded mean (h/M, h/G) is cancelled by the node it is
     # merged with (u = 1, the same J(t)): on an elastic substrate the mean compliance is unbounded (0)
-    rigid_mean = {c: -v for c, v in uniform_compliance(replace(layer, substrate="rigid")).items()}
+    rigid_mean = {c: -v for c, v in uniform_compliance(replace(layer, base="rigid")).items()}
     no_mean = {"zz": 0.0, "xx": 0.0, "xz": 0.0, "zx": 0.0}
     out = []
     for p in range(nodes.nodes.size):
@@ -963,7 +965,7 @@ def _node_spectra(layer: Layer, nodes: ShiftNodes, samples_per_decade: int = 40)
     return out
 
 
-def elastic_substrate_terms(grid: Grid, layer: Layer, shear: Material, components: tuple[str, ...] = ("zz",),
+def elastic_base_terms(grid: Grid, layer: Layer, shear: Material, components: tuple[str, ...] = ("zz",),
                             tolerance: float = 1e-4) -> list[ComplianceTerm]:
     """Compliance terms of a viscoelastic layer (Prony shear modulus ``shear``, constant
     nu = ``layer.poisson_ratio``) on an elastic substrate, on DC-FFT or periodic grids.
@@ -995,7 +997,7 @@ def elastic_substrate_terms(grid: Grid, layer: Layer, shear: Material, component
     """
     nodes = shift_nodes(shear, tolerance)
     creep = prony_creep_spectrum(shear.g_inf, shear.g, shear.tau)
-    rigid = factored_terms(grid, replace(layer, substrate="rigid"), creep, components)
+    rigid = factored_terms(grid, replace(layer, base="rigid"), creep, components)
     terms: list[ComplianceTerm] = []
     last = nodes.nodes.size - 1
     for p, spectral in enumerate(_node_spectra(layer, nodes)):
@@ -1031,7 +1033,7 @@ class LayerOnBase(TermBody):
     Its compliance: on a rigid base, or for an elastic layer, the layer's unit-modulus kernels times
     the creep compliance (:func:`rigid_base_terms`, :func:`factored_terms`: one term per component);
     a viscoelastic layer on an elastic base, the rigid-base terms and one kernel per shift node,
-    each with its own creep function (:func:`elastic_substrate_terms`). Its fingerprint part:
+    each with its own creep function (:func:`elastic_base_terms`). Its fingerprint part:
     {"bulk_modulus": None, "layer": LayerSettings(...)}.
     """
 
@@ -1067,10 +1069,10 @@ class LayerOnBase(TermBody):
     def terms(self, grid: Grid, components: tuple[str, ...]) -> list[ComplianceTerm]:
         """The terms of the class docstring."""
         layer = self.layer
-        if layer.substrate == "rigid":
+        if layer.base == "rigid":
             return rigid_base_terms(grid, layer, self.material, components)
         if not self.material.is_elastic:
-            return elastic_substrate_terms(grid, layer, self.material, components)
+            return elastic_base_terms(grid, layer, self.material, components)
         return factored_terms(grid, layer, self.material.creep, components)
 
     def stability_responses(self) -> list[CreepSpectrum]:
