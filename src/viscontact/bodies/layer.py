@@ -1120,6 +1120,8 @@ class LayerOnBase(TermBody):
         judged together, by the one compliance, rather than by the smaller or larger of two Hertz
         radii. Below k h = :data:`THIN_KH` the compliance at that k h is used.
         """
+        if not math.isfinite(compliance_factor):  # a fluid's unbounded creep (inf), no estimate (NaN)
+            return math.inf if compliance_factor > 0 else math.nan
         layer = self.layer_at(self.material.shear_modulus_instantaneous / compliance_factor)
         h, k_floor = layer.thickness, THIN_KH / layer.thickness
 

@@ -403,7 +403,7 @@ class LayerSettings:
     substrate_poisson_ratio: float = 0.3
 
 
-def check_subsurface_body(depths, kind: type) -> None:
+def check_subsurface_body(depths, kind: Body | type) -> None:
     """Subsurface stresses (:mod:`viscontact.physics.subsurface`) are the elastic fields of the current
     tractions, true for the homogeneous half-space with constant nu only: raise
     :class:`~viscontact.errors.ParameterError` when ``depths`` are asked for of a body (``kind``, the
