@@ -232,11 +232,11 @@ def test_frictionless_tangential_refused():
 
 
 @pytest.mark.parametrize("kwargs, key", [({"thickness": 0.0}, "layer.thickness"),
-                                          ({"substrate": "soft"}, "layer.substrate"),
+                                          ({"base": "soft"}, "layer.substrate"),
                                           ({"interface": "glued"}, "layer.interface"),
-                                          ({"substrate": "elastic"}, "layer.substrate_shear_modulus"),
-                                          ({"substrate": "elastic", "substrate_shear_modulus": 1e6,
-                                            "substrate_poisson_ratio": 0.7}, "layer.substrate_poisson_ratio")])
+                                          ({"base": "elastic"}, "layer.substrate_shear_modulus"),
+                                          ({"base": "elastic", "base_shear_modulus": 1e6,
+                                            "base_poisson_ratio": 0.7}, "layer.substrate_poisson_ratio")])
 def test_bad_layers(kwargs, key):
     base = {"thickness": 1e-4, "shear_modulus": G, "poisson_ratio": NU}
     with pytest.raises(ParameterError, match=key):
@@ -339,8 +339,8 @@ def test_rigid_base_terms_factor_the_creep_compliance():
 
 
 @pytest.mark.parametrize("periodic", [False, True])
-def test_elastic_substrate_terms_follow_the_correspondence_principle(periodic):
-    """A viscoelastic layer on an elastic substrate (fixed-time terms, layers.elastic_substrate_terms):
+def test_elastic_base_terms_follow_the_correspondence_principle(periodic):
+    """A viscoelastic layer on an elastic substrate (fixed-time terms, layers.elastic_base_terms):
     the Carson transform of the summed response, sum_t K_t s phi_t^(s), is the elastic layer's kernel
     at G~(s) (built independently, layers.unit_kernels), every component, at s = 0 (t -> inf),
     s -> inf (t = 0) and between (times of the material). The shift interpolation is within 1e-4
@@ -351,14 +351,14 @@ def test_elastic_substrate_terms_follow_the_correspondence_principle(periodic):
     from dataclasses import replace
 
     from viscontact.numerics.exponentials import carson_transform
-    from viscontact.bodies.layer import elastic_substrate_terms, shift_nodes, unit_kernels
+    from viscontact.bodies.layer import elastic_base_terms, shift_nodes, unit_kernels
     from viscontact.physics.materials import Material
 
     shear = Material.prony(1e5, [1e6, 4e5], [1e-3, 3e-2], NU)
     grid = Grid(12, 1e-3, periodic)
     layer = Layer(2e-4, G, NU, "elastic", "bonded", 3e5, 0.4)
     comps = ("zz", "xx", "xz", "zx")
-    terms = elastic_substrate_terms(grid, layer, shear, comps)
+    terms = elastic_base_terms(grid, layer, shear, comps)
     nodes = shift_nodes(shear)
     assert nodes.error <= 1e-4
     assert len(terms) == len(comps) * nodes.nodes.size   # u = 1 merged into the rigid-base term
@@ -373,22 +373,22 @@ def test_elastic_substrate_terms_follow_the_correspondence_principle(periodic):
             assert np.abs(ours - expected).max() <= tolerance * np.abs(expected).max(), (s, name)
 
 
-def test_elastic_substrate_terms_of_a_thick_periodic_layer_are_the_half_space():
-    """A viscoelastic layer 10 periods thick on an elastic substrate (layers.elastic_substrate_terms,
+def test_elastic_base_terms_of_a_thick_periodic_layer_are_the_half_space():
+    """A viscoelastic layer 10 periods thick on an elastic substrate (layers.elastic_base_terms,
     periodic grid): the substrate and the shift nodes are invisible at k h >= 63 (the nodes' spectra
     vanish beyond k h = 18), so the Carson transform of the summed response is the periodic
     half-space kernel of the layer material at G~(s) (viscontact.physics.periodic), zero mean (the rigid-base
     term's h/M cancelled by the u = 1 node). Measured (n = 16): within 2e-15 of the largest value;
     tolerance 1e-12 (the former periodic kernels: 2.5e-3 (zz, xx), 8.7e-2 (xz, zx))."""
     from viscontact.numerics.exponentials import carson_transform
-    from viscontact.bodies.layer import elastic_substrate_terms
+    from viscontact.bodies.layer import elastic_base_terms
     from viscontact.physics.materials import Material
 
     shear = Material.prony(1e5, [1e6, 4e5], [1e-3, 3e-2], NU)
     grid = Grid(16, 1e-3, True)
     layer = Layer(10 * 2 * grid.half_width, G, NU, "elastic", "bonded", 3e5, 0.4)
     comps = ("zz", "xx", "xz", "zx")
-    terms = elastic_substrate_terms(grid, layer, shear, comps)
+    terms = elastic_base_terms(grid, layer, shear, comps)
     hs = periodic_influence_coefficients(grid, NU, comps)
     for s in (0.0, 3.0, np.inf):
         g_s = shear.g_inf + sum(gi * (1.0 if np.isinf(s) else s / (s + 1 / ti)) for gi, ti in zip(shear.g, shear.tau))

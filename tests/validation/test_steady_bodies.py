@@ -10,7 +10,7 @@ References and measured values (seed Zener G(0) = 1.93 MPa, G(inf) = G(0)/10, ta
 
 Bodies: nu(t) with K = 2 G(0); a layer bonded to a rigid base; a viscoelastic layer bonded to an
 elastic substrate (G_s = 3 G(0), nu_s = 0.4: one kernel per shift node, viscontact.bodies.layer
-.elastic_substrate_terms).
+.elastic_base_terms).
 
 * slow sliding (v tau/a0 = 1e-4) is the elastic contact at G(inf), nu(inf); fast (1e4) at G(0), nu(0).
   nu(t) with K = 2 G(0), n = 64: Hertz peak pressure and approach within 0.08 % and 0.27 %

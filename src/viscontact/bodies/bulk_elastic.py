@@ -37,15 +37,22 @@ the half-space displacements are
 where the bracketed operators act as hereditary convolutions with the spectra above;
 :func:`half_space_terms` regroups them by the two basis functions J and L (two histories per
 traction component, each with one internal field per retardation time, :mod:`viscontact.numerics.history`).
+
+:class:`BulkElasticHalfSpace` is the body (:class:`~viscontact.bodies.base.Body`) of the case key
+``material.bulk_modulus``.
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Any
 
 import numpy as np
 
+from viscontact.bodies.base import TermBody
 from viscontact.bodies.compliance import ComplianceTerm
+from viscontact.bodies.half_space import hertz_radius
 from viscontact.errors import ParameterError
 from viscontact.numerics.exponentials import CreepSpectrum, linear_combination
 from viscontact.numerics.grid import Grid
@@ -186,3 +193,73 @@ def half_space_terms(grid: Grid, material: BulkElasticMaterial,
             label = "shear" if response is shear else "bulk"
             terms.append(ComplianceTerm(comp[0], comp[1], kernel, response, f"{comp}:{label}", shape(comp, pieces)))
     return terms
+
+
+@dataclass(frozen=True)
+class BulkElasticHalfSpace(TermBody):
+    """The homogeneous half-space of a material whose shear modulus relaxes while its bulk modulus K
+    stays elastic, so that nu(t) rises from nu(0) to nu(inf) (module docstring): a
+    :class:`~viscontact.bodies.base.Body` of the terms of :func:`half_space_terms` (two histories per
+    traction component, J(t) and L(t)). Its fingerprint part: {"bulk_modulus": K, "layer": None}.
+
+    Parameters
+    ----------
+    material
+        The shear relaxation G(t) (its ``poisson_ratio``, nu(0) in a case, is not used by the compliance).
+    bulk_modulus
+        K [Pa] (the case key ``material.bulk_modulus``, kept as given: it enters the checkpoint
+        fingerprint as such).
+    """
+
+    material: Material
+    bulk_modulus: float
+
+    subsurface_stresses = False
+    contact_model = "Hertz with nu(0), Lee & Radok creep"
+
+    @cached_property
+    def elastic_bulk(self) -> BulkElasticMaterial:
+        """G(t) with the elastic K (checks K >= 2 G(0)/3)."""
+        return BulkElasticMaterial(self.material, self.bulk_modulus)
+
+    @property
+    def description(self) -> Mapping[str, Any]:
+        return {"bulk_modulus": self.bulk_modulus}
+
+    def terms(self, grid: Grid, components: tuple[str, ...]) -> list[ComplianceTerm]:
+        """:func:`half_space_terms`."""
+        return half_space_terms(grid, self.elastic_bulk, components)
+
+    def stability_responses(self) -> list[CreepSpectrum]:
+        """J(t) and the normal (1 - nu)/G and tangential 1/G factors (:meth:`BulkElasticMaterial.factor`;
+        the normal one has the extra, shorter retardation time of G(t) + 3K) [1/Pa]."""
+        bulk = self.elastic_bulk
+        return [self.material.creep, bulk.factor("normal"), bulk.factor("tangential")]
+
+    def size(self) -> tuple[int, int]:
+        """2 M history fields per traction component (J and L histories), two kernels per component."""
+        return 2 * self.material.creep.retardation_times.size, 2
+
+    def result_attributes(self) -> dict[str, Any]:
+        """K [Pa], nu(0) and nu(inf)."""
+        k, mat = self.bulk_modulus, self.material
+        nu = BulkElasticMaterial.poisson_ratio_of
+        return {"bulk_modulus": float(k), "poisson_ratio_instantaneous": nu(mat.shear_modulus_instantaneous, k),
+                "poisson_ratio_long_term": nu(mat.shear_modulus_long_term, k)}
+
+    def material_summary(self) -> str:
+        bulk = self.elastic_bulk
+        return (f"bulk_modulus K = {self.bulk_modulus:.6g} Pa: poisson ratio nu(t) from "
+                f"{bulk.poisson_ratio_instantaneous:.6g} (t = 0) to {bulk.poisson_ratio_long_term:.6g} (t = inf)")
+
+    def contact_radius(self, load: float, sphere_radius: float, compliance_factor: float = 1.0) -> float:
+        """Hertz with G(0) and nu(0) (the material's ``poisson_ratio``), grown as ``compliance_factor``^(1/3)
+        (:func:`~viscontact.bodies.half_space.hertz_radius`): as nu rises the normal compliance
+        (1 - nu)/G creeps less than J(t), so this bounds the crept radius from above."""
+        mat = self.material
+        return hertz_radius(load, sphere_radius, mat.shear_modulus_instantaneous, mat.poisson_ratio,
+                            compliance_factor)
+
+    def contact_radius_at_approach(self, approach: float, sphere_radius: float) -> float:
+        """Hertz: a = sqrt(R delta) [m] whatever the moduli."""
+        return float(np.sqrt(sphere_radius * approach))

@@ -1,4 +1,8 @@
-"""The substrate (compliance): what the surface does under a traction history.
+"""The compliance of a body: what its surface does under a traction history.
+
+Words: the *body* is the whole compliant solid (:mod:`viscontact.bodies.base`); what lies under a
+layer is its *base*; the *compliance* (a :class:`TermSubstrate`, named before bodies had a word of
+their own) is what a body gives the contact solvers.
 
 Data model (linear viscoelasticity, seed Eqs. 5-6): the surface displacement u_i (i in z, x) is a
 sum over TERMS,
@@ -10,6 +14,17 @@ modulus, a time response phi(t) = J_0 + sum_m J_m (1 - exp(-t/lambda_m)) given a
 :class:`~viscontact.numerics.exponentials.CreepSpectrum`). Terms that read the same traction component through
 the same time response share one hereditary history (:mod:`viscontact.numerics.history`): a history is
 keyed by :attr:`Term.history` and carries one traction component.
+
+One term, two stages, two types:
+
+* :class:`ComplianceTerm` is a term as a body *builds* it: its kernel as an array and its time
+  response as a spectrum (:func:`~viscontact.bodies.layer.rigid_base_terms`,
+  :func:`~viscontact.bodies.bulk_elastic.half_space_terms`, ...);
+* :class:`Term` is the same term once *placed* in a :class:`TermSubstrate` (:meth:`ComplianceTerm.placed`):
+  its kernel by name in the convolver, its response by the key of the history it reads (the
+  substrate holds one response per history, shared by the terms that read it). Only the
+  :class:`TermSubstrate` and its subclasses (:class:`~viscontact.bodies.half_space.HalfSpace`, whose
+  convolver is built from the kernels directly) deal in :class:`Term`.
 
 :class:`TermSubstrate` turns (terms, responses, a convolver, preconditioners) into what the contact
 solvers use, and is all a new substrate has to provide:
@@ -52,6 +67,7 @@ from viscontact.errors import ParameterError
 from viscontact.numerics.arrays import CPU, ArrayBackend, cpu_fast_length
 from viscontact.numerics.convolution import Convolver, FourierPreconditioner
 from viscontact.numerics.exponentials import CreepSpectrum
+from viscontact.numerics.fftbackends import DCFFTTransforms, ZeroBlockTransforms, dcfft_transforms
 from viscontact.numerics.grid import Grid
 from viscontact.numerics.history import DirectHistory, History, PronyHistory
 from viscontact.numerics.schemes import StepCoefficients, TimeScheme, get_scheme
@@ -71,9 +87,21 @@ RESPONSE_MODES = 8
 FREE_MEAN_TOLERANCE = 1e-9
 
 
+#: the kernel components, in the order a body builds them: u_z of p and of q_x, u_x of p and of q_x
+COMPONENT_ORDER = ("zz", "zx", "xz", "xx")
+
+
+def ordered_components(components: Iterable[str]) -> tuple[str, ...]:
+    """``components`` and ``zz`` (always built) in :data:`COMPONENT_ORDER`."""
+    wanted = set(components) | {"zz"}
+    return tuple(c for c in COMPONENT_ORDER if c in wanted)
+
+
 @dataclass(frozen=True)
 class Term:
-    """One term of the displacement: u_displacement += K_kernel * (phi_history (*) d traction).
+    """One term of the displacement as placed in a :class:`TermSubstrate`:
+    u_displacement += K_kernel * (phi_history (*) d traction), the kernel named in the convolver and
+    the response keyed by its history (a body builds a :class:`ComplianceTerm`; module docstring).
 
     Attributes
     ----------
@@ -406,6 +434,13 @@ class TermSubstrate:
         return Convolver.from_kernels(n, kernels, self.convolver.workers, xp=self.xp, fft=self.fft,
                                       transforms=self.convolver.transforms), kernels
 
+    def steady_preconditioner(self, speed: float, workers: int = -1, symmetric: bool = False
+                              ) -> FourierPreconditioner | None:
+        """The Fourier preconditioner of the steady operator K_zz at ``speed`` [m/s] from its known
+        symbol (``symmetric``: of its symmetric part), or None where this compliance knows none (then
+        :func:`viscontact.solvers.steady.steady_preconditioner` takes that of the effective kernel)."""
+        return None
+
     def steady_spectrum(self, speed: float, friction: float = 0.0) -> Array:
         """Spectrum (n, n//2 + 1) of the steady operator p -> u_z [m per Pa] on a periodic grid: the sum
         over the ``zz`` terms (and ``friction`` x the ``zx`` terms: q_x = mu_f p) of K^_term
@@ -456,7 +491,8 @@ def _operator(factors: Sequence[tuple[str, float]], conv: Convolver,
 
 @dataclass(frozen=True)
 class ComplianceTerm:
-    """One term of the compliance operator.
+    """One term of the compliance operator as a body builds it: kernel array and time response
+    (placed in a :class:`TermSubstrate` it becomes a :class:`Term`: :meth:`placed`; module docstring).
 
     Attributes
     ----------
@@ -487,6 +523,11 @@ class ComplianceTerm:
     name: str = ""
     steady: SteadyShape | None = None
 
+    def placed(self) -> Term:
+        """The term as a :class:`TermSubstrate` holds it: the kernel by its :attr:`name`, the response by
+        its :func:`history_key`."""
+        return Term(self.displacement, self.traction, self.name, history_key(self))
+
 
 def history_key(term: ComplianceTerm) -> str:
     """Key of the hereditary history a term reads: its traction component and response label
@@ -496,15 +537,27 @@ def history_key(term: ComplianceTerm) -> str:
     return f"{term.traction}:{label}"
 
 
+def grid_transforms(n: int, workers: int, fft: str = "scipy", backend: ArrayBackend = CPU) -> DCFFTTransforms:
+    """The DC-FFT transforms of an n x n grid's fields: those of ``solver.fft`` by name on the CPU
+    (:func:`~viscontact.numerics.fftbackends.dcfft_transforms`), on a device ``backend`` its own FFT
+    module's zero-block transforms (``fft`` must then be ``"scipy"``, as
+    :class:`~viscontact.problem.problem.SolverSettings` checks)."""
+    if backend.is_cpu:
+        return dcfft_transforms(fft, n, workers)
+    return ZeroBlockTransforms(n, workers, backend.fft)
+
+
 def term_substrate(grid, terms: Iterable[ComplianceTerm], scheme, dt: float, *, workers: int = -1,
-                   direct: bool = False, backend=None):
+                   direct: bool = False, backend=None, fft: str = "scipy"):
     """A :class:`~viscontact.bodies.compliance.TermSubstrate` of compliance terms: each term a kernel named
     after it, terms with the same :func:`history_key` sharing one history (they must share the
     response), Fourier preconditioners for the self (zz, xx) kernels, the terms' steady shapes. On
     a periodic grid the kernels are periodic (n x n) and the convolver is the unpadded
     :class:`~viscontact.physics.periodic.PeriodicConvolver`; otherwise DC-FFT. For the solvers'
     ``substrate=`` argument (e.g. :func:`viscontact.solvers.transient.steps`). ``backend``: where the fields
-    live (an :class:`~viscontact.numerics.arrays.ArrayBackend`; None: the CPU)."""
+    live (an :class:`~viscontact.numerics.arrays.ArrayBackend`; None: the CPU). ``fft``: the DC-FFT
+    transforms by name (``solver.fft``, :func:`grid_transforms`); a periodic grid's unpadded
+    transforms are its backend's FFT module's whatever the name, as for every body."""
     terms = list(terms)
     responses: dict[str, CreepSpectrum] = {}
     for term in terms:
@@ -519,9 +572,10 @@ def term_substrate(grid, terms: Iterable[ComplianceTerm], scheme, dt: float, *, 
         conv = PeriodicConvolver.from_kernels(grid.n, kernels, workers, xp=backend.xp, fft=backend.fft)
         precond = {name: conv.preconditioner(name) for name in selves}
     else:
-        conv = Convolver.from_kernels(grid.n, kernels, workers, xp=backend.xp, fft=backend.fft)
+        conv = Convolver.from_kernels(grid.n, kernels, workers, xp=backend.xp, fft=backend.fft,
+                                      transforms=grid_transforms(grid.n, workers, fft, backend))
         precond = {name: FourierPreconditioner.for_kernel(kernels[name], 1.0, workers, fft=backend.fft)
                    for name in selves}
-    core_terms = [Term(t.displacement, t.traction, t.name, history_key(t)) for t in terms]
+    core_terms = [t.placed() for t in terms]
     return TermSubstrate(grid, core_terms, responses, conv, precond, scheme, dt, direct, periodic=grid.periodic,
                          steady_shapes={t.name: t.steady for t in terms if t.steady is not None}, backend=backend)

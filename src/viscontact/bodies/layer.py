@@ -82,7 +82,7 @@ move with |q| (:func:`modulus_poles`: A(k; G) = alpha0/G + sum_j alpha_j/(G + sh
 pole j brings the creep function of G(t) + shift_j(k)). :func:`viscoelastic_periodic_modes` gives
 that data per wavevector and states the cost: one kernel (spectrum) and one history field per mode
 and component, M (1 + number of poles) modes for an M-term Prony series. The solvers need fixed
-times: :func:`elastic_substrate_terms` interpolates h = (s + G_ref)/(G + s) in u = G_ref/(G_ref + s)
+times: :func:`elastic_base_terms` interpolates h = (s + G_ref)/(G + s) in u = G_ref/(G_ref + s)
 at fixed nodes (:func:`shift_nodes`), so each node is a real-space kernel (DC-FFT or periodic) with
 one creep function: D + 1 kernels per component and D M history fields per traction component for
 D + 1 nodes.
@@ -93,13 +93,17 @@ and integrated by the same recursion over its box.
 """
 from __future__ import annotations
 
+import math
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
-from typing import Callable
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import scipy.fft
 import scipy.linalg
+import scipy.optimize
 
+from viscontact.bodies.base import TermBody
 from viscontact.bodies.bulk_elastic import prony_creep_spectra, prony_creep_spectrum
 from viscontact.bodies.compliance import ComplianceTerm
 from viscontact.errors import ParameterError
@@ -110,7 +114,10 @@ from viscontact.physics.materials import Material
 from viscontact.physics.periodic import periodic_influence_coefficients
 from viscontact.physics.steady_kernels import SteadyKernelBuilder, SteadyShape, lagrange_basis, lobatto_nodes
 
-SUBSTRATES = ("rigid", "elastic")
+if TYPE_CHECKING:  # the case's [layer], as the problem holds it (a layer above: for the reader only)
+    from viscontact.problem.problem import LayerSettings
+
+BASES = ("rigid", "elastic")
 INTERFACES = ("bonded", "frictionless")
 COMPONENTS = ("zz", "xx", "xz", "zx")
 #: sum over the square lattice Z^2 without 0 of 1/|m|^3 = 4 zeta(3/2) beta(3/2)
@@ -119,7 +126,8 @@ _LATTICE_ZETA3 = 9.033621683100950
 
 @dataclass(frozen=True)
 class Layer:
-    """An elastic layer on a substrate (module docstring).
+    """An elastic layer on a base (module docstring; the case keys, and the keys of its errors, call
+    the base ``substrate``).
 
     Parameters
     ----------
@@ -127,12 +135,13 @@ class Layer:
         h [m], > 0.
     shear_modulus, poisson_ratio
         G [Pa] and nu of the layer.
-    substrate
-        ``"rigid"`` or ``"elastic"``.
+    base
+        ``"rigid"`` or ``"elastic"`` (case key ``layer.substrate``).
     interface
         ``"bonded"`` or ``"frictionless"``.
-    substrate_shear_modulus, substrate_poisson_ratio
-        G_s [Pa] and nu_s (elastic substrate only).
+    base_shear_modulus, base_poisson_ratio
+        G_s [Pa] and nu_s (elastic base only; case keys ``layer.substrate_shear_modulus``,
+        ``layer.substrate_poisson_ratio``).
 
     Examples
     --------
@@ -149,10 +158,10 @@ class Layer:
     thickness: float
     shear_modulus: float
     poisson_ratio: float
-    substrate: str = "rigid"
+    base: str = "rigid"
     interface: str = "bonded"
-    substrate_shear_modulus: float = float("inf")
-    substrate_poisson_ratio: float = 0.3
+    base_shear_modulus: float = float("inf")
+    base_poisson_ratio: float = 0.3
 
     def __post_init__(self) -> None:
         if not (np.isfinite(self.thickness) and self.thickness > 0):
@@ -161,12 +170,12 @@ class Layer:
             raise ParameterError("material.shear_modulus", f"must be > 0 Pa, got {self.shear_modulus}")
         if not 0.0 <= self.poisson_ratio <= 0.5:
             raise ParameterError("material.poisson_ratio", f"must be in [0, 0.5], got {self.poisson_ratio}")
-        if self.substrate not in SUBSTRATES:
-            raise ParameterError("layer.substrate", f"must be one of {SUBSTRATES}, got {self.substrate!r}")
+        if self.base not in BASES:
+            raise ParameterError("layer.substrate", f"must be one of {BASES}, got {self.base!r}")
         if self.interface not in INTERFACES:
             raise ParameterError("layer.interface", f"must be one of {INTERFACES}, got {self.interface!r}")
-        if self.substrate == "elastic":
-            gs, nus = self.substrate_shear_modulus, self.substrate_poisson_ratio
+        if self.base == "elastic":
+            gs, nus = self.base_shear_modulus, self.base_poisson_ratio
             if not (np.isfinite(gs) and gs > 0):
                 raise ParameterError("layer.substrate_shear_modulus", f"must be > 0 Pa, got {gs}")
             if not 0.0 <= nus <= 0.5:
@@ -212,14 +221,14 @@ def _in_plane_system(layer: Layer, kh: np.ndarray, modulus_ratio: float
     top_far = _family_rows(-kh, -1.0, 1.0, nu)       # layer family from z0 = h, at z = 0
     bot_near = _family_rows(zero, -1.0, 1.0, nu)     # layer family from z0 = h, at z = h
     bot_far = _family_rows(kh, 1.0, 1.0, nu)         # layer family from z0 = 0, at z = h
-    elastic = layer.substrate == "elastic"
+    elastic = layer.base == "elastic"
     size = 6 if elastic else 4
     mat = np.zeros(kh.shape + (size, size))
     mat[..., 0, 0:2], mat[..., 0, 2:4] = -top_near["szz"], -top_far["szz"]   # -sigma_zz = p
     mat[..., 1, 0:2], mat[..., 1, 2:4] = top_near["sxz"], top_far["sxz"]     # sigma_xz/(ik) = -tau
     layer_at_h = {key: np.concatenate([bot_far[key], bot_near[key]], axis=-1) for key in bot_far}
     if elastic:
-        sub = _family_rows(zero, 1.0, modulus_ratio, layer.substrate_poisson_ratio)
+        sub = _family_rows(zero, 1.0, modulus_ratio, layer.base_poisson_ratio)
         keys = ("uz", "ux", "szz", "sxz") if layer.interface == "bonded" else ("uz", "szz")
         row = 2
         for key in keys:
@@ -248,7 +257,7 @@ _IN_PLANE = {"zz": (0, 0, 1.0), "ze": (0, 1, -1j), "ez": (1, 0, 1j), "ee": (1, 1
 def in_plane_compliance(layer: Layer, k: np.ndarray) -> dict[str, np.ndarray]:
     """A_zz, A_ze, A_ez, A_ee [m/Pa] at wavenumbers k [1/m] (> 0); A_ze, A_ez are imaginary."""
     k = np.asarray(k, dtype=float)
-    mat, rhs, out = _in_plane_system(layer, k * layer.thickness, layer.substrate_shear_modulus / layer.shear_modulus)
+    mat, rhs, out = _in_plane_system(layer, k * layer.thickness, layer.base_shear_modulus / layer.shear_modulus)
     response = out @ np.linalg.solve(mat, rhs)  # (..., 2 outputs, 2 loads)
     scale = 1.0 / (layer.shear_modulus * k)
     return {key: factor * response[..., o, i] * scale for key, (o, i, factor) in _IN_PLANE.items()}
@@ -260,10 +269,10 @@ def anti_plane_compliance(layer: Layer, k: np.ndarray) -> np.ndarray:
     t = np.tanh(k * layer.thickness)
     if layer.interface == "frictionless":
         factor = 1.0 / t
-    elif layer.substrate == "rigid":
+    elif layer.base == "rigid":
         factor = t
     else:
-        r = layer.substrate_shear_modulus / layer.shear_modulus
+        r = layer.base_shear_modulus / layer.shear_modulus
         factor = (1 + r * t) / (t + r)
     return factor / (layer.shear_modulus * k)
 
@@ -343,7 +352,7 @@ def uniform_compliance(layer: Layer) -> dict[str, float]:
     displacement then being free): a rigid base gives h/M normally (lateral strain is zero in a
     uniformly loaded layer, bonded or not) and h/G tangentially when bonded."""
     h = layer.thickness
-    rigid = layer.substrate == "rigid"
+    rigid = layer.base == "rigid"
     nu = layer.poisson_ratio
     zz = h * (1 - 2 * nu) / (2 * layer.shear_modulus * (1 - nu)) if rigid else 0.0
     xx = h / layer.shear_modulus if rigid and layer.interface == "bonded" else 0.0
@@ -379,16 +388,16 @@ def _cell_average(func, dx: np.ndarray, dy: np.ndarray, cell: float, points: int
 def _long_wave_coefficients(layer: Layer) -> dict[str, dict[int, float]]:
     """Coefficients [1/Pa] of the 1/k behaviour as k -> 0, by angular order: zz {0}, xx {0, 2},
     xz, zx {1} (M_xz ~ i c d/k, M_zx ~ -i c d'/k written as i c (-d')/k)."""
-    if layer.substrate == "elastic":
+    if layer.base == "elastic":
         if layer.interface == "bonded":
-            return _half_space_coefficients(layer.substrate_shear_modulus, layer.substrate_poisson_ratio)
+            return _half_space_coefficients(layer.base_shear_modulus, layer.base_poisson_ratio)
     if layer.interface == "bonded":
         return {"zz": {0: 0.0}, "xx": {0: 0.0, 2: 0.0}, "xz": {1: 0.0}, "zx": {1: 0.0}}
     # frictionless: k A(k) extrapolated linearly to k = 0 from k h = 1e-4, 2e-4; the tangential
     # compliance grows as 1/k^2 (no 1/k coefficient: NaN, the non-periodic kernel refuses it)
     k = np.array([1e-4, 2e-4]) / layer.thickness
     lim = {key: 2 * (k * v)[0] - (k * v)[1] for key, v in in_plane_compliance(layer, k).items()}
-    zz = float(lim["zz"].real) if layer.substrate == "elastic" else 0.0
+    zz = float(lim["zz"].real) if layer.base == "elastic" else 0.0
     return {"zz": {0: zz}, "xz": {1: float(lim["ez"].imag)}, "zx": {1: float(lim["ze"].imag)},
             "xx": {0: np.nan, 2: np.nan}}
 
@@ -522,7 +531,7 @@ def influence_coefficients(grid: Grid, layer: Layer, components: tuple[str, ...]
     ``depth`` is the smoothing depth H [m] (default max(2h, 2dx)); ``box`` the periodic box of
     the remainder in domain widths (at least 8 max(H, h)); ``max_fine`` caps the refined
     transform (ParameterError beyond it). ``spectral``: another compliance than the layer's (the
-    parts of :func:`elastic_substrate_terms`).
+    parts of :func:`elastic_base_terms`).
     """
     n, dx = grid.n, grid.spacing
     spectral = spectral or _layer_spectral(layer)
@@ -555,7 +564,7 @@ def periodic_spectra(grid: Grid, layer: Layer, components: tuple[str, ...] = COM
     space on a refined grid (Nyquist wavenumber >= 7/h, :func:`_refinement`) and folded (no
     aliasing). The mean (q = 0) is the uniform compliance (:func:`uniform_compliance`), 0 where
     unbounded. ``max_fine`` caps the refined transform (ParameterError beyond it). ``spectral``:
-    another compliance than the layer's (the parts of :func:`elastic_substrate_terms`, without a
+    another compliance than the layer's (the parts of :func:`elastic_base_terms`, without a
     half-space part: all of it in Fourier space).
     """
     n = grid.n
@@ -636,7 +645,7 @@ def rigid_base_terms(grid: Grid, layer: Layer, shear: Material, components: tupl
     times the shear creep compliance J(t): one history per traction component, as for the
     half-space. (On an elastic substrate the response does not factor: see
     :func:`viscoelastic_periodic_modes`.)"""
-    if layer.substrate != "rigid":
+    if layer.base != "rigid":
         raise ParameterError("layer.substrate", "kernel x J(t) terms exist for a rigid substrate only; an elastic "
                              "substrate needs one term per relaxation mode (viscoelastic_periodic_modes)")
     return factored_terms(grid, layer, prony_creep_spectrum(shear.g_inf, shear.g, shear.tau), components)
@@ -672,7 +681,7 @@ class ModulusPoles:
 
 
 def _pole_count(layer: Layer, key: str) -> int:
-    if layer.substrate == "rigid":
+    if layer.base == "rigid":
         return 0
     if key == "pp":
         return 1 if layer.interface == "bonded" else 0
@@ -719,7 +728,7 @@ def modulus_poles(layer: Layer, k: np.ndarray, key: str) -> ModulusPoles:
         if count == 0:
             return ModulusPoles(layer.shear_modulus * anti_plane_compliance(layer, k), np.zeros(k.shape + (0,)),
                                 np.zeros(k.shape + (0,)))
-        gs = layer.substrate_shear_modulus
+        gs = layer.base_shear_modulus
         return ModulusPoles(t / k, ((1 - t**2) / (t * k))[..., None], (gs / t)[..., None])
     o_row, i_col, factor = _IN_PLANE[key]
     sign = (factor / 1j).real if key in ("ze", "ez") else 1.0
@@ -740,7 +749,7 @@ def modulus_poles(layer: Layer, k: np.ndarray, key: str) -> ModulusPoles:
             r, v, w = _refined_eigentriple(mat0[idx], mat1[idx], rho[e].real, right[:, e], left[:, e])
             c = (out[idx][o_row] @ v) * (w.conj() @ rhs[idx][:, i_col]) / (w.conj() @ mat1[idx] @ v)
             alpha[idx + (j,)] = sign * c.real / (k[idx] * r)
-            shift[idx + (j,)] = -r * layer.substrate_shear_modulus
+            shift[idx + (j,)] = -r * layer.base_shear_modulus
     return ModulusPoles(alpha0, alpha, shift)
 
 
@@ -785,7 +794,7 @@ def viscoelastic_periodic_modes(grid: Grid, layer: Layer, shear: Material, compo
     multiply-add per wavevector and step, no extra transforms. This is exact on a periodic domain. For
     the non-periodic DC-FFT domain the same spectra on the 2n x 2n padded grid give the convolution
     with period 2 x domain (error: the kernel's tail beyond one domain width); the solvers use
-    instead fixed-time terms that interpolate the pole shifts (:func:`elastic_substrate_terms`),
+    instead fixed-time terms that interpolate the pole shifts (:func:`elastic_base_terms`),
     on both grids.
     """
     n, dx = grid.n, grid.spacing
@@ -922,7 +931,7 @@ class _LogInterpolant:
 
 
 def _node_spectra(layer: Layer, nodes: ShiftNodes, samples_per_decade: int = 40) -> list[_Spectral]:
-    """The compliance of each node (:func:`elastic_substrate_terms`) as a :class:`_Spectral` at the
+    """The compliance of each node (:func:`elastic_base_terms`) as a :class:`_Spectral` at the
     layer's G: c_p(k)/G with c_p = G_ref sum_j beta_j(k) l_p(u_j(k)), beta_j = alpha_j/(shift_j + G_ref)
     (:func:`modulus_poles`), sampled at k h from 1e-2 to 18 (beyond, alpha_j < exp(-36)) and
     interpolated (:class:`_LogInterpolant`)."""
@@ -941,7 +950,7 @@ def _node_spectra(layer: Layer, nodes: ShiftNodes, samples_per_decade: int = 40)
     zero = {"zz": {0: 0.0}, "xx": {0: 0.0, 2: 0.0}, "xz": {1: 0.0}, "zx": {1: 0.0}}
     # periodic kernels: the rigid-base term's bounded mean (h/M, h/G) is cancelled by the node it is
     # merged with (u = 1, the same J(t)): on an elastic substrate the mean compliance is unbounded (0)
-    rigid_mean = {c: -v for c, v in uniform_compliance(replace(layer, substrate="rigid")).items()}
+    rigid_mean = {c: -v for c, v in uniform_compliance(replace(layer, base="rigid")).items()}
     no_mean = {"zz": 0.0, "xx": 0.0, "xz": 0.0, "zx": 0.0}
     out = []
     for p in range(nodes.nodes.size):
@@ -956,7 +965,7 @@ def _node_spectra(layer: Layer, nodes: ShiftNodes, samples_per_decade: int = 40)
     return out
 
 
-def elastic_substrate_terms(grid: Grid, layer: Layer, shear: Material, components: tuple[str, ...] = ("zz",),
+def elastic_base_terms(grid: Grid, layer: Layer, shear: Material, components: tuple[str, ...] = ("zz",),
                             tolerance: float = 1e-4) -> list[ComplianceTerm]:
     """Compliance terms of a viscoelastic layer (Prony shear modulus ``shear``, constant
     nu = ``layer.poisson_ratio``) on an elastic substrate, on DC-FFT or periodic grids.
@@ -988,7 +997,7 @@ def elastic_substrate_terms(grid: Grid, layer: Layer, shear: Material, component
     """
     nodes = shift_nodes(shear, tolerance)
     creep = prony_creep_spectrum(shear.g_inf, shear.g, shear.tau)
-    rigid = factored_terms(grid, replace(layer, substrate="rigid"), creep, components)
+    rigid = factored_terms(grid, replace(layer, base="rigid"), creep, components)
     terms: list[ComplianceTerm] = []
     last = nodes.nodes.size - 1
     for p, spectral in enumerate(_node_spectra(layer, nodes)):
@@ -1003,3 +1012,133 @@ def elastic_substrate_terms(grid: Grid, layer: Layer, shear: Material, component
         label = "elastic" if p == 0 else f"node{p}"
         terms += [ComplianceTerm(c[0], c[1], kernels[c], response, f"{c}:{label}", shapes.get(c)) for c in components]
     return rigid + terms
+
+
+# --- the body ------------------------------------------------------------------------------------
+
+#: k a of the wavenumber whose compliance stands for a contact of radius a in :meth:`LayerOnBase.contact_radius`:
+#: 32/(3 pi) makes the estimate the thin-layer (Winkler) limit exactly
+CONTACT_WAVENUMBER = 32.0 / (3.0 * math.pi)
+#: k h below which :meth:`LayerOnBase.contact_radius` takes the compliance at this k h (the layer's
+#: system loses digits below it; the thin limit h/M is reached to ~(k h)^2 there)
+THIN_KH = 1e-3
+
+
+@dataclass(frozen=True)
+class LayerOnBase(TermBody):
+    """A viscoelastic layer (``material``, constant nu) on a rigid or elastic base (``settings``, the
+    case's ``[layer]``: a :class:`~viscontact.problem.problem.LayerSettings`, whose field names are the
+    case keys: ``substrate`` there is the base here): a :class:`~viscontact.bodies.base.Body`.
+
+    Its compliance: on a rigid base, or for an elastic layer, the layer's unit-modulus kernels times
+    the creep compliance (:func:`rigid_base_terms`, :func:`factored_terms`: one term per component);
+    a viscoelastic layer on an elastic base, the rigid-base terms and one kernel per shift node,
+    each with its own creep function (:func:`elastic_base_terms`). Its fingerprint part:
+    {"bulk_modulus": None, "layer": LayerSettings(...)}.
+    """
+
+    material: Material
+    settings: LayerSettings
+
+    subsurface_stresses = False
+    contact_model = "layer compliance at k = 32/(3 pi a): Winkler when thin, Hertz when thick; Lee & Radok creep"
+
+    @property
+    def layer(self) -> Layer:
+        """The elastic layer at G(0) on its base (checks the settings)."""
+        return self.layer_at(self.material.shear_modulus_instantaneous)
+
+    def layer_at(self, shear_modulus: float) -> Layer:
+        """The elastic layer of shear modulus ``shear_modulus`` [Pa] on the base."""
+        s = self.settings
+        return Layer(s.thickness, shear_modulus, self.material.poisson_ratio, s.substrate, s.interface,
+                     s.substrate_shear_modulus, s.substrate_poisson_ratio)
+
+    @property
+    def _shift_nodes(self) -> ShiftNodes | None:
+        """The shift nodes of a viscoelastic layer on an elastic base (:func:`shift_nodes`); None when
+        the time response factors (rigid base, elastic layer)."""
+        if self.settings.substrate == "elastic" and not self.material.is_elastic:
+            return shift_nodes(self.material)
+        return None
+
+    @property
+    def description(self) -> Mapping[str, Any]:
+        return {"layer": self.settings}
+
+    def terms(self, grid: Grid, components: tuple[str, ...]) -> list[ComplianceTerm]:
+        """The terms of the class docstring."""
+        layer = self.layer
+        if layer.base == "rigid":
+            return rigid_base_terms(grid, layer, self.material, components)
+        if not self.material.is_elastic:
+            return elastic_base_terms(grid, layer, self.material, components)
+        return factored_terms(grid, layer, self.material.creep, components)
+
+    def stability_responses(self) -> list[CreepSpectrum]:
+        """J(t), and on an elastic base the responses of the shift nodes (times of G(t) + s_p) [1/Pa]."""
+        nodes = self._shift_nodes
+        extra = [] if nodes is None else [nodes.response(self.material, p) for p in range(nodes.nodes.size)]
+        return [self.material.creep] + extra
+
+    def size(self) -> tuple[int, int]:
+        """M history fields and one kernel per component; D M and D + 1 for a viscoelastic layer on an
+        elastic base with D + 1 shift nodes."""
+        modes = self.material.creep.retardation_times.size
+        nodes = self._shift_nodes
+        return (modes, 1) if nodes is None else ((nodes.nodes.size - 1) * modes, nodes.nodes.size)
+
+    def result_attributes(self) -> dict[str, Any]:
+        """The ``[layer]`` keys, prefixed ``layer_``."""
+        s = self.settings
+        return {"layer_thickness": float(s.thickness), "layer_substrate": s.substrate,
+                "layer_interface": s.interface, "layer_substrate_shear_modulus": float(s.substrate_shear_modulus),
+                "layer_substrate_poisson_ratio": float(s.substrate_poisson_ratio)}
+
+    def material_summary(self) -> str:
+        return f"poisson_ratio = {self.material.poisson_ratio:g}"
+
+    def contact_radius(self, load: float, sphere_radius: float, compliance_factor: float = 1.0) -> float:
+        """Contact radius a [m] of a sphere (radius R [m], load W [N]) on the layer with G(0)/c
+        (c = ``compliance_factor``; the base does not creep).
+
+        Hertz in terms of the compliance: a half-space has A_zz(k) = (1 - nu)/(G k) = 2/(E* k), so
+        Hertz's a^3 = 3 W R/(4 E*) reads a^3 = 3 W R k A_zz(k)/8 for any k. Here A_zz is the layer's
+        (:func:`in_plane_compliance`) at the wavenumber k = kappa/a of the contact, and a solves
+
+            a^3 = 3 W R (kappa/a) A_zz(kappa/a) / 8,   kappa = 32/(3 pi) (:data:`CONTACT_WAVENUMBER`).
+
+        Limits: a thick layer (k h >> 1) is the half-space, Hertz for any kappa. A thin bonded
+        compressible layer on a rigid base has A_zz -> h/M (oedometric M = 2 G (1 - nu)/(1 - 2 nu)),
+        a Winkler foundation of stiffness M/h: p(r) = (M/h)(delta - r^2/2R), zero at r = a, so
+        delta = a^2/2R and W = pi M a^4/(4 R h) (:func:`viscontact.physics.reference.winkler_sphere`);
+        the equation gives a^4 = 3 kappa W R h/(8 M), the same for this kappa. A thin incompressible
+        layer (A_zz -> h^3 k^2/(3 G): squeeze flow; exact a^6 = 32 W R h^3/(pi G), cf. Jaffar 1989;
+        tests/validation/test_layer_contact.py) comes out 11-14 % small. On a softer elastic base the
+        compliance at long wavelengths is the base's (1 - nu_s)/(G_s k), so the estimate moves from
+        the layer's to the base's half-space as the contact outgrows h: the layer and its base are
+        judged together, by the one compliance, rather than by the smaller or larger of two Hertz
+        radii. Below k h = :data:`THIN_KH` the compliance at that k h is used.
+        """
+        if not math.isfinite(compliance_factor):  # a fluid's unbounded creep (inf), no estimate (NaN)
+            return math.inf if compliance_factor > 0 else math.nan
+        layer = self.layer_at(self.material.shear_modulus_instantaneous / compliance_factor)
+        h, k_floor = layer.thickness, THIN_KH / layer.thickness
+
+        def excess(log_a: float) -> float:
+            a = math.exp(log_a)
+            k = max(CONTACT_WAVENUMBER / a, k_floor)
+            ka = k * float(in_plane_compliance(layer, np.array([k]))["zz"][0].real)
+            return math.log(3.0 * load * sphere_radius * ka / 8.0) - 3.0 * log_a
+
+        # the half-space of the layer or of the base brackets the radius within a few decades
+        low, high = math.log(1e-3 * min(h, sphere_radius)), math.log(10.0 * sphere_radius)
+        if excess(low) <= 0.0 or excess(high) >= 0.0:
+            return math.exp(low if excess(low) <= 0.0 else high)
+        return math.exp(scipy.optimize.brentq(excess, low, high, xtol=1e-12))
+
+    def contact_radius_at_approach(self, approach: float, sphere_radius: float) -> float:
+        """a = sqrt(R delta) [m], the half-space's (Hertz) relation: a thin compressible layer on a
+        rigid base reaches sqrt(2 R delta) (Winkler), a thin incompressible one 2 sqrt(R delta); this
+        estimate takes the half-space's (a known shortfall for thin layers under an approach)."""
+        return math.sqrt(sphere_radius * approach)

@@ -191,15 +191,7 @@ def _cmd_material(args: argparse.Namespace) -> int:
     problem = case.to_problem()
     material = problem.material
     c = material.creep
-    if problem.bulk_modulus is None:
-        nu = f"poisson_ratio = {material.poisson_ratio:g}"
-    else:  # nu(t) from G(t) and K
-        from viscontact.bodies.bulk_elastic import BulkElasticMaterial
-
-        bulk = BulkElasticMaterial(material, problem.bulk_modulus)
-        nu = (f"bulk_modulus K = {problem.bulk_modulus:.6g} Pa: poisson ratio nu(t) from "
-              f"{bulk.poisson_ratio_instantaneous:.6g} (t = 0) to {bulk.poisson_ratio_long_term:.6g} (t = inf)")
-    print(f"material: {section.type}, {len(material.g)} Prony terms, {nu}")
+    print(f"material: {section.type}, {len(material.g)} Prony terms, {problem.body.material_summary()}")
     print(f"G(0) = {material.shear_modulus_instantaneous:.6g} Pa, G(inf) = {material.shear_modulus_long_term:.6g} Pa, "
           f"G(0)/G(inf) = {material.shear_modulus_instantaneous / material.shear_modulus_long_term:.6g}")
     temperature = getattr(section, "temperature", None)

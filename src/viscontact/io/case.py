@@ -33,6 +33,7 @@ from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError,
 from pydantic.fields import FieldInfo
 
 from viscontact.bodies.bulk_elastic import BulkElasticMaterial
+from viscontact.bodies.registry import body_kind
 from viscontact.errors import ParameterError, check_type
 from viscontact.io.case_errors import closest, model_of, parameter_error
 from viscontact.io.prony_table import parse_prony_table
@@ -584,15 +585,18 @@ class Case(_Section):
             raise ParameterError("time.dt", f"must be <= time.t_end = {self.time.t_end:g} s, got {self.time.dt:g} s")
         check_subsurface_output(self.output.subsurface_depths, self.output.subsurface_times)
         if self.output.subsurface_depths:
-            check_subsurface_body(self.output.subsurface_depths, self.layer is not None,
-                                  self.material.bulk_modulus is not None)
+            check_subsurface_body(self.output.subsurface_depths, self._body_kind())
             needs = ["pressure"] + (["shear_x"] if self.tangential.mode in ("gross_sliding", "partial_slip") else [])
             missing = [f for f in needs if f not in self.output.fields]
             if missing:
                 raise ParameterError("output.fields", f"must include {missing} for output.subsurface_depths")
-        if self.layer is not None and self.material.bulk_modulus is not None:
-            raise ParameterError("material.bulk_modulus", "not supported with [layer]; give material.poisson_ratio")
+        self._body_kind()  # one body: material.bulk_modulus and [layer] are refused together
         return self
+
+    def _body_kind(self) -> type:
+        """The class of the case's body (:func:`viscontact.bodies.registry.body_kind`) from the keys that
+        describe it."""
+        return body_kind({"bulk_modulus": self.material.bulk_modulus, "layer": self.layer})
 
     # --- construction -------------------------------------------------------------------------
     @classmethod

@@ -53,9 +53,7 @@ def problem_fingerprint(problem: Problem) -> str:
     h.update(repr((problem.material, problem.grid, problem.normal, tangential,
                    problem.time, solver, problem.radius, problem.output)).encode())
     h.update(np.ascontiguousarray(problem.gap).tobytes())
-    body = {"bulk_modulus": problem.bulk_modulus, "layer": problem.layer}
-    if any(v is not None for v in body.values()):  # the half-space's fingerprint stays what it was
-        h.update(repr(body).encode())
+    h.update(problem.body.fingerprint())  # nothing for the half-space: its fingerprint stays what it was
     if problem.tangential.incremental_slip:  # the seed's total slip, or no partial slip: as it was
         h.update(repr({"slip": problem.tangential.slip}).encode())
     if problem.tangential.displacement_history is not None:  # a ramp's fingerprint stays what it was

@@ -158,7 +158,7 @@ def global_attrs(problem: Problem, case_text: str = "") -> dict[str, Any]:
         "a_T": mat.shift_factor,
         **_prony_attrs(mat),
         "radius": float("nan") if problem.radius is None else float(problem.radius),
-        **_substrate_attrs(problem),
+        **problem.body.result_attributes(),
         "dt": problem.time.dt,
         "time_scheme": problem.time.scheme,
         "grid_n": problem.grid.n,
@@ -199,24 +199,6 @@ def _prony_attrs(material) -> dict[str, Any]:
     def attribute(values) -> np.ndarray | float:  # as netCDF reads it back: one value is a scalar
         return float(values[0]) if len(values) == 1 else np.asarray(values, dtype=float)
     return {"relaxation_moduli": attribute(material.g), "relaxation_times": attribute(material.tau)}
-
-
-def _substrate_attrs(problem: Problem) -> dict[str, Any]:
-    """nu(0), nu(inf) and K [Pa] with a bulk modulus; the layer's keys with a [layer]."""
-    out: dict[str, Any] = {}
-    if problem.bulk_modulus is not None:
-        from viscontact.bodies.bulk_elastic import BulkElasticMaterial
-
-        nu = BulkElasticMaterial.poisson_ratio_of
-        k, mat = problem.bulk_modulus, problem.material
-        out.update(bulk_modulus=float(k), poisson_ratio_instantaneous=nu(mat.shear_modulus_instantaneous, k),
-                   poisson_ratio_long_term=nu(mat.shear_modulus_long_term, k))
-    if problem.layer is not None:
-        lay = problem.layer
-        out.update(layer_thickness=float(lay.thickness), layer_substrate=lay.substrate,
-                   layer_interface=lay.interface, layer_substrate_shear_modulus=float(lay.substrate_shear_modulus),
-                   layer_substrate_poisson_ratio=float(lay.substrate_poisson_ratio))
-    return out
 
 
 def subsurface_variables(records: Sequence[StepRecord], problem: Problem) -> tuple[dict, dict]:

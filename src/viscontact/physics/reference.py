@@ -48,6 +48,34 @@ def hertz_from_approach(approach: float, sphere_radius: float, shear_modulus: fl
     return Hertz(a, 3.0 * load / (2.0 * np.pi * a**2), approach, load)
 
 
+def oedometric_modulus(shear_modulus: float, poisson_ratio: float) -> float:
+    """M = 2 G (1 - nu)/(1 - 2 nu) [Pa], the modulus of uniaxial strain (lateral strain zero); inf at
+    nu = 0.5."""
+    if poisson_ratio == 0.5:
+        return float("inf")
+    return 2.0 * shear_modulus * (1.0 - poisson_ratio) / (1.0 - 2.0 * poisson_ratio)
+
+
+def winkler_sphere(load: float, sphere_radius: float, thickness: float, shear_modulus: float,
+                   poisson_ratio: float) -> Hertz:
+    """A rigid sphere (R [m], load W [N]) on a thin compressible layer (h [m], G [Pa], nu < 0.5) bonded
+    to a rigid base, in the thin-layer limit h/a -> 0.
+
+    Far from the contact edge (a distance of order h) the layer is in uniaxial strain: each point's
+    displacement is h/M times its pressure, M the :func:`oedometric_modulus`, a Winkler foundation
+    of stiffness M/h (Johnson, *Contact Mechanics*, 1985, Sec. 4.3, the elastic foundation model,
+    with M in place of K as the layer is bonded). With the gap r^2/2R,
+
+        p(r) = (M/h) (delta - r^2/2R),   p(a) = 0: delta = a^2/(2R),   p0 = M a^2/(2 R h),
+        W = int_0^a 2 pi r p dr = pi M a^4/(4 R h):   a = (4 W R h/(pi M))^(1/4).
+
+    Returns a :class:`Hertz` record of (a, p0, delta, W) (the pressure profile is the parabola above,
+    not :meth:`Hertz.pressure`'s)."""
+    modulus = oedometric_modulus(shear_modulus, poisson_ratio)
+    a = (4.0 * load * sphere_radius * thickness / (np.pi * modulus)) ** 0.25
+    return Hertz(a, modulus * a**2 / (2.0 * sphere_radius * thickness), a**2 / (2.0 * sphere_radius), load)
+
+
 # --- viscoelastic Hertz: Lee & Radok (1960) ------------------------------------------------------
 
 @dataclass(frozen=True)

@@ -8,13 +8,16 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any, Callable, Literal
+from typing import TYPE_CHECKING, Any, Callable, Literal
 
 import numpy as np
 
 from viscontact.errors import ParameterError
 from viscontact.numerics.grid import Grid
 from viscontact.physics.materials import Material
+
+if TYPE_CHECKING:
+    from viscontact.bodies.base import Body
 
 NormalControl = Literal["load", "displacement"]
 TangentialMode = Literal["none", "frictionless_sliding", "gross_sliding", "partial_slip"]
@@ -420,11 +423,12 @@ def check_subsurface_output(depths: Sequence[float], times: Sequence[float] | No
 
 @dataclass(frozen=True)
 class LayerSettings:
-    """The viscoelastic material is a layer of ``thickness`` [m] on a substrate.
+    """The viscoelastic material is a layer of ``thickness`` [m] on a base (the case's ``[layer]``).
 
-    ``substrate``: ``"rigid"`` or ``"elastic"`` (then ``substrate_shear_modulus`` [Pa] and
-    ``substrate_poisson_ratio`` [-]); ``interface``: ``"bonded"`` or ``"frictionless"``. The
-    compliance is that of :class:`viscontact.bodies.layer.Layer`.
+    ``substrate``: the base, ``"rigid"`` or ``"elastic"`` (then ``substrate_shear_modulus`` [Pa] and
+    ``substrate_poisson_ratio`` [-]); ``interface``: ``"bonded"`` or ``"frictionless"``. The field
+    names are the case keys. The body is :class:`viscontact.bodies.layer.LayerOnBase`, its compliance
+    that of :class:`viscontact.bodies.layer.Layer`.
     """
 
     thickness: float
@@ -434,12 +438,13 @@ class LayerSettings:
     substrate_poisson_ratio: float = 0.3
 
 
-def check_subsurface_body(depths, layered: bool, bulk_modulus: bool) -> None:
+def check_subsurface_body(depths, kind: Body | type) -> None:
     """Subsurface stresses (:mod:`viscontact.physics.subsurface`) are the elastic fields of the current
     tractions, true for the homogeneous half-space with constant nu only: raise
-    :class:`~viscontact.errors.ParameterError` when ``depths`` are asked for with a layer or a bulk
-    modulus."""
-    if depths and (layered or bulk_modulus):
+    :class:`~viscontact.errors.ParameterError` when ``depths`` are asked for of a body (``kind``, the
+    body or its class: :func:`viscontact.bodies.registry.body_kind`) whose
+    :attr:`~viscontact.bodies.base.Body.subsurface_stresses` is False."""
+    if depths and not kind.subsurface_stresses:
         raise ParameterError("output.subsurface_depths", "needs a homogeneous half-space with material.poisson_ratio "
                              "(no [layer], no material.bulk_modulus): the stresses are the elastic fields of the "
                              "current tractions only there")
@@ -466,12 +471,16 @@ class Problem:
     title: str = ""
     #: elastic bulk modulus K [Pa]: nu(t) from G(t) and K (``material.poisson_ratio`` is then nu(0))
     bulk_modulus: float | None = None
-    #: the material is a layer on a substrate (None: a half-space)
+    #: the material is a layer on a base (None: a half-space)
     layer: LayerSettings | None = None
     #: the gap was made by SurfaceTopography (a self-affine surface or roughness, a measured
     #: topography; set by :meth:`viscontact.io.case.Case.to_problem`): a run of it imports that package,
     #: which :func:`viscontact.running.resources.estimate` counts. It does not shape the solution.
     surface_topography: bool = False
+    #: the compliant body (:class:`~viscontact.bodies.base.Body`): None builds it from ``material``,
+    #: ``bulk_modulus`` and ``layer`` (:func:`viscontact.bodies.registry.body_of`, the one place);
+    #: given, it sets ``bulk_modulus`` or ``layer`` when it is described by one, and takes ``material``
+    body: Body | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         n = self.grid.n
@@ -481,7 +490,14 @@ class Problem:
             raise ParameterError("gap", "must hold finite heights [m] only (NaN or Inf found)")
         if self.radius is not None:
             _check_number("indenter.radius", self.radius, " m")
-        check_subsurface_body(self.output.subsurface_depths, self.layer is not None, self.bulk_modulus is not None)
+        from viscontact.bodies.registry import body_of  # the solvers' modules: not for the command's parser
+
+        body = body_of(self.material, self.body, bulk_modulus=self.bulk_modulus, layer=self.layer)
+        object.__setattr__(self, "body", body)
+        for key, value in body.description.items():  # a body given without its case key
+            if key in ("bulk_modulus", "layer"):
+                object.__setattr__(self, key, value)
+        check_subsurface_body(self.output.subsurface_depths, body)
 
     @cached_property
     def _gap_is_sphere(self) -> bool:

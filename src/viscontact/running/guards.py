@@ -80,16 +80,21 @@ GPU_SMALL_GRID = 512
 
 @dataclass(frozen=True)
 class ContactEstimate:
-    """Contact radii of a problem [m]: ``smallest`` (load control: Hertz with G(0)), ``largest``
-    (after creeping, at most Hertz with G(inf)); ``sphere_radius`` R [m] of the (equivalent) sphere."""
+    """Contact radii of a problem [m], the body's own estimates
+    (:meth:`~viscontact.bodies.base.Body.contact_radius`): ``smallest`` (load control: with G(0)),
+    ``largest`` (after creeping, at most with G(inf)); ``sphere_radius`` R [m] of the (equivalent)
+    sphere; ``model``: the closed form the body estimates it by (in messages)."""
 
     smallest: float
     largest: float
     sphere_radius: float
+    model: str = "Hertz, Lee & Radok creep"
 
 
 def contact_estimate(problem: Problem, *, transient: bool = True) -> ContactEstimate | None:
-    """Hertz estimate of the contact radius at the largest load (or approach) of the run; None when
+    """The body's estimate of the contact radius at the largest load (or approach) of the run
+    (:meth:`~viscontact.bodies.base.Body.contact_radius`: Hertz for a half-space, the layer's own for
+    a layer, thin or not); None when
     the indenter has no curvature to estimate it from (a flat punch, whose contact is its face at any
     load; a cylinder; :func:`viscontact.problem.scales.equivalent_radius`), and for a surface other
     than a sphere on a periodic grid (a rough period): its load spreads over many asperities, so
@@ -99,7 +104,7 @@ def contact_estimate(problem: Problem, *, transient: bool = True) -> ContactEsti
     Under load control the radius creeps (Lee & Radok: a^3 ~ int J(t - s) dW(s)) for as long as a
     material point stays loaded: the run's duration, or when sliding at most 2 a(G(inf)) / v (the
     time to cross the widest contact; the steady state: that time). ``largest`` is the radius after
-    that time, at most the Hertz radius with G(inf).
+    that time, at most the radius with G(inf).
     """
     from viscontact.problem.scales import equivalent_radius
 
@@ -109,24 +114,27 @@ def contact_estimate(problem: Problem, *, transient: bool = True) -> ContactEsti
     reference = problem.normal.history.reference
     if not (np.isfinite(radius) and radius > 0 and reference > 0):
         return None
-    mat = problem.material
+    mat, body = problem.material, problem.body
     if problem.normal.control == "displacement":
-        a = math.sqrt(radius * reference)
-        return ContactEstimate(a, a, radius)
-    e_star = 2.0 * mat.shear_modulus_instantaneous / (1.0 - mat.poisson_ratio)
-    smallest = (3.0 * reference * radius / (4.0 * e_star)) ** (1.0 / 3.0)
-    long_term = smallest * (mat.shear_modulus_instantaneous / mat.shear_modulus_long_term) ** (1.0 / 3.0)
+        a = body.contact_radius_at_approach(reference, radius)
+        return ContactEstimate(a, a, radius, body.contact_model)
+    smallest = body.contact_radius(reference, radius)
     tan = problem.tangential
     duration = problem.time.t_end if transient else math.inf
     if tan.mode in ("frictionless_sliding", "gross_sliding") or (not transient and tan.sliding_speed > 0):
+        long_term = body.contact_radius(reference, radius, mat.shear_modulus_instantaneous / mat.shear_modulus_long_term)
         duration = min(duration, 2.0 * long_term / tan.sliding_speed)
-    return ContactEstimate(smallest, smallest * _creep_ratio(problem, duration) ** (1.0 / 3.0), radius)
+    largest = body.contact_radius(reference, radius, _creep_ratio(problem, duration))
+    return ContactEstimate(smallest, largest, radius, body.contact_model)
 
 
 def _creep_ratio(problem: Problem, duration: float) -> float:
     """max over 0 <= t <= duration of int J(t - s) dW(s) / (J(0) max W) [-] (1 for an elastic
-    material, G(0)/G(inf) for a held load after a long time)."""
+    material, G(0)/G(inf) for a held load after a long time; 1 for a run of one step at t = 0, which
+    has no time to creep)."""
     mat = problem.material
+    if duration <= 0.0:
+        return 1.0
     if mat.is_elastic or not math.isfinite(duration):
         return mat.shear_modulus_instantaneous / mat.shear_modulus_long_term
     creep = mat.creep
@@ -152,8 +160,8 @@ def _grid_problems(est: ContactEstimate, n: int, half_width: float) -> list[tupl
                       f"with {cells:.2g} cells: the peak pressure would be off by about "
                       f"{100 * peak_pressure_error(cells):.0f} %"))
     if est.largest > half_width - EDGE_CELLS * dx:
-        found.append(("grid.half_width", f"the contact radius reaches about {est.largest:.3g} m (Hertz, "
-                      f"Lee & Radok creep): half_width = {half_width:.4g} m does not hold it with "
+        found.append(("grid.half_width", f"the contact radius reaches about {est.largest:.3g} m ({est.model}): "
+                      f"half_width = {half_width:.4g} m does not hold it with "
                       f"{EDGE_CELLS} cell{'s' if EDGE_CELLS > 1 else ''} to spare"))
     return found
 

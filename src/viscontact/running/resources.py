@@ -154,7 +154,7 @@ def estimate(problem: Problem, *, topography: bool | None = None, transform: flo
     * the records: the one queued for writing, its shuffled and compressed copies on the
       compression thread, and the one being computed (:mod:`viscontact.io.streaming`);
     * the history (2 x retardation modes, more for bodies of several terms:
-      :func:`viscontact.bodies.body.body_size`) and :data:`WORK_FIELDS` n x n work fields;
+      :meth:`viscontact.bodies.base.Body.size`) and :data:`WORK_FIELDS` n x n work fields;
     * per influence kernel :func:`kernel_bytes` (its (2n)^2 real-space copy, its (2n)(n + 1) complex
       spectrum, its preconditioner), and :data:`PADDED_TEMPORARIES` padded (2n)^2 temporaries of a step;
     * on a DC-FFT grid, the products and response history the state carries, and the support
@@ -186,9 +186,7 @@ def estimate(problem: Problem, *, topography: bool | None = None, transform: flo
     records = recorded_steps(problem)
     per_record = record_bytes(problem)
     result = stream_bytes(problem, records) + len(problem.title) + LAYOUT_BYTES
-    from viscontact.bodies.body import body_size
-
-    modes, per_component = body_size(problem)  # nu(t), layers: more histories and kernels
+    modes, per_component = problem.body.size()  # nu(t), layers: more histories and kernels
     kernels = per_component * (4 if problem.tangential.mode in ("partial_slip", "gross_sliding") else 1)
     # carried by the state of a DC-FFT grid: the warm start's two products and, for a body of one
     # kernel per component, the response history (M + 1 fields,

@@ -47,11 +47,9 @@ import numpy as np
 
 from viscontact.bodies.body import substrate_for
 from viscontact.bodies.compliance import TermSubstrate
-from viscontact.bodies.half_space import HalfSpace
 from viscontact.errors import ParameterError
 from viscontact.numerics.active_set import solve_contact_active_set
 from viscontact.numerics.convolution import Convolver, FourierPreconditioner
-from viscontact.numerics.exponentials import complex_compliance
 from viscontact.numerics.grid import Grid
 from viscontact.problem.problem import PHASE_GROSS_SLIDING, Problem
 from viscontact.problem.records import StepRecord
@@ -78,27 +76,14 @@ def steady_components(problem: Problem) -> list[str]:
 
 def steady_preconditioner(substrate: TermSubstrate, kernels: dict[str, np.ndarray], speed: float,
                           workers: int = -1, symmetric: bool = False) -> FourierPreconditioner:
-    """Fourier preconditioner of the steady operator K_zz [m/Pa] at ``speed`` [m/s].
-
-    For the :class:`~viscontact.bodies.half_space.HalfSpace` the operator's Fourier symbol is known: in the
-    indenter's frame the material point at x + xi was at x a time xi/v ago, so the shift
-    xi -> exp(i k_x xi) turns the hereditary integral of :mod:`viscontact.solvers.steady` into the complex
-    compliance at the frequency k_x v,
-
-        K^(k) = IC^_zz(k) J*(k_x),   J*(k_x) = J_0 + sum_m J_m / (1 - i k_x v lambda_m),
-
-    with IC^_zz the elastic symbol at unit modulus (the periodic one of the n x n grid, as for the
-    transient's preconditioner). It carries the phase of the viscous lag that the symmetric part
-    misses: 2.5-3x fewer GMRES iterations. Other substrates: the symmetric part of the wrapped
-    effective kernel (|Re K^|)."""
-    if isinstance(substrate, HalfSpace) and not substrate.periodic and "zz" in substrate.preconditioners:
-        elastic = substrate.preconditioners["zz"]
-        grid = substrate.grid
-        k_x = 2.0 * np.pi * np.fft.rfftfreq(grid.n, grid.spacing)
-        j_star = complex_compliance(substrate.material.creep, -k_x * speed)
-        symbol = j_star.real if symmetric else j_star  # Re K^ = IC^ Re J*: the symmetric part
-        return FourierPreconditioner(elastic.inverse_symbol / substrate.backend.to_device(symbol[None, :]), workers,
-                                     elastic.fft)
+    """Fourier preconditioner of the steady operator K_zz [m/Pa] at ``speed`` [m/s]: the compliance's
+    own where it knows the operator's symbol
+    (:meth:`~viscontact.bodies.compliance.TermSubstrate.steady_preconditioner`: the
+    :class:`~viscontact.bodies.half_space.HalfSpace`'s, with the phase of the viscous lag: 2.5-3x fewer
+    GMRES iterations), else the symmetric part of the wrapped effective kernel (|Re K^|)."""
+    known = substrate.steady_preconditioner(speed, workers, symmetric)
+    if known is not None:
+        return known
     return FourierPreconditioner.for_kernel(substrate.backend.to_device(kernels["zz"]), 1.0, workers, fft=substrate.fft)
 
 

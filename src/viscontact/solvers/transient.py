@@ -30,7 +30,7 @@ from typing import Callable, Iterator
 
 import numpy as np
 
-from viscontact.bodies.body import stability_responses, substrate_for
+from viscontact.bodies.body import substrate_for
 from viscontact.bodies.compliance import TermSubstrate
 from viscontact.errors import ParameterError
 from viscontact.numerics.allocator import tune_allocator
@@ -152,7 +152,7 @@ def validate(problem: Problem) -> None:
                              f"{tan.sliding_speed:g} m/s")
     if tan.mode == "partial_slip" and tan.displacement_history is None and not tan.displacement_rate > 0:
         raise ParameterError("tangential.displacement_rate", f"must be > 0 m/s for partial_slip, got {tan.displacement_rate}")
-    limit = min(stable_step_limit(r, problem.time.scheme) for r in stability_responses(problem))
+    limit = min(stable_step_limit(r, problem.time.scheme) for r in problem.body.stability_responses())
     if problem.time.dt > limit:
         raise ParameterError(
             "time.dt", f"{problem.time.dt:.4g} s exceeds the stability limit {limit:.4g} s of the piecewise-constant "
