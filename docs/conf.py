@@ -67,37 +67,54 @@ sphinx_gallery_conf = {
 }
 
 
-def _public_modules(packages: bool) -> list[str]:
-    """Every public module (``packages=False``) or sub-package (``True``) of viscontact, found by
-    walking it; a name with a part starting with an underscore is private."""
+def _modules(packages: bool) -> list[str]:
+    """Every module (``packages=False``) or sub-package (``True``) of viscontact, found by walking it;
+    a name with a part starting with an underscore is private and left out."""
     found = pkgutil.walk_packages(viscontact.__path__, "viscontact.")
     return sorted(m.name for m in found if m.ispkg == packages
                   and not any(part.startswith("_") for part in m.name.split(".")))
 
 
+#: the internals' sections, in the order of the layers (docs/architecture.md): title, package prefixes
+INTERNAL_SECTIONS = (
+    ("Foundation", ("viscontact.errors", "viscontact.version")),
+    ("Numerics", ("viscontact.numerics",)),
+    ("Physics", ("viscontact.physics",)),
+    ("Bodies", ("viscontact.bodies",)),
+    ("Problem", ("viscontact.problem",)),
+    ("Solvers", ("viscontact.solvers",)),
+    ("Files", ("viscontact.io",)),
+    ("Running", ("viscontact.running",)),
+    ("Plots", ("viscontact.plotting",)),
+    ("Edges: sweeps, reproductions, the command line", ("viscontact.sweep", "viscontact.reproduce", "viscontact.cli")),
+)
+
+
 def _write_api_page() -> None:
-    """docs/api.rst: the top-level names and one autosummary entry per public module."""
+    """docs/api.rst: the public API (what ``import viscontact as vc`` offers) first, then the internals
+    layer by layer (one autosummary entry per module)."""
     lines = ["API reference", "=============", "",
              "Generated from the docstrings of the package at build time.", "",
-             "Top-level names", "---------------", "",
-             "``import viscontact as vc`` gives these names; each is documented in its module.", "",
-             ".. list-table::", "   :header-rows: 1", "   :widths: 30 70", "",
-             "   * - name", "     - defined in"]
+             "Public API", "----------", "",
+             "``import viscontact as vc`` gives these names; they are what scripts use, and they stay stable.", "",
+             ".. autosummary::", ""]
     for name in viscontact.__all__:
         obj = getattr(viscontact, name)
         home = getattr(obj, "__module__", None)
         if name.startswith("__") or home is None:
             continue
-        if isinstance(obj, type(viscontact)):
-            target = f":py:mod:`{obj.__name__}`"
-        else:
-            target = f":py:obj:`{home}.{obj.__qualname__}`"
-        lines += [f"   * - ``vc.{name}``", f"     - {target}"]
-    lines += ["", "Modules", "-------", "", ".. autosummary::", "   :toctree: generated", ""]
-    lines += [f"   {name}" for name in _public_modules(packages=False)]
-    lines += ["", "Packages", "--------", "", "Each groups modules listed above; its page tells how.", "",
-              ".. autosummary::", "   :toctree: generated", "   :template: autosummary/package.rst", ""]
-    lines += [f"   {name}" for name in _public_modules(packages=True)]
+        lines.append(f"   {obj.__name__}" if isinstance(obj, type(viscontact)) else f"   {home}.{obj.__qualname__}")
+    lines += ["", "Internals", "---------", "",
+              "The modules behind the public API, by layer (:doc:`architecture`): for developers and for scripts",
+              "that need more than the public names; they may change between releases.", ""]
+    for title, prefixes in INTERNAL_SECTIONS:
+        lines += [title, "~" * len(title), ""]
+        # a package's page is its docstring (its modules have their own); a module's lists its members
+        for packages, template in ((True, ["   :template: autosummary/package.rst"]), (False, [])):
+            names = [m for m in _modules(packages) if any(m == p or m.startswith(p + ".") for p in prefixes)]
+            if names:
+                lines += [".. autosummary::", "   :toctree: generated", *template, ""]
+                lines += [f"   {name}" for name in names] + [""]
     text = "\n".join(lines) + "\n"
     path = HERE / "api.rst"
     if not path.exists() or path.read_text() != text:

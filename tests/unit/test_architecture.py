@@ -255,3 +255,37 @@ def test_the_parser_loads_no_solver_case_or_sweep_module():
                          capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     assert json.loads(out.stdout.splitlines()[-1]) == []
+
+
+ARCHITECTURE_PAGE = SRC.parents[1] / "docs" / "architecture.md"
+
+
+def _layer_rows() -> list[tuple[str, tuple[str, ...]]]:
+    """(layer, packages) of the table between the ``layer-table`` markers of docs/architecture.md."""
+    text = ARCHITECTURE_PAGE.read_text(encoding="utf-8")
+    table = text.split("<!-- layer-table")[1].split("<!-- /layer-table -->")[0]
+    rows = []
+    for line in table.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) >= 3 and cells[1].startswith("`"):
+            rows.append((cells[0], tuple(p.strip(" `") for p in cells[1].split(","))))
+    return rows
+
+
+def test_the_architecture_page_has_the_layer_table_of_this_test():
+    """docs/architecture.md's layer table is :data:`LAYERS`, row by row (names and packages)."""
+    assert _layer_rows() == [(name, tuple(prefixes)) for name, prefixes in LAYERS]
+
+
+def test_every_module_the_architecture_page_names_exists():
+    """Each ``pkg/module.py`` path and ``viscontact.x.y`` name in docs/architecture.md is in the source."""
+    import re
+
+    text = ARCHITECTURE_PAGE.read_text(encoding="utf-8")
+    paths = set(re.findall(r"`((?:[a-z_]+/)+[a-z_]+\.py)", text)) - {"tests/unit/test_architecture.py",
+                                                                    "tests/unit/test_docs_architecture.py"}
+    missing = [p for p in sorted(paths) if not (SRC / p).exists() and not (SRC.parents[1] / p).exists()]
+    modules = _package_modules()
+    names = set(re.findall(r"`(viscontact(?:\.[A-Za-z_]+)+)", text))
+    unknown = [n for n in sorted(names) if _target(n, modules) is None]
+    assert not missing and not unknown, (missing, unknown)
