@@ -488,7 +488,7 @@ class ResultStream:
                 self._resize(k + 1)
                 self._put("t", k, record.t)
                 self._put("step", k, record.step)
-                for name in StepRecord.SCALARS:
+                for name in StepRecord.scalars(self.problem.adhesion is not None):
                     self._put(name, k, getattr(record, name))
                 for name, step in steps.items():
                     if name in encoded:
