@@ -181,7 +181,7 @@ def test_stop_and_resume_of_an_adhesive_run_equals_the_uninterrupted_one(tmp_pat
     ({"adhesion.law": "lennard_jones"}, "adhesion.law"),
     ({"adhesion": None}, "normal.history"),  # a retraction below zero needs adhesion
     ({"grid.periodic": True}, "grid.periodic"),
-    ({"grid.n": 8, "grid.half_width": 4e-3}, "grid.n"),  # cohesive zone below 2 cells
+    ({"normal.control": "load", "normal.history": [[0.0, 0.0], [0.5, -1e-3], [1.0, 1e-3]]}, "normal.history"),
 ])
 def test_what_adhesion_does_not_support_is_refused_in_one_line(overrides, key):
     with pytest.raises(ParameterError) as err:
@@ -194,3 +194,41 @@ def test_steady_refuses_adhesion():
     with pytest.raises(ParameterError, match="^adhesion: .*viscontact steady") as err:
         api.run_steady(problem)
     assert "\n" not in str(err.value)
+
+
+def test_the_cohesive_zone_guard_warns_on_a_coarse_grid_naming_the_grid_that_resolves_it():
+    """Between 2 and 4 cells across the cohesive zone (E* = 2 G(0) / (1 - nu)): one warning line;
+    below 2, one error line."""
+    case = Case.from_toml_text(CASE.read_text(), CASE.parent).with_overrides({"adhesion.cohesive_stress": 5.7e4})
+    with pytest.warns(ViscontactWarning, match=r"^grid\.n: 64 cells .* cohesive zone .* 2\.5 cells; use grid\.n >= 128 ") \
+            as caught:
+        api.prepare(case)
+    assert all("\n" not in str(w.message) for w in caught)
+    with pytest.raises(ParameterError, match=r"^grid\.n: 64 cells .* cohesive zone .* 0\.25 cells; use grid\.n >= 1024 "):
+        api.prepare(case.with_overrides({"adhesion.cohesive_stress": 1.8e5}))
+
+
+@pytest.mark.parametrize("body", [{"layer.thickness": 0.4e-3},
+                                  {"material.poisson_ratio": None, "material.bulk_modulus": 1e8}])
+def test_every_body_adheres(body):
+    """A layer on a rigid base (stiffer than the half-space: a larger pull-off, its contact smaller
+    at the same approach) and nu(t) from an elastic bulk modulus take the same law and pull off."""
+    case = Case.from_toml_text(CASE.read_text(), CASE.parent).with_overrides({"grid.n": 32, "time.dt": 0.05})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ViscontactWarning)
+        half_space, other = api.run(case), api.run(case.with_overrides(body))
+    assert other.attrs["pull_off_force"] < 0 and int(other.attrs["complete"]) == 1
+    assert float(other["adhesive_force"].min()) < 0 and float(other["pressure"].min()) < 0
+    if "layer.thickness" in body:
+        assert other.attrs["pull_off_force"] < half_space.attrs["pull_off_force"]
+
+
+def test_viscontact_run_prints_the_pull_off(tmp_path):
+    import subprocess
+    import sys
+
+    proc = subprocess.run([sys.executable, "-m", "viscontact", "run", str(CASE), "--out", str(tmp_path / "a.nc"),
+                           "--set", "grid.n=32", "--set", "time.dt=0.05"], capture_output=True, text=True,
+                          timeout=300, check=False)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.splitlines()[-1].startswith("pull-off force -"), proc.stdout

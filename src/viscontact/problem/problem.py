@@ -420,7 +420,8 @@ def check_subsurface_body(depths, layered: bool, bulk_modulus: bool) -> None:
 def check_adhesion_supported(problem: "Problem") -> None:
     """Refuse, in one line naming the key, what adhesion does not work with yet: a tangential mode
     other than ``"none"`` (friction in tension is not modelled; ``viscontact steady`` needs one),
-    a periodic grid, and ``solver.device = "gpu"``."""
+    a periodic grid, a load history that pulls before it first presses (no equilibrium carries a
+    tension without contact), and ``solver.device = "gpu"``."""
     mode = problem.tangential.mode
     if mode != "none":
         raise ParameterError("tangential.mode", f"'{mode}' is not supported with [adhesion] yet (nor is `viscontact "
@@ -428,6 +429,11 @@ def check_adhesion_supported(problem: "Problem") -> None:
     if problem.grid.periodic:
         raise ParameterError("grid.periodic", "true is not supported with [adhesion] yet: adhesive contact is solved "
                              "on a DC-FFT (non-periodic) domain only")
+    values = problem.normal.history.values
+    pressed = next(i for i, v in enumerate(values) if v > 0)
+    if problem.normal.control == "load" and min(values[:pressed + 1]) < 0:
+        raise ParameterError("normal.history", f"a load history must press the indenter on (a load > 0 N) before it "
+                             f"pulls: no equilibrium carries a tensile load before the first contact, got {values!r}")
     if problem.solver.device != "cpu":
         raise ParameterError("solver.device", f"'{problem.solver.device}' is not supported with [adhesion] yet: "
                              "use 'cpu'")
