@@ -200,11 +200,12 @@ def test_the_cohesive_zone_guard_warns_on_a_coarse_grid_naming_the_grid_that_res
     """Between 2 and 4 cells across the cohesive zone (E* = 2 G(0) / (1 - nu)): one warning line;
     below 2, one error line."""
     case = Case.from_toml_text(CASE.read_text(), CASE.parent).with_overrides({"adhesion.cohesive_stress": 5.7e4})
-    with pytest.warns(ViscontactWarning, match=r"^grid\.n: 64 cells .* cohesive zone .* 2\.5 cells; use grid\.n >= 128 ") \
-            as caught:
+    warned = r"^grid\.n: 64 cells .* cohesive zone .* 2\.5 cells; use grid\.n >= 128 "
+    with pytest.warns(ViscontactWarning, match=warned) as caught:
         api.prepare(case)
     assert all("\n" not in str(w.message) for w in caught)
-    with pytest.raises(ParameterError, match=r"^grid\.n: 64 cells .* cohesive zone .* 0\.25 cells; use grid\.n >= 1024 "):
+    refused = r"^grid\.n: 64 cells .* cohesive zone .* 0\.25 cells; use grid\.n >= 1024 "
+    with pytest.raises(ParameterError, match=refused):
         api.prepare(case.with_overrides({"adhesion.cohesive_stress": 1.8e5}))
 
 
