@@ -40,6 +40,7 @@ from viscontact.io.prony_table import parse_prony_table
 from viscontact.io.safe_read import MAX_INPUT_BYTES, npy_layout, read_text_input, regular_input
 from viscontact.numerics.grid import Grid
 from viscontact.physics.materials import Material, shear_from_tensile, wlf_shift_factor
+from viscontact.problem.adhesion import AdhesionSettings
 from viscontact.problem.problem import (
     LayerSettings,
     NormalLoading,
@@ -379,13 +380,16 @@ class NormalSection(_Section):
             raise ParameterError("normal.value" if self.value is not None else "normal",
                                  "give exactly one of 'value' (held from t = 0) or 'history' "
                                  "([[t, value], ...], piecewise linear)")
-        self.build()  # the pairs (piecewise_linear), finite values, increasing times, values >= 0: NormalLoading
+        # the pairs (piecewise_linear), finite values, increasing times: NormalLoading; the sign (values
+        # >= 0 without [adhesion]) is checked by the case, which knows whether the surface adheres
+        self.build(tensile=True)
         return self
 
-    def build(self) -> NormalLoading:
+    def build(self, tensile: bool = False) -> NormalLoading:
+        """The normal loading; ``tensile``: values below zero allowed (with ``[adhesion]``)."""
         if self.history is None:
-            return NormalLoading(self.control, PiecewiseLinear.constant(self.value))
-        return NormalLoading(self.control, piecewise_linear(self.history, "normal.history"))
+            return NormalLoading(self.control, PiecewiseLinear.constant(self.value), tensile)
+        return NormalLoading(self.control, piecewise_linear(self.history, "normal.history"), tensile)
 
 
 def piecewise_linear(points: list[list[float]], key: str) -> PiecewiseLinear:
@@ -508,6 +512,28 @@ class LayerSection(_Section):
                              self.substrate_poisson_ratio)
 
 
+class AdhesionSection(_Section):
+    """Adhesion of the surface (absent: none): a Maugis-Dugdale law, a tension ``cohesive_stress``
+    wherever the gap is open but below w / cohesive_stress (Maugis 1992). With it, a load history may
+    be tensile and an approach history may go below zero (retraction to pull-off and beyond)."""
+
+    work_of_adhesion: float = _num(unit="J/m^2", gt=0, description="Dupre work of adhesion w [J/m^2], > 0")
+    law: Literal["maugis_dugdale"] = Field("maugis_dugdale", description="traction-separation law: "
+                                           "'maugis_dugdale' (a tension cohesive_stress wherever 0 < gap < "
+                                           "work_of_adhesion / cohesive_stress)")
+    cohesive_stress: float | None = _num(None, unit="Pa", gt=0, description="sigma_0 [Pa] of the Maugis-Dugdale "
+                                         "law, > 0 (required with law = 'maugis_dugdale')")
+
+    @model_validator(mode="after")
+    def _law_needs(self) -> AdhesionSection:
+        if self.law == "maugis_dugdale" and self.cohesive_stress is None:
+            raise ParameterError("adhesion.cohesive_stress", "required (> 0 Pa) with adhesion.law = 'maugis_dugdale'")
+        return self
+
+    def build(self) -> AdhesionSettings:
+        return AdhesionSettings(self.work_of_adhesion, self.cohesive_stress, self.law)
+
+
 class SolverSection(_Section):
     """Tolerances (relative) and iteration caps of the constrained CG and the coupling loop, FFT
     workers and backend (``fft``: "scipy" or "pyfftw"), the history algorithm, ``coupling``
@@ -565,6 +591,7 @@ class Case(_Section):
     output: OutputSection = OutputSection()
     solver: SolverSection = SolverSection()
     layer: LayerSection | None = None
+    adhesion: AdhesionSection | None = None
 
     _text: str = PrivateAttr("")
     _base_dir: Path = PrivateAttr(default_factory=Path)
@@ -591,6 +618,7 @@ class Case(_Section):
             if missing:
                 raise ParameterError("output.fields", f"must include {missing} for output.subsurface_depths")
         self._body_kind()  # one body: material.bulk_modulus and [layer] are refused together
+        self.normal.build(tensile=self.adhesion is not None)  # a tensile history needs [adhesion]
         return self
 
     def _body_kind(self) -> type:
@@ -742,7 +770,7 @@ class Case(_Section):
             material=self.material.build(self._base_dir),
             grid=grid,
             gap=gap(grid),
-            normal=self.normal.build(),
+            normal=self.normal.build(tensile=self.adhesion is not None),
             tangential=self.tangential.build(),
             time=TimeStepping(self.time.t_end, self.default_dt(), self.time.scheme),
             solver=SolverSettings(**self.solver.model_dump()),
@@ -753,6 +781,7 @@ class Case(_Section):
             bulk_modulus=self.material.bulk_modulus,
             layer=None if self.layer is None else self.layer.build(),
             surface_topography=self.indenter.uses_surface_topography,
+            adhesion=None if self.adhesion is None else self.adhesion.build(),
         )
 
 

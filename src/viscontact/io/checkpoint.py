@@ -58,6 +58,8 @@ def problem_fingerprint(problem: Problem) -> str:
         h.update(repr({"slip": problem.tangential.slip}).encode())
     if problem.tangential.displacement_history is not None:  # a ramp's fingerprint stays what it was
         h.update(repr({"displacement_history": problem.tangential.displacement_history}).encode())
+    if problem.adhesion is not None:  # without adhesion, as it was
+        h.update(repr({"adhesion": problem.adhesion, "tensile": problem.normal.tensile}).encode())
     return h.hexdigest()
 
 

@@ -73,6 +73,8 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "contact_patches": ("1", "number of contact patches (4-connected; merged across the edges of a periodic domain)"),
     "mean_gap": ("m", "mean deformed gap over the domain (mean separation)"),
     "mean_contact_pressure": ("Pa", "load / real contact area"),
+    "adhesive_force": ("N", "tensile part of the load, sum min(p, 0) dA (<= 0; with [adhesion])"),
+    "adhesive_area": ("m2", "area where the gap is open and the adhesive tension acts (with [adhesion])"),
     "stress_xx": ("Pa", "subsurface stress sigma_xx in the section y = 0 (tension positive)"),
     "stress_yy": ("Pa", "subsurface stress sigma_yy in the section y = 0 (tension positive)"),
     "stress_zz": ("Pa", "subsurface stress sigma_zz in the section y = 0 (tension positive)"),
@@ -328,7 +330,7 @@ def result_layout(records: Sequence[StepRecord], problem: Problem, *, case_text:
     for name in StepRecord.FIELDS:
         if name in problem.output.fields:
             variables[name] = _variable(name, ("t", "y", "x"), _field_stack(records, name, n), mode)
-    for name in StepRecord.SCALARS:
+    for name in StepRecord.scalars(problem.adhesion is not None):
         dtype = int if name in ("phase", "iterations", "coupling_iterations", "contact_patches") else float
         data = np.array([getattr(r, name) for r in records], dtype=dtype)
         variables[name] = _variable(name, ("t",), data, mode)

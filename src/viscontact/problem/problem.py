@@ -15,6 +15,7 @@ import numpy as np
 from viscontact.errors import ParameterError
 from viscontact.numerics.grid import Grid
 from viscontact.physics.materials import Material
+from viscontact.problem.adhesion import AdhesionSettings
 
 if TYPE_CHECKING:
     from viscontact.bodies.base import Body
@@ -136,10 +137,14 @@ def check_history(history: PiecewiseLinear, key: str) -> None:
 
 @dataclass(frozen=True)
 class NormalLoading:
-    """Normal boundary condition (seed Eqs. 7-8): load W(t) [N] or approach delta_z(t) [m]."""
+    """Normal boundary condition (seed Eqs. 7-8): load W(t) [N] or approach delta_z(t) [m].
+
+    ``tensile``: the history may go below zero (a pull, a retraction past the first touch), which
+    only an adhesive surface allows (:class:`Problem` refuses it without ``adhesion``)."""
 
     control: NormalControl
     history: PiecewiseLinear
+    tensile: bool = field(default=False, repr=False)
 
     def __post_init__(self) -> None:
         """The one place that checks a normal loading (the case layer delegates here).
@@ -155,8 +160,10 @@ class NormalLoading:
             raise ParameterError("normal.control", f"must be 'load' or 'displacement', got {self.control!r}")
         check_history(self.history, "normal.history")  # a held value is a history of one point
         values = self.history.values
-        if min(values) < 0 or not max(values) > 0:
-            raise ParameterError("normal.history", f"values must be >= 0 (N or m) with a positive maximum, got {values!r}")
+        if (min(values) < 0 and not self.tensile) or not max(values) > 0:
+            hint = " (a tensile load or a retraction below zero needs [adhesion])" if min(values) < 0 else ""
+            raise ParameterError("normal.history",
+                                 f"values must be >= 0 (N or m) with a positive maximum, got {values!r}{hint}")
 
 
 @dataclass(frozen=True)
@@ -450,6 +457,28 @@ def check_subsurface_body(depths, kind: Body | type) -> None:
                              "current tractions only there")
 
 
+def check_adhesion_supported(problem: "Problem") -> None:
+    """Refuse, in one line naming the key, what adhesion does not work with yet: a tangential mode
+    other than ``"none"`` (friction in tension is not modelled; ``viscontact steady`` needs one),
+    a periodic grid, a load history that pulls before it first presses (no equilibrium carries a
+    tension without contact), and ``solver.device = "gpu"``."""
+    mode = problem.tangential.mode
+    if mode != "none":
+        raise ParameterError("tangential.mode", f"'{mode}' is not supported with [adhesion] yet (nor is `viscontact "
+                             "steady`): adhesive contact is solved in indentation only (tangential.mode = 'none')")
+    if problem.grid.periodic:
+        raise ParameterError("grid.periodic", "true is not supported with [adhesion] yet: adhesive contact is solved "
+                             "on a DC-FFT (non-periodic) domain only")
+    values = problem.normal.history.values
+    pressed = next(i for i, v in enumerate(values) if v > 0)
+    if problem.normal.control == "load" and min(values[:pressed + 1]) < 0:
+        raise ParameterError("normal.history", f"a load history must press the indenter on (a load > 0 N) before it "
+                             f"pulls: no equilibrium carries a tensile load before the first contact, got {values!r}")
+    if problem.solver.device != "cpu":
+        raise ParameterError("solver.device", f"'{problem.solver.device}' is not supported with [adhesion] yet: "
+                             "use 'cpu'")
+
+
 @dataclass(frozen=True)
 class Problem:
     """Everything the transient and steady solvers need.
@@ -477,6 +506,8 @@ class Problem:
     #: topography; set by :meth:`viscontact.io.case.Case.to_problem`): a run of it imports that package,
     #: which :func:`viscontact.running.resources.estimate` counts. It does not shape the solution.
     surface_topography: bool = False
+    #: the surface's adhesive law (None: none, the seed's Kuhn-Tucker conditions; :mod:`viscontact.problem.adhesion`)
+    adhesion: AdhesionSettings | None = None
     #: the compliant body (:class:`~viscontact.bodies.base.Body`): None builds it from ``material``,
     #: ``bulk_modulus`` and ``layer`` (:func:`viscontact.bodies.registry.body_of`, the one place);
     #: given, it sets ``bulk_modulus`` or ``layer`` when it is described by one, and takes ``material``
@@ -484,6 +515,11 @@ class Problem:
 
     def __post_init__(self) -> None:
         n = self.grid.n
+        if self.adhesion is None and self.normal.tensile and min(self.normal.history.values) < 0:
+            raise ParameterError("normal.history", f"values must be >= 0 (N or m) without [adhesion], got "
+                                 f"{self.normal.history.values!r}")
+        if self.adhesion is not None:
+            check_adhesion_supported(self)
         if np.shape(self.gap) != (n, n):
             raise ParameterError("gap", f"must be an array of the grid's shape ({n}, {n}), got shape {np.shape(self.gap)}")
         if not (np.isfinite(np.min(self.gap)) and np.isfinite(np.max(self.gap))):  # no n x n temporary

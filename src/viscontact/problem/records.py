@@ -49,6 +49,9 @@ class StepRecord:
         Rough-contact outputs (:mod:`viscontact.problem.roughness`): real contact area / domain area [-],
         number of contact patches (periodic-aware), mean deformed gap over the domain [m], load /
         real contact area [Pa].
+    adhesive_force, adhesive_area
+        With adhesion only (:data:`ADHESIVE_SCALARS`): the tensile part of the load, sum min(p, 0) dA
+        [N] (<= 0), and the area where the gap is open and tension acts [m^2] (the cohesive zone).
     """
 
     step: int
@@ -72,6 +75,8 @@ class StepRecord:
     contact_patches: int = 0
     mean_gap: float = 0.0
     mean_contact_pressure: float = 0.0
+    adhesive_force: float = 0.0
+    adhesive_area: float = 0.0
     pressure: np.ndarray | None = field(default=None, repr=False)
     shear_x: np.ndarray | None = field(default=None, repr=False)
     stick: np.ndarray | None = field(default=None, repr=False)
@@ -82,6 +87,13 @@ class StepRecord:
                "frame_offset", "wake_loss", "iterations", "coupling_iterations", "contact_fraction",
                "contact_patches", "mean_gap", "mean_contact_pressure")
     FIELDS = ("pressure", "shear_x", "stick", "displacement_z")
+    #: the scalars a result holds only with adhesion (after :attr:`SCALARS`)
+    ADHESIVE_SCALARS = ("adhesive_force", "adhesive_area")
+
+    @classmethod
+    def scalars(cls, adhesive: bool) -> tuple[str, ...]:
+        """The scalar histories of a result: :attr:`SCALARS`, and with ``adhesive`` :attr:`ADHESIVE_SCALARS`."""
+        return cls.SCALARS + (cls.ADHESIVE_SCALARS if adhesive else ())
 
 
 def records_to_arrays(records: Sequence[StepRecord]) -> dict[str, np.ndarray]:

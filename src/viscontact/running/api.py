@@ -125,7 +125,7 @@ def run(case: CaseLike | Preflight, *, progress: Callable[[int, int], None] | No
     from viscontact.io.results import to_dataset  # xarray: loaded here, not with the package
     from viscontact.problem.records import records_from_arrays, records_to_arrays
     from viscontact.running.loop import drive
-    from viscontact.running.observers import Checkpointer, ContactGrowthWarning, Recorder, WakeWarning
+    from viscontact.running.observers import Checkpointer, ContactGrowthWarning, PullOff, Recorder, WakeWarning
 
     check_checkpoint_every(checkpoint_every)
     if checkpoint_every and checkpoint is None:  # no checkpoint would ever be written
@@ -141,8 +141,8 @@ def run(case: CaseLike | Preflight, *, progress: Callable[[int, int], None] | No
             raise ParameterError("--resume", "needs a checkpoint file")
         start, extra = load_checkpoint(checkpoint, problem)
         kept = records_from_arrays(extra)
-    recorder = Recorder(problem, kept)
-    observers = [recorder, WakeWarning(), ContactGrowthWarning(problem)]
+    recorder, pull_off = Recorder(problem, kept), PullOff(problem)
+    observers = [recorder, WakeWarning(), ContactGrowthWarning(problem), pull_off]
     if checkpoint is not None:
         observers.append(Checkpointer(checkpoint, problem, checkpoint_every,
                                       extra=lambda: records_to_arrays(recorder.records)))
@@ -153,14 +153,16 @@ def run(case: CaseLike | Preflight, *, progress: Callable[[int, int], None] | No
             exc.partial = to_dataset(recorder.records, problem, case_text=text,  # type: ignore[attr-defined]
                                      attrs={"complete": 0, "stopped_by": _reason(exc)})
         raise
-    return to_dataset(recorder.records, problem, case_text=text)
+    return to_dataset(recorder.records, problem, case_text=text, attrs=pull_off.attrs)
 
 
 class Written(NamedTuple):
-    """What :func:`run_to_file` wrote: the result file and how many records (time entries) it holds."""
+    """What :func:`run_to_file` wrote: the result file, how many records (time entries) it holds and,
+    with adhesion, the pull-off attributes (:class:`~viscontact.running.observers.PullOff`)."""
 
     path: Path
     records: int
+    pull_off: dict | None = None
 
 
 def run_to_file(case: CaseLike | Preflight, out: str | Path, *, progress: Callable[[int, int], None] | None = None,
@@ -279,9 +281,10 @@ def _stream_run(problem: Problem, stream: Any, out: Path, checkpoint: Path, *, c
     import numpy as np
 
     from viscontact.running.loop import drive
-    from viscontact.running.observers import Checkpointer, ContactGrowthWarning, StreamWriter, WakeWarning
+    from viscontact.running.observers import Checkpointer, ContactGrowthWarning, PullOff, StreamWriter, WakeWarning
 
-    observers = [StreamWriter(problem, stream), WakeWarning(), ContactGrowthWarning(problem)]
+    pull_off = PullOff(problem)
+    observers = [StreamWriter(problem, stream), WakeWarning(), ContactGrowthWarning(problem), pull_off]
     if checkpoint_every or resume:
         observers.append(Checkpointer(checkpoint, problem, checkpoint_every,
                                       extra=lambda: {"records": np.array(stream.drain())}))
@@ -294,10 +297,10 @@ def _stream_run(problem: Problem, stream: Any, out: Path, checkpoint: Path, *, c
         raise
     if finishing is not None:
         finishing()
-    stream.finish()
+    stream.finish(pull_off.attrs)
     stream.publish(out)
     checkpoint.unlink(missing_ok=True)
-    return Written(out, stream.count)
+    return Written(out, stream.count, pull_off.attrs or None)
 
 
 def _stopped(stream: Any, out: Path, reason: str) -> tuple[Path, int] | None:

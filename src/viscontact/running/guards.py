@@ -42,6 +42,7 @@ import numpy as np
 from viscontact.errors import ParameterError, warn_caller
 from viscontact.numerics.hereditary import hereditary_integral
 from viscontact.numerics.schemes import stable_step_limit
+from viscontact.physics.adhesion import cohesive_zone_length
 from viscontact.physics.materials import Material
 from viscontact.problem.problem import PiecewiseLinear, Problem
 from viscontact.solvers.time_step_error import time_step_error
@@ -49,6 +50,9 @@ from viscontact.solvers.time_step_error import time_step_error
 __all__ = ["ContactEstimate", "check_material", "check_problem", "contact_estimate",
            "flat_face_cells", "flat_face_grid", "grid_suggestion", "peak_pressure_error"]
 
+#: cells across the adhesive cohesive zone (or the contact radius, when smaller) below which a run is
+#: refused / warned about (:func:`_check_adhesion`): the cell-by-cell law knows the zone's edge to a cell
+ADHESION_MIN_CELLS, ADHESION_WARN_CELLS = 2.0, 4.0
 #: estimated relative errors of the peak pressure above which a run is refused / warned about
 ERROR_LIMIT, WARNING_LIMIT = 0.10, 0.05
 #: the same for the one-point estimate of the time discretisation (:func:`time_step_error`). It
@@ -179,6 +183,40 @@ def grid_suggestion(est: ContactEstimate, n: int, half_width: float) -> tuple[in
     while _grid_problems(est, n, half_width) and n < MAX_GRID_N:
         n = min(2 * n, MAX_GRID_N)
     return n, half_width
+
+
+def _check_adhesion(problem: Problem, transient: bool) -> None:
+    """With ``[adhesion]``: refuse the steady solver (not supported yet), and a grid whose cells are
+    too coarse for the cohesive zone, pi E* w / (4 sigma_0^2) with the body's instantaneous E* = 2 G(0)
+    / (1 - nu) (:func:`~viscontact.physics.adhesion.cohesive_zone_length`; its length at a large
+    Maugis parameter, longer below), or for the contact radius (:func:`contact_estimate`) where that is
+    smaller: fewer than :data:`ADHESION_MIN_CELLS` across is refused, fewer than
+    :data:`ADHESION_WARN_CELLS` warned about, each with the grid.n that gives
+    :data:`ADHESION_WARN_CELLS`."""
+    adhesion = problem.adhesion
+    if adhesion is None:
+        return
+    if not transient:
+        raise ParameterError("adhesion", "is not supported by `viscontact steady` yet: adhesive contact is solved by "
+                             "the transient (`viscontact run`, tangential.mode = 'none')")
+    mat, grid = problem.material, problem.grid
+    e_star = 2.0 * mat.shear_modulus_instantaneous / (1.0 - mat.poisson_ratio)
+    length = cohesive_zone_length(e_star, adhesion.work_of_adhesion, adhesion.cohesive_stress)
+    what = f"cohesive zone pi E* w / (4 sigma_0^2) = {length:.3g} m (E* = {e_star:.3g} Pa)"
+    est = contact_estimate(problem)
+    if est is not None and est.smallest < length:
+        length, what = est.smallest, f"contact radius {est.smallest:.3g} m"
+    cells = length / grid.spacing
+    if cells >= ADHESION_WARN_CELLS:
+        return
+    from viscontact.io.case import MAX_GRID_N
+
+    n = min(2 ** math.ceil(math.log2(ADHESION_WARN_CELLS * 2.0 * grid.half_width / length)), MAX_GRID_N)
+    message = (f"{grid.n} cells of {grid.spacing:.3g} m resolve the {what} with {cells:.2g} cells; use "
+               f"grid.n >= {n} (the pull-off converges at first order in the cell size)")
+    if cells < ADHESION_MIN_CELLS:
+        raise ParameterError("grid.n", message)
+    warn_caller(f"grid.n: {message}")
 
 
 def _normal_key(problem: Problem) -> str:
@@ -436,6 +474,7 @@ def check_problem(problem: Problem, *, transient: bool = True) -> None:
     check_material(problem.material)
     _check_space(problem, transient)
     _check_device(problem)
+    _check_adhesion(problem, transient)
     if transient:
         _check_time(problem)
         _check_end(problem)

@@ -36,11 +36,21 @@ def observed_steps(problem: Problem, observers: Sequence[Observer], *, start: An
         Called as ``progress(steps_done, steps_total)`` after each step.
     should_stop
         Asked after each step; a reason stops the run.
+
+    A run with adhesion under load control ends at the pull-off (the first step no equilibrium
+    carries): the observers are told ``on_finish`` with the last equilibrium's state, whose
+    ``t_pull_off`` is set (:func:`viscontact.solvers.transient.steps`).
     """
     if should_stop is not None:
         observers = [*observers, StopRequest(should_stop)]
     state = start
-    for state, record in transient.steps(problem, progress=progress, state=start, substrate=substrate):
+    run = transient.steps(problem, progress=progress, state=start, substrate=substrate)
+    while True:
+        try:
+            state, record = next(run)
+        except StopIteration as end:  # the end, or the pull-off (adhesion under load control)
+            state = state if end.value is None else end.value
+            break
         reasons = [r for r in (o.on_step(state, record) for o in observers) if r]
         if reasons:
             for o in observers:
@@ -70,7 +80,10 @@ def simulate(problem: Problem, *, progress: Callable[[int, int], None] | None = 
     """
     recorder = Recorder(problem)
     observers = [WakeWarning(), ContactGrowthWarning(problem)]
+    record = kept = None
     for _, record in observed_steps(problem, observers, start=state, progress=progress, substrate=substrate):
         kept = recorder.kept(record)
         if kept is not None:
             yield kept
+    if record is not None and kept is None:  # a pull-off ended the run: its last equilibrium is kept
+        yield recorder.final(record)

@@ -11,6 +11,7 @@ the last step of a run that went to its end.
   with ``output.fields``, in memory (:func:`viscontact.running.api.run`);
 * :class:`StreamWriter`: the same records, appended to a streamed result file instead of kept
   (:func:`viscontact.running.api.run_to_file`: memory does not grow with the number of steps);
+* :class:`PullOff`: the pull-off force and time of a run with adhesion (result attributes);
 * :class:`WakeWarning`: warns when the dropped wake biases the result by over 1 %, and again at the
   end when the bias has grown well beyond what the first warning said;
 * :class:`ContactGrowthWarning`: warns once when the contact grows during partial slip under the
@@ -66,11 +67,16 @@ class Recorder(Observer):
         self.problem = problem
         self.dropped = {name: None for name in StepRecord.FIELDS if name not in problem.output.fields}
         self.records: list[StepRecord] = list(initial)
+        self.unkept: StepRecord | None = None  # the last step's record, when not kept
 
     def kept(self, record: StepRecord) -> StepRecord | None:
         """The record as kept, or None when this step is not recorded."""
         if not self.problem.recorded(record.step):
             return None
+        return self.final(record)
+
+    def final(self, record: StepRecord) -> StepRecord:
+        """The record as kept, recorded or not (the last step of a run that a pull-off ended)."""
         return replace(record, **self.dropped) if self.dropped else record
 
     def keep(self, record: StepRecord) -> None:
@@ -79,8 +85,14 @@ class Recorder(Observer):
 
     def on_step(self, state, record: StepRecord) -> None:
         kept = self.kept(record)
+        self.unkept = record if kept is None else None
         if kept is not None:
             self.keep(kept)
+
+    def on_finish(self, state) -> None:
+        """A run that a pull-off ended before its last step keeps its last equilibrium too."""
+        if self.unkept is not None and getattr(state, "t_pull_off", None) is not None:
+            self.keep(self.final(self.unkept))
 
 
 class StreamWriter(Recorder):
@@ -93,6 +105,34 @@ class StreamWriter(Recorder):
 
     def keep(self, record: StepRecord) -> None:
         self.stream.append(record)
+
+
+class PullOff(Observer):
+    """The pull-off of a run with adhesion (:mod:`viscontact.problem.adhesion`), from its last state:
+    :attr:`attrs` are the result's attributes ``pull_off_force`` [N] and ``t_pull_off`` [s] (empty
+    without adhesion).
+
+    Under load control the pull-off is the first step no equilibrium carries (the run ends there):
+    ``pull_off_force`` is the most tensile load carried (the last equilibrium's, within a load step of
+    the pull-off), ``t_pull_off`` that step's time, and the result is ``complete`` (NaN for both when
+    the load never pulled it off). Under displacement control the run goes on past the jump-off:
+    ``pull_off_force`` is the most tensile load of the run and ``t_pull_off`` its time (NaN when no
+    load was tensile)."""
+
+    def __init__(self, problem: Problem) -> None:
+        self.problem = problem
+        self.attrs: dict[str, float | int] = {}
+
+    def on_finish(self, state) -> None:
+        if self.problem.adhesion is None:
+            return
+        nan = float("nan")
+        if state.t_pull_off is not None:
+            self.attrs = {"pull_off_force": state.most_tensile_load, "t_pull_off": state.t_pull_off, "complete": 1}
+        elif self.problem.normal.control == "displacement" and state.most_tensile_load < 0:
+            self.attrs = {"pull_off_force": state.most_tensile_load, "t_pull_off": state.t_most_tensile}
+        else:
+            self.attrs = {"pull_off_force": nan, "t_pull_off": nan}
 
 
 class WakeWarning(Observer):

@@ -24,11 +24,12 @@ def check_solution(problem: Problem, pressure: np.ndarray, load: float, value: f
     problem
         What was solved (its grid and normal control).
     pressure
-        The solved pressure [Pa], (n, n).
+        The solved pressure [Pa], (n, n); negative (tension) only with ``problem.adhesion``, where
+        the edge check reads |p|.
     load
         sum p dA [N].
     value
-        The prescribed load [N] under load control (ignored under displacement control).
+        The prescribed load [N] under load control, signed (ignored under displacement control).
     where
         Said after the finding, e.g. ``" at v = 0.1 m/s"``.
 
@@ -40,11 +41,12 @@ def check_solution(problem: Problem, pressure: np.ndarray, load: float, value: f
     if not np.all(np.isfinite(pressure)):
         raise NumericalGuardError(f"pressure has NaN or Inf values{where}; check the inputs (material, load, grid)")
     grid = problem.grid
-    edge = np.concatenate([pressure[0], pressure[-1], pressure[:, 0], pressure[:, -1]])
-    peak = float(pressure.max())
+    loaded = pressure if problem.adhesion is None else np.abs(pressure)  # adhesion: tension loads a cell too
+    edge = np.concatenate([loaded[0], loaded[-1], loaded[:, 0], loaded[:, -1]])
+    peak = float(loaded.max())
     if peak > 0 and edge.max() > LOADED_FRACTION * peak and not grid.periodic:
         x, y = grid.mesh()
-        reach = float(np.sqrt(x**2 + y**2)[pressure > LOADED_FRACTION * peak].max())
+        reach = float(np.sqrt(x**2 + y**2)[loaded > LOADED_FRACTION * peak].max())
         advice = (f"enlarge grid.half_width to more than {1.5 * reach:.4g} m (now {grid.half_width:.4g} m; the edge "
                   "cuts the contact off, so it may need more)" if problem.radius is not None else
                   "a rough or measured surface touches all over, at any width: make the domain one period of it "
@@ -52,5 +54,6 @@ def check_solution(problem: Problem, pressure: np.ndarray, load: float, value: f
         raise NumericalGuardError(
             f"the contact reaches the edge of the domain{where} (pressure {edge.max() / peak:.1e} of its peak there); "
             + advice)
-    if problem.normal.control == "load" and value > 0 and abs(load - value) > LOAD_BALANCE_TOLERANCE * value:
+    # a tensile load (adhesion) balances as a compressive one
+    if problem.normal.control == "load" and value != 0 and abs(load - value) > LOAD_BALANCE_TOLERANCE * abs(value):
         raise NumericalGuardError(f"load balance violated{where}: sum p dA = {load:.6g} N for W = {value:.6g} N")

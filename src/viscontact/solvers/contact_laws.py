@@ -91,6 +91,9 @@ class StepContext:
         Tangential displacement [m] the contact sees (total slip: since it began).
     slip_x
         Incremental slip: s_x [m] of the last step, which a stuck point keeps; else None.
+    interaction
+        The adhesive interaction zone of the last step (:mod:`viscontact.solvers.adhesive_law`),
+        which warm-starts this one; else None.
     """
 
     problem: Problem
@@ -104,6 +107,7 @@ class StepContext:
     value: float
     delta_x: float
     slip_x: np.ndarray | None = None
+    interaction: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -112,7 +116,8 @@ class StepSolution:
     of one pass of a law); ``pressure_product``: the step's normal operator applied to the pressure
     [m], where the solve computed it in double precision (else None); ``slip``: partial slip's
     s_x - ``ctx.slip_x`` [m] at every point (the tangential solve's gradient: the slip, or with the
-    incremental slip its change over the step), else None."""
+    incremental slip its change over the step), else None; ``interaction``: an adhesive law's
+    interaction zone (contact and cohesive zone, boolean), else None."""
 
     pressure: np.ndarray
     shear_x: np.ndarray
@@ -122,6 +127,7 @@ class StepSolution:
     coupling_iterations: int = 1
     pressure_product: np.ndarray | None = None
     slip: np.ndarray | None = None
+    interaction: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -202,6 +208,10 @@ def get_contact_law(name: str) -> type[ContactLaw]:
         raise ParameterError("contact law", f"must be one of {sorted(CONTACT_LAWS)}, got {name!r}") from None
 
 
+#: the law of every step of a problem with ``adhesion`` (indentation only:
+#: :func:`~viscontact.problem.problem.check_adhesion_supported`; :mod:`viscontact.solvers.adhesive_law`)
+ADHESIVE_LAW = "adhesive_normal"
+
 #: the law of each phase, by phase code (:data:`~viscontact.problem.problem.PHASE_NAMES`); the
 #: tangential mode gives the first phase (:func:`first_phase`)
 PHASE_LAWS: dict[int, str] = {PHASE_INDENTATION: "normal_contact", PHASE_PARTIAL_SLIP: "partial_slip",
@@ -216,7 +226,9 @@ def first_phase(tangential: TangentialLoading) -> int:
 
 def law_name(problem: Problem, phase: int) -> str:
     """The name of the contact law of a step of ``phase`` of ``problem`` (:data:`PHASE_LAWS`; partial
-    slip without friction is the normal contact)."""
+    slip without friction is the normal contact; with ``problem.adhesion``, :data:`ADHESIVE_LAW`)."""
+    if problem.adhesion is not None:
+        return ADHESIVE_LAW
     if phase == PHASE_PARTIAL_SLIP and not problem.tangential.effective_friction > 0:
         return PHASE_LAWS[PHASE_INDENTATION]
     return PHASE_LAWS[phase]

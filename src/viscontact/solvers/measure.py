@@ -15,6 +15,7 @@ import numpy as np
 from viscontact.problem.problem import Problem
 from viscontact.problem.records import StepRecord
 from viscontact.problem.roughness import roughness_metrics
+from viscontact.solvers.adhesive_law import contact_cells
 from viscontact.solvers.checks import check_solution
 from viscontact.solvers.sliding import hysteresis_force, pressure_centroid
 
@@ -23,7 +24,7 @@ def measure(problem: Problem, pressure: np.ndarray, shear: np.ndarray, displacem
             delta_z: float, value: float, gap: np.ndarray, step: int, t: float, phase: int,
             stick: np.ndarray | None = None, slides: bool = True, delta_x: float = 0.0,
             sliding_distance: float = 0.0, frame_offset: float = 0.0, iterations: int = 0,
-            coupling_iterations: int = 1, where: str = "") -> StepRecord:
+            coupling_iterations: int = 1, where: str = "", interaction: np.ndarray | None = None) -> StepRecord:
     """The record of a solved state (fields on the host), after checking its pressure.
 
     Parameters
@@ -55,6 +56,11 @@ def measure(problem: Problem, pressure: np.ndarray, shear: np.ndarray, displacem
         The solve's iteration counts.
     where
         Said after a refusal of the pressure, e.g. ``" at v = 0.1 m/s"``.
+    interaction
+        With adhesion: the solution's interaction zone (boolean, on the host). The contact area is
+        then the area at gap 0 (:func:`~viscontact.solvers.adhesive_law.contact_cells`), the adhesive
+        force the tensile part of the load, sum min(p, 0) dA [N], and the adhesive area that of the
+        cohesive zone (gap open, tension sigma_0) [m^2].
 
     Returns
     -------
@@ -70,7 +76,15 @@ def measure(problem: Problem, pressure: np.ndarray, shear: np.ndarray, displacem
     load = float(pressure.sum() * grid.cell_area)
     check_solution(problem, pressure, load, value, where=where)
     f_t = hysteresis_force(pressure, displacement_z, grid, grid.periodic) if slides else 0.0
-    n_contact = int((pressure > 0).sum())
+    adhesion = problem.adhesion
+    if adhesion is None:
+        n_contact, adhesive = int((pressure > 0).sum()), {}
+    else:
+        contact = contact_cells(pressure, interaction, adhesion.cohesive_stress)
+        n_contact = int(contact.sum())
+        cohesive = 0 if interaction is None else int((interaction & ~contact).sum())
+        adhesive = {"adhesive_force": float(np.minimum(pressure, 0.0).sum() * grid.cell_area),
+                    "adhesive_area": cohesive * grid.cell_area}
     if stick is None:
         stick, stick_ratio = np.zeros(pressure.shape, dtype=bool), 0.0
     else:
@@ -84,5 +98,5 @@ def measure(problem: Problem, pressure: np.ndarray, shear: np.ndarray, displacem
         mu_app=f_t / load if load > 0 else 0.0, contact_shift=pressure_centroid(pressure, grid) - frame_offset,
         frame_offset=frame_offset, iterations=iterations, coupling_iterations=coupling_iterations,
         **asdict(roughness_metrics(pressure, gap + displacement_z - delta_z, grid.periodic)),
-        pressure=pressure, shear_x=shear, stick=stick, displacement_z=displacement_z,
+        pressure=pressure, shear_x=shear, stick=stick, displacement_z=displacement_z, **adhesive,
     )

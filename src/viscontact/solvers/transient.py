@@ -26,19 +26,21 @@ the output settings ask for.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from typing import Callable, Iterator
+from typing import Callable, Generator
 
 import numpy as np
 
 from viscontact.bodies.body import substrate_for
 from viscontact.bodies.compliance import TermSubstrate
 from viscontact.errors import ParameterError
+from viscontact.numerics.adhesive import NoEquilibriumError
 from viscontact.numerics.allocator import tune_allocator
 from viscontact.numerics.history import History
 from viscontact.numerics.schemes import stable_step_limit
 from viscontact.physics.periodic import check_approach
 from viscontact.problem.problem import PHASE_GROSS_SLIDING, PHASE_PARTIAL_SLIP, FrameGaps, Problem
 from viscontact.problem.records import StepRecord
+from viscontact.solvers import adhesive_law  # noqa: F401 (registers the adhesive law)
 from viscontact.solvers.contact_laws import (
     StepContext,
     check_not_full_contact,  # noqa: F401 (documented here: running.api)
@@ -95,6 +97,15 @@ class State:
         point keeps; zeros before the first step, None with the total slip and from gross sliding on.
     wake
         History that left the frame (:class:`~viscontact.solvers.sliding.Wake`).
+    interaction
+        With adhesion: the last step's interaction zone (contact and cohesive zone, boolean; the warm
+        start of the next: :mod:`viscontact.solvers.adhesive_law`), else None.
+    most_tensile_load, t_most_tensile
+        With adhesion: the most tensile load of the steps done [N] (0 until one is tensile) and its
+        time [s] (NaN until then).
+    t_pull_off
+        Under load control with adhesion: the time [s] of the first step no equilibrium carried (the
+        pull-off, which ends the run: :func:`steps`); else None.
     """
 
     step: int
@@ -116,6 +127,10 @@ class State:
     response: History | None = None
     slip_origin: float | None = 0.0
     slip_x: np.ndarray | None = None
+    interaction: np.ndarray | None = None
+    most_tensile_load: float = 0.0
+    t_most_tensile: float = float("nan")
+    t_pull_off: float | None = None
 
 
 def init(problem: Problem, substrate: TermSubstrate | None = None) -> State:
@@ -258,8 +273,10 @@ def step(problem: Problem, substrate: TermSubstrate, state: State,
     incremental = law.solves_shear and state.slip_x is not None
     ctx = StepContext(problem, substrate, k, t, first, device_gap, known_uz, known_ux,
                       problem.normal.history(t), state.delta_x if incremental else state.delta_x - origin,
-                      state.slip_x if incremental else None)
-    p0, p0_product = _warm_start(substrate, state, k)
+                      state.slip_x if incremental else None, state.interaction)
+    adhesive = problem.adhesion is not None
+    # adhesion: the last pressure (its tensions kept: the extrapolation is clipped at 0) and zone
+    p0, p0_product = (state.pressure, None) if adhesive else _warm_start(substrate, state, k)
     q0 = 2.0 * state.shear_x - state.shear_previous if k > 1 else state.shear_x
     sol = solve_coupled(law, ctx, p0, q0, p0_product)
     p, q = sol.pressure, sol.shear_x
@@ -292,12 +309,17 @@ def step(problem: Problem, substrate: TermSubstrate, state: State,
                     pressure_product=None if first else sol.pressure_product,
                     response=None if state.response is None else
                     substrate.advanced_response(state.response, p, sol.pressure_product, t, first))
+    interaction = None if sol.interaction is None else to_host(sol.interaction)
 
     # -- record
     record = measure(problem, p_host, q_host, u_z, delta_z=sol.delta_z, value=ctx.value, gap=gap, step=k, t=t,
                      phase=phase, stick=stick, slides=tan.slides, delta_x=state.delta_x,
                      sliding_distance=state.sliding_distance, frame_offset=offset, iterations=sol.iterations,
-                     coupling_iterations=sol.coupling_iterations)
+                     coupling_iterations=sol.coupling_iterations, interaction=interaction)
+    if adhesive:
+        state = replace(state, interaction=sol.interaction)
+        if record.load < state.most_tensile_load:
+            state = replace(state, most_tensile_load=record.load, t_most_tensile=t)
     return state, replace(record, wake_loss=_wake_loss(problem, substrate, state, p_host, record.mu_app, sol.delta_z))
 
 
@@ -318,12 +340,17 @@ def _wake_loss(problem: Problem, substrate: TermSubstrate, state: State, pressur
 
 
 def steps(problem: Problem, *, progress: Callable[[int, int], None] | None = None,
-          state: State | None = None, substrate: TermSubstrate | None = None) -> Iterator[tuple[State, StepRecord]]:
+          state: State | None = None, substrate: TermSubstrate | None = None
+          ) -> Generator[tuple[State, StepRecord], None, State | None]:
     """Run the transient one step at a time: yields (state after the step, its full record).
 
     Stopping the iteration between two steps leaves a consistent state (what checkpoints and
     interruptions rely on); what is kept, warned or saved is up to the caller's observers
-    (:mod:`viscontact.running.observers`). The first call sets the C allocator for the solver's temporaries
+    (:mod:`viscontact.running.observers`). With adhesion under load control, a step that no
+    equilibrium carries (:class:`~viscontact.numerics.adhesive.NoEquilibriumError`: the indenter comes
+    off) ends the run: the generator returns the last equilibrium's state with
+    :attr:`State.t_pull_off` set (the value of its ``StopIteration``; None when the run went to its end).
+    The first call sets the C allocator for the solver's temporaries
     (:func:`viscontact.numerics.allocator.tune_allocator`).
 
     Parameters
@@ -342,7 +369,12 @@ def steps(problem: Problem, *, progress: Callable[[int, int], None] | None = Non
     # the gap on the substrate's device, moved there once (each step shifts it there)
     frame_gaps = None if substrate.backend.is_cpu else problem.frame_gaps(substrate.backend.to_device)
     while state.step + 1 < total:
-        state, record = step(problem, substrate, state, frame_gaps)
+        try:
+            state, record = step(problem, substrate, state, frame_gaps)
+        except NoEquilibriumError:
+            if problem.adhesion is None:
+                raise
+            return replace(state, t_pull_off=(state.step + 1) * problem.time.dt)
         if progress is not None:
             progress(state.step + 1, total)
         yield state, record

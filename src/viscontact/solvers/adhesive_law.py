@@ -1,0 +1,68 @@
+"""The adhesive normal contact law of a transient step: a cell-by-cell Maugis-Dugdale surface
+(``[adhesion]``, :mod:`viscontact.problem.adhesion`).
+
+Each step of the transient is an elastic problem with the instantaneous compliance J_inst and the
+known hereditary displacement (seed Eq. 5); with adhesion that problem is the adhesive one of
+:func:`viscontact.numerics.adhesive.adhesive_contact` (a tension sigma_0 wherever 0 < gap < w /
+sigma_0; solved as a majorise-minimise sequence of Polonsky-Keer problems, Rey, Anciaux & Molinari
+2017), with the step's operator K = J_inst K_zz and the known gap h_k = h_0(x, y) + u_z^history.
+Nothing else of the stepper changes: the pressure (now signed) enters the hereditary history as any
+other. The step is warm-started with the last step's pressure and interaction zone (carried in
+:class:`~viscontact.solvers.transient.State`), which makes the zone move by a ring of cells a round
+at a jump-in, a jump-off or a pull-off. Under load control a step whose load no zone can carry
+raises :class:`~viscontact.numerics.adhesive.NoEquilibriumError` (the pull-off: the run ends there,
+:func:`viscontact.solvers.transient.steps`).
+
+Registered as :data:`~viscontact.solvers.contact_laws.ADHESIVE_LAW`; tangential tractions are not
+modelled with adhesion yet (q_x = 0: indentation only).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+
+from viscontact.numerics.adhesive import adhesive_contact
+from viscontact.solvers.contact_laws import ADHESIVE_LAW, ContactLaw, StepContext, StepSolution, register_contact_law
+
+
+def contact_cells(pressure: np.ndarray, interaction: np.ndarray | None, cohesive_stress: float) -> np.ndarray:
+    """The cells in contact (gap 0) of an adhesive solution: compressed, or pulled by less than
+    sigma_0 [Pa] on the interaction zone (where the cohesive zone is at p = -sigma_0 exactly, its
+    bound); outside the zone, p > 0. Without a zone: p > 0."""
+    if interaction is None:
+        return pressure > 0
+    return np.where(interaction, pressure > -cohesive_stress, pressure > 0)
+
+
+@register_contact_law
+@dataclass(frozen=True)
+class AdhesiveNormal(ContactLaw):
+    """Adhesive indentation: the normal problem of a Maugis-Dugdale surface (module docstring), q_x = 0.
+
+    Under load control, a step before the first positive load with no interaction zone yet (the
+    indenter not pressed on yet) holds the indenter just touching, without traction."""
+
+    name: ClassVar[str] = ADHESIVE_LAW
+
+    def solve(self, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray,
+              product: np.ndarray | None) -> StepSolution:
+        problem, settings = ctx.problem, ctx.problem.solver
+        adhesion = problem.adhesion
+        op = ctx.substrate.elastic_operator("z", ctx.first)
+        known = ctx.gap + ctx.known_uz
+        zone = ctx.interaction
+        control = problem.normal.control
+        if control == "load" and ctx.value <= 0 and (zone is None or not zone.any()):
+            p = np.zeros_like(known)
+            return StepSolution(p, np.zeros_like(p), float(known.min()), ctx.known_uz.copy(), 0,
+                                pressure_product=np.zeros_like(p), interaction=np.zeros(p.shape, dtype=bool))
+        sol = adhesive_contact(op.apply, known, control=control, value=ctx.value,
+                               cohesive_stress=adhesion.cohesive_stress, work_of_adhesion=adhesion.work_of_adhesion,
+                               cell_area=problem.grid.cell_area, initial=pressure, interaction=zone,
+                               tolerance=settings.tolerance, max_iterations=settings.max_iterations,
+                               preconditioner=op.preconditioner)
+        applied = op.apply(sol.pressure)
+        return StepSolution(sol.pressure, np.zeros_like(sol.pressure), float(sol.approach), applied + ctx.known_uz,
+                            sol.iterations, pressure_product=applied, interaction=sol.interaction)
