@@ -116,6 +116,12 @@ def _case_arguments(p: argparse.ArgumentParser) -> None:
     _figure_arguments(p)
     p.add_argument("--force", action="store_true", help="overwrite an existing result file")
     _set_argument(p)
+    _summary_argument(p)
+
+
+def _summary_argument(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--json", action="store_true", help="print the summary as one JSON object on stdout (even "
+                   "with --quiet)")
 
 
 def _add_run(sub: Any) -> None:
@@ -161,6 +167,18 @@ def _add_plot(sub: Any) -> None:
     p.set_defaults(handler=_cmd_plot)
 
 
+def _add_export(sub: Any) -> None:
+    p = sub.add_parser("export", help="tables of an existing result file (CSV)",
+                       description="Write the scalar series of a result as a CSV table: of a run, one row per "
+                       "record (t, load, delta_z, delta_x, contact_area, mu_app, friction_force, ...); of a steady "
+                       "speed curve, one per speed; of a sweep, one per run. The first line names the columns "
+                       "and their units.")
+    p.add_argument("result", metavar="RESULT.nc", help="result file of viscontact run, steady or sweep")
+    p.add_argument("--csv", required=True, metavar="OUT.csv", help="the table file to write")
+    p.add_argument("--force", action="store_true", help="overwrite an existing table file")
+    p.set_defaults(handler=_cmd_export)
+
+
 def _add_sweep(sub: Any) -> None:
     from viscontact.running.resources import (
         available_cores,  # not the sweep's modules: the parser is built for every command
@@ -179,6 +197,7 @@ def _add_sweep(sub: Any) -> None:
     _figure_arguments(p)
     p.add_argument("--force", action="store_true", help="replace an existing SWEEP.nc of another sweep")
     p.add_argument("--quiet", action="store_true", help="no progress bar, no summary, no warnings")
+    _summary_argument(p)
     p.set_defaults(handler=_cmd_sweep)
 
 
@@ -204,7 +223,7 @@ def _parser() -> _Parser:
         prog=PROG, description="Transient frictional sliding contact on a linear viscoelastic half-space.")
     parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for add in (_add_run, _add_steady, _add_material, _add_plot, _add_sweep, _add_reproduce):
+    for add in (_add_run, _add_steady, _add_material, _add_plot, _add_export, _add_sweep, _add_reproduce):
         add(sub)
     parser.commands = sub.choices
     for command in sub.choices.values():  # options every sub-command shares
@@ -434,8 +453,11 @@ def _report(ds: Any, records: int, args: argparse.Namespace, started: float) -> 
         from viscontact.plotting import plot_any  # imported before the run by _prepare when --plots is given
 
         written += plot_any(ds, args.plots, fmt=args.fmt, dpi=args.dpi)
-    if not args.quiet:
-        print(f"wrote {', '.join(str(p) for p in written)} ({records} records, {time.perf_counter() - started:.1f} s)")
+    if args.json or not args.quiet:
+        from viscontact.running.summary import print_summary
+
+        print_summary(args.out if ds is None else ds, as_json=args.json, files=[str(p) for p in written],
+                      note=f" ({records} records, {time.perf_counter() - started:.1f} s)")
 
 
 def _cmd_run(args: argparse.Namespace) -> int:
@@ -590,6 +612,17 @@ def _cmd_plot(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_export(args: argparse.Namespace) -> int:
+    from viscontact.io.export import check_table_path, write_csv
+    from viscontact.io.netcdf import open_result
+
+    check_table_path(args.csv, force=args.force, inputs=[args.result])
+    path = write_csv(open_result(args.result), args.csv, force=args.force)
+    if not args.quiet:
+        print(f"wrote {path}")
+    return 0
+
+
 def _cmd_sweep(args: argparse.Namespace) -> int:
     """0 when every run succeeded, 1 when some failed (the sweep file is written all the same), 130
     when interrupted (the finished runs are kept)."""
@@ -628,11 +661,13 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
         from viscontact.plotting import plot_sweep
 
         written += plot_sweep(ds, args.plots, fmt=args.fmt, dpi=args.dpi)
-    if not args.quiet:
+    if args.json or not args.quiet:
+        from viscontact.running.summary import print_summary
+
         a = ds.attrs
-        total = a["runs_computed"] + a["runs_reused"]
-        print(f"wrote {', '.join(str(p) for p in written)}: {total} runs ({a['runs_computed']} computed, "
-              f"{a['runs_reused']} reused, {a['runs_failed']} failed), {time.perf_counter() - started:.1f} s")
+        print_summary(ds, as_json=args.json, files=[str(p) for p in written],
+                      note=f": {a['runs_computed'] + a['runs_reused']} runs ({a['runs_computed']} computed, "
+                           f"{a['runs_reused']} reused, {a['runs_failed']} failed), {time.perf_counter() - started:.1f} s")
     return EXIT_FAILED if ds.attrs["runs_failed"] else 0
 
 
