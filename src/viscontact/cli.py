@@ -159,10 +159,10 @@ def _add_material(sub: Any) -> None:
 
 def _add_plot(sub: Any) -> None:
     p = sub.add_parser("plot", help="figures of an existing result file")
-    p.add_argument("result", metavar="RESULT.nc")
+    p.add_argument("result", metavar="RESULT.nc", help="result file of viscontact run, steady or sweep")
     p.add_argument("--out", required=True, metavar="DIR", help="folder for the figures")
     p.add_argument("--times", metavar="T1,T2,...", help="times [s] of the profiles and the pressure and stick/slip "
-                   "maps (the nearest records; default: evenly spread)")
+                   "maps, t = 0 included (the nearest records; default: evenly spread)")
     _figure_arguments(p)
     p.set_defaults(handler=_cmd_plot)
 
@@ -202,10 +202,17 @@ def _add_sweep(sub: Any) -> None:
 
 
 def _add_reproduce(sub: Any) -> None:
-    from viscontact.reproduce.figures import FIGURES
+    import textwrap
 
-    p = sub.add_parser("reproduce", help="rerun the seed's cases and draw one of its figures")
-    p.add_argument("figure", choices=list(FIGURES), help="seed figure to reproduce")
+    from viscontact.reproduce.figures import FIGURES, SHOWS
+
+    shows = "\n".join(textwrap.fill(SHOWS[name], 79, initial_indent=f"  {name:<6} ", subsequent_indent=" " * 9)
+                      for name in FIGURES)
+    p = sub.add_parser("reproduce", help="rerun the seed's cases and draw one of its figures",
+                       formatter_class=argparse.RawDescriptionHelpFormatter,
+                       description=f"Rerun the seed paper's cases (Wang et al., Friction 2023) and draw one of its "
+                       f"figures:\n\n{shows}")
+    p.add_argument("figure", choices=list(FIGURES), help="seed figure to reproduce (what each shows: above)")
     p.add_argument("--out", required=True, metavar="DIR", help="folder for the figures and the results (.nc)")
     p.add_argument("--n", type=int, default=None, metavar="N",
                    help="grid cells per side instead of the seed's 256 (quick preview; dt follows, and is cut "
@@ -409,15 +416,15 @@ def _check_result_name(out: str) -> None:
         raise ParameterError("--out", f"must be a netCDF-4 result file named *.nc, got {out!r}")
 
 
-def _parse_positive(text: str, option: str, unit: str, example: str) -> list[float]:
-    """Comma-separated finite numbers > 0, each once (``--speeds``, ``--times``)."""
+def _parse_positive(text: str, option: str, unit: str, example: str, zero: bool = False) -> list[float]:
+    """Comma-separated finite numbers > 0 (``zero``: >= 0), each once (``--speeds``, ``--times``)."""
     from viscontact.running.guards import positive_values
 
     try:
         values = [float(s) for s in text.split(",") if s.strip()]
     except ValueError:
         raise ParameterError(option, f"expected comma-separated numbers in {unit} (e.g. {example}), got {text!r}") from None
-    return positive_values(values, option, unit, repr(text))
+    return positive_values(values, option, unit, repr(text), zero=zero)
 
 
 def _finish(ds: Any, args: argparse.Namespace, started: float) -> None:
@@ -604,7 +611,7 @@ def _cmd_plot(args: argparse.Namespace) -> int:
     from viscontact.io.netcdf import open_result
     from viscontact.plotting import plot_any
 
-    times = _parse_positive(args.times, "--times", "s", "0.005,0.02") if args.times is not None else None
+    times = _parse_positive(args.times, "--times", "s", "0,0.005,0.02", zero=True) if args.times is not None else None
     _check_figures(args, "--out", [args.result])
     for path in plot_any(open_result(args.result), args.out, times=times, fmt=args.fmt, dpi=args.dpi):
         if not args.quiet:
