@@ -21,7 +21,7 @@ if TYPE_CHECKING:  # xarray is imported where it is used
 __all__ = ["DPI", "FORMATS", "FigureFiles", "Scales", "cell_limits", "check_format", "contact_state",
            "draw_contact_maps", "draw_map", "fit_title", "format_duration", "is_periodic", "is_steady", "map_image",
            "nominal_pressure", "period", "phase_name", "positive_attr", "profile", "pyplot", "retardation_count",
-           "save_figure", "scales_line", "set_title", "tau_line", "time_index", "compact_log_ticks", "legend_key"]
+           "save_figure", "scales_line", "set_title", "tau_line", "time_index", "compact_log_ticks", "integer_ticks", "legend_key"]
 
 #: resolution of raster figures [dots per inch] unless asked otherwise
 DPI = 150
@@ -342,6 +342,13 @@ def compact_log_formatter(**kwargs: Any) -> Any:
             return f"{x:.3g}" if super().__call__(x, pos) else ""
 
     return CompactLogFormatter(**kwargs)
+
+
+def integer_ticks(axis: Any) -> None:
+    """Ticks of ``axis`` (an Axes' ``xaxis`` or ``yaxis``) on integers only: a count."""
+    from matplotlib.ticker import MaxNLocator
+
+    axis.set_major_locator(MaxNLocator(integer=True))
 
 
 def compact_log_ticks(*axes: Any) -> None:

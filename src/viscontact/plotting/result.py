@@ -22,6 +22,7 @@ from viscontact.plotting.base import (
     draw_contact_maps,
     draw_map,
     fit_title,
+    integer_ticks,
     is_periodic,
     is_steady,
     map_axes,
@@ -256,10 +257,8 @@ def rough_contact_figure(ds: xr.Dataset) -> Any:
         _draw_friction(flat[0], ds, sc)
     for ax, (name, values, label) in zip(flat[sliding:], panels):
         if name == "contact_patches":
-            from matplotlib.ticker import MaxNLocator
-
             ax.step(t, values, where="mid")
-            ax.yaxis.set_major_locator(MaxNLocator(integer=True))  # a count: no fractional ticks
+            integer_ticks(ax.yaxis)  # a count: no fractional ticks
         else:
             ax.plot(t, values)
         _mark_gross_sliding(ax, ds, sc)
