@@ -158,7 +158,7 @@ def test_speed_curve_panels_against_deborah_number_and_speed(result):
 
 
 @pytest.mark.parametrize("args, key", [(["--format", "gif"], "--format"), (["--dpi", "5"], "--dpi"),
-                                       (["--times", "0,1"], "--times")])
+                                       (["--times", "-1,1"], "--times")])  # t = 0 is taken (issue 33)
 def test_plot_options_are_checked_in_one_line(tmp_path, capsys, result, args, key):
     from viscontact import cli
     from viscontact.io.netcdf import write_netcdf

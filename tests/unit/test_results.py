@@ -153,8 +153,10 @@ def test_every_coordinate_is_described() -> None:
     problem = make_problem()
     problem = dataclasses.replace(problem, output=dataclasses.replace(problem.output, subsurface_depths=(1e-4,)))
     records = fake_records(problem)
+    fretting = [dataclasses.replace(r, delta_x=x) for r, x in zip(fake_records(problem, (1,) * 6), (0, 1, 0, -1, 0, 1))]
     seen = set()
-    for ds in (to_dataset(records, problem), sweep_dataset(records[:2], [0.01, 0.1], problem)):
+    for ds in (to_dataset(records, problem), sweep_dataset(records[:2], [0.01, 0.1], problem),
+               to_dataset(fretting, problem)):  # energy_per_cycle along cycle
         for name, coord in ds.coords.items():
             units, long_name = COORDINATES[name]
             assert coord.attrs["long_name"] == long_name and coord.attrs.get("units", "") == units, name

@@ -125,8 +125,11 @@ def _report(ds: Any, records: int, args: argparse.Namespace, started: float) -> 
         from viscontact.plotting import plot_any  # imported before the run by _check_figures when --plots is given
 
         written += plot_any(ds, args.plots, fmt=args.fmt, dpi=args.dpi)
-    if not args.quiet:
-        print(f"wrote {', '.join(str(p) for p in written)} ({records} records, {time.perf_counter() - started:.1f} s)")
+    if args.json or not args.quiet:
+        from viscontact.running.summary import print_summary
+
+        print_summary(args.out if ds is None else ds, as_json=args.json, files=[str(p) for p in written],
+                      note=f" ({records} records, {time.perf_counter() - started:.1f} s)")
 
 
 def _pull_off_line(attrs: dict) -> str:
@@ -224,11 +227,22 @@ def _cmd_plot(args: argparse.Namespace) -> int:
     from viscontact.io.netcdf import open_result
     from viscontact.plotting import plot_any
 
-    times = parse_positive(args.times, "--times", "s", "0.005,0.02") if args.times is not None else None
+    times = parse_positive(args.times, "--times", "s", "0,0.005,0.02", zero=True) if args.times is not None else None
     _check_figures(args, "--out", [args.result])
     for path in plot_any(open_result(args.result), args.out, times=times, fmt=args.fmt, dpi=args.dpi):
         if not args.quiet:
             print(path)
+    return 0
+
+
+def _cmd_export(args: argparse.Namespace) -> int:
+    from viscontact.io.export import check_table_path, write_csv
+    from viscontact.io.netcdf import open_result
+
+    check_table_path(args.csv, force=args.force, inputs=[args.result])
+    path = write_csv(open_result(args.result), args.csv, force=args.force)
+    if not args.quiet:
+        print(f"wrote {path}")
     return 0
 
 
@@ -270,11 +284,13 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
         from viscontact.plotting import plot_sweep
 
         written += plot_sweep(ds, args.plots, fmt=args.fmt, dpi=args.dpi)
-    if not args.quiet:
+    if args.json or not args.quiet:
+        from viscontact.running.summary import print_summary
+
         a = ds.attrs
-        total = a["runs_computed"] + a["runs_reused"]
-        print(f"wrote {', '.join(str(p) for p in written)}: {total} runs ({a['runs_computed']} computed, "
-              f"{a['runs_reused']} reused, {a['runs_failed']} failed), {time.perf_counter() - started:.1f} s")
+        print_summary(ds, as_json=args.json, files=[str(p) for p in written],
+                      note=f": {a['runs_computed'] + a['runs_reused']} runs ({a['runs_computed']} computed, "
+                           f"{a['runs_reused']} reused, {a['runs_failed']} failed), {time.perf_counter() - started:.1f} s")
     return EXIT_FAILED if ds.attrs["runs_failed"] else 0
 
 
@@ -296,7 +312,7 @@ def _cmd_reproduce(args: argparse.Namespace) -> int:
 
 
 #: the handler of each sub-command of :func:`viscontact.cli.parser.build_parser`
-_HANDLERS = {"run": _cmd_run, "steady": _cmd_steady, "material": _cmd_material, "plot": _cmd_plot,
+_HANDLERS = {"run": _cmd_run, "steady": _cmd_steady, "material": _cmd_material, "plot": _cmd_plot, "export": _cmd_export,
              "sweep": _cmd_sweep, "reproduce": _cmd_reproduce}
 
 

@@ -79,6 +79,12 @@ def _case_arguments(p: argparse.ArgumentParser) -> None:
     _figure_arguments(p)
     p.add_argument("--force", action="store_true", help="overwrite an existing result file")
     _set_argument(p)
+    _summary_argument(p)
+
+
+def _summary_argument(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--json", action="store_true", help="print the summary as one JSON object on stdout (even "
+                   "with --quiet)")
 
 
 def _add_run(sub: Any) -> None:
@@ -114,11 +120,22 @@ def _add_material(sub: Any) -> None:
 
 def _add_plot(sub: Any) -> None:
     p = sub.add_parser("plot", help="figures of an existing result file")
-    p.add_argument("result", metavar="RESULT.nc")
+    p.add_argument("result", metavar="RESULT.nc", help="result file of viscontact run, steady or sweep")
     p.add_argument("--out", required=True, metavar="DIR", help="folder for the figures")
     p.add_argument("--times", metavar="T1,T2,...", help="times [s] of the profiles and the pressure and stick/slip "
-                   "maps (the nearest records; default: evenly spread)")
+                   "maps, t = 0 included (the nearest records; default: evenly spread)")
     _figure_arguments(p)
+
+
+def _add_export(sub: Any) -> None:
+    p = sub.add_parser("export", help="tables of an existing result file (CSV)",
+                       description="Write the scalar series of a result as a CSV table: of a run, one row per "
+                       "record (t, load, delta_z, delta_x, contact_area, mu_app, friction_force, ...); of a steady "
+                       "speed curve, one per speed; of a sweep, one per run. The first line names the columns "
+                       "and their units.")
+    p.add_argument("result", metavar="RESULT.nc", help="result file of viscontact run, steady or sweep")
+    p.add_argument("--csv", required=True, metavar="OUT.csv", help="the table file to write")
+    p.add_argument("--force", action="store_true", help="overwrite an existing table file")
 
 
 def _add_sweep(sub: Any) -> None:
@@ -139,13 +156,21 @@ def _add_sweep(sub: Any) -> None:
     _figure_arguments(p)
     p.add_argument("--force", action="store_true", help="replace an existing SWEEP.nc of another sweep")
     p.add_argument("--quiet", action="store_true", help="no progress bar, no summary, no warnings")
+    _summary_argument(p)
 
 
 def _add_reproduce(sub: Any) -> None:
-    from viscontact.reproduce.figures import FIGURES
+    import textwrap
 
-    p = sub.add_parser("reproduce", help="rerun the seed's cases and draw one of its figures")
-    p.add_argument("figure", choices=list(FIGURES), help="seed figure to reproduce")
+    from viscontact.reproduce.figures import FIGURES, SHOWS
+
+    shows = "\n".join(textwrap.fill(SHOWS[name], 79, initial_indent=f"  {name:<6} ", subsequent_indent=" " * 9)
+                      for name in FIGURES)
+    p = sub.add_parser("reproduce", help="rerun the seed's cases and draw one of its figures",
+                       formatter_class=argparse.RawDescriptionHelpFormatter,
+                       description=f"Rerun the seed paper's cases (Wang et al., Friction 2023) and draw one of its "
+                       f"figures:\n\n{shows}")
+    p.add_argument("figure", choices=list(FIGURES), help="seed figure to reproduce (what each shows: above)")
     p.add_argument("--out", required=True, metavar="DIR", help="folder for the figures and the results (.nc)")
     p.add_argument("--n", type=int, default=None, metavar="N",
                    help="grid cells per side instead of the seed's 256 (quick preview; dt follows, and is cut "
@@ -162,7 +187,7 @@ def build_parser() -> Parser:
         prog=PROG, description="Transient frictional sliding contact on a linear viscoelastic half-space.")
     parser.add_argument("--version", action="version", version=f"%(prog)s {cli_version()}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for add in (_add_run, _add_steady, _add_material, _add_plot, _add_sweep, _add_reproduce):
+    for add in (_add_run, _add_steady, _add_material, _add_plot, _add_export, _add_sweep, _add_reproduce):
         add(sub)
     parser.commands = sub.choices
     for command in sub.choices.values():  # options every sub-command shares

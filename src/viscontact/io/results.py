@@ -34,6 +34,9 @@ __all__ = [
     "SCALES",
     "VARIABLES",
     "completeness",
+    "cycle_variables",
+    "energy_per_cycle",
+    "fretting_cycles",
     "global_attrs",
     "material_dataset",
     "netcdf_encoding",
@@ -81,6 +84,9 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "stress_xz": ("Pa", "subsurface stress sigma_xz in the section y = 0"),
     "von_mises_stress": ("Pa", "von Mises stress sqrt(3 J2) in the section y = 0"),
     "max_shear_stress": ("Pa", "maximum shear stress (sigma_1 - sigma_3)/2 in the section y = 0"),
+    "energy_per_cycle": ("J", "energy dissipated in each full cycle of a tangential displacement history that "
+                              "reverses: the area of the Q-delta_x loop, integral of friction_force d delta_x "
+                              "(trapezoids over the records)"),
 }
 #: units and long names of the coordinates a result may hold ("": no units, an index)
 COORDINATES: dict[str, tuple[str, str]] = {
@@ -92,6 +98,9 @@ COORDINATES: dict[str, tuple[str, str]] = {
     "deborah": ("1", "Deborah number v tau / a0"),
     "t_sub": ("s", "time of the subsurface output"),
     "z": ("m", "depth below the surface"),
+    "cycle": ("", "full cycle of the tangential displacement (from one turning point to the second after it)"),
+    "t_cycle_start": ("s", "time the cycle starts (a turning point of delta_x)"),
+    "t_cycle_end": ("s", "time the cycle ends (the second turning point after its start, or the last record)"),
 }
 #: subsurface variables (dims t_sub, z, x)
 SUBSURFACE_VARIABLES = ("stress_xx", "stress_yy", "stress_zz", "stress_xz", "von_mises_stress", "max_shear_stress")
@@ -338,11 +347,12 @@ def result_layout(records: Sequence[StepRecord], problem: Problem, *, case_text:
     steps = np.array([r.step for r in records], dtype=int)
     coords = {"t": _coordinate("t", t), "step": _coordinate("step", steps, "t"), **_coords(problem)}
     sub_vars, sub_coords = subsurface_variables(records, problem)
+    cycle_vars, cycle_coords = cycle_variables(t, variables["delta_x"][1], variables["friction_force"][1], mode)
     ds_attrs = global_attrs(problem, case_text)
     ds_attrs["t_gross_sliding"] = t_gross_sliding(mode, t, variables["phase"][1])
     ds_attrs["complete"] = completeness(coords["step"][1], problem)
     ds_attrs.update(attrs or {})
-    return {**variables, **sub_vars}, {**coords, **sub_coords}, ds_attrs
+    return {**variables, **sub_vars, **cycle_vars}, {**coords, **sub_coords, **cycle_coords}, ds_attrs
 
 
 def completeness(steps: np.ndarray, problem: Problem) -> int:
@@ -356,6 +366,43 @@ def t_gross_sliding(mode: str, t: np.ndarray, phase: np.ndarray) -> float:
         hits = np.flatnonzero(phase == PHASE_GROSS_SLIDING)
         return float(t[hits[0]]) if hits.size else float("nan")
     return 0.0 if mode in ("frictionless_sliding", "gross_sliding") else float("nan")
+
+
+def fretting_cycles(delta_x: np.ndarray) -> list[tuple[int, int]]:
+    """The full cycles of a tangential displacement ``delta_x`` (one value per record) that reverses:
+    (first, last) record of each, from a turning point to the second turning point after it (or the
+    last record, where ``delta_x`` is back at the value it started the cycle from, to 1e-6 of its
+    amplitude); none when it never reverses twice. Held stretches do not turn."""
+    x = np.asarray(delta_x, dtype=float)
+    step = np.sign(np.diff(x))
+    moving = np.flatnonzero(step)
+    turns = [int(moving[i + 1]) for i in range(len(moving) - 1) if step[moving[i]] != step[moving[i + 1]]]
+    points = turns + ([len(x) - 1] if x.size and (not turns or turns[-1] != len(x) - 1) else [])
+    tol = 1e-6 * float(np.max(np.abs(x), initial=0.0))
+    return [(points[i], points[i + 2]) for i in range(0, len(points) - 2, 2)
+            if abs(x[points[i + 2]] - x[points[i]]) <= tol]
+
+
+def energy_per_cycle(delta_x: np.ndarray, friction_force: np.ndarray) -> np.ndarray:
+    """The energy [J] dissipated in each of the :func:`fretting_cycles` of ``delta_x`` [m]: the area
+    of its loop of the tangential force ``friction_force`` [N] against ``delta_x``, by trapezoids."""
+    x, q = np.asarray(delta_x, dtype=float), np.asarray(friction_force, dtype=float)
+    return np.array([float(np.sum(0.5 * (q[a + 1:b + 1] + q[a:b]) * np.diff(x[a:b + 1])))
+                     for a, b in fretting_cycles(x)], dtype=float)
+
+
+def cycle_variables(t: np.ndarray, delta_x: np.ndarray, friction_force: np.ndarray, mode: str) -> tuple[dict, dict]:
+    """``energy_per_cycle`` along ``cycle`` (with ``t_cycle_start``, ``t_cycle_end``) of partial slip
+    whose ``delta_x`` goes through full cycles (:func:`fretting_cycles`); empty otherwise."""
+    cycles = fretting_cycles(delta_x) if mode == "partial_slip" else []
+    if not cycles:
+        return {}, {}
+    t = np.asarray(t, dtype=float)
+    coords = {"cycle": _coordinate("cycle", np.arange(1, len(cycles) + 1)),
+              "t_cycle_start": _coordinate("t_cycle_start", t[[a for a, _ in cycles]], "cycle"),
+              "t_cycle_end": _coordinate("t_cycle_end", t[[b for _, b in cycles]], "cycle")}
+    return {"energy_per_cycle": _variable("energy_per_cycle", ("cycle",), energy_per_cycle(delta_x, friction_force),
+                                          mode)}, coords
 
 
 def sweep_dataset(records: Sequence[StepRecord], speeds: Sequence[float], problem: Problem, *,

@@ -580,12 +580,18 @@ class ResultStream:
                     if key in f.attrs:
                         del f.attrs[key]
             subsurface = _FileRecords(self.along_t, t) if self.problem.output.subsurface_depths and len(t) else None
+            variables, coords = {}, {}
             if subsurface is not None:
                 from viscontact.io.results import subsurface_variables
 
                 variables, coords = subsurface_variables(subsurface, self.problem)
+            from viscontact.io.results import cycle_variables  # fretting: the energy of each cycle
+
+            cycles, cycle_coords = cycle_variables(t, self.along_t["delta_x"][:], self.along_t["friction_force"][:],
+                                                   self.problem.tangential.mode)
+            variables, coords = {**variables, **cycles}, {**coords, **cycle_coords}
             f.close()
-            if subsurface is not None:
+            if variables:
                 _append_variables(self.path, {**coords, **variables})
             os.fsync(self._own)
         return self.path

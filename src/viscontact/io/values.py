@@ -8,10 +8,12 @@ from viscontact.problem.problem import is_number
 __all__ = ["positive_values"]
 
 
-def positive_values(values: object, key: str, unit: str, given: str | None = None) -> list[float]:
+def positive_values(values: object, key: str, unit: str, given: str | None = None, *,
+                    zero: bool = False) -> list[float]:
     """``values`` (a sequence of numbers) as a list of floats after checking that it is not empty and
-    that each is a finite number > 0 given once (a coordinate along them, ``speed`` or a time, would
-    repeat a value): the speeds of a steady speed curve, the times of ``plot --times``.
+    that each is a finite number > 0 (``zero``: >= 0) given once (a coordinate along them, ``speed``
+    or a time, would repeat a value): the speeds of a steady speed curve, the times of
+    ``plot --times`` (t = 0 included).
 
     Raises
     ------
@@ -27,8 +29,8 @@ def positive_values(values: object, key: str, unit: str, given: str | None = Non
     values = [float(v) for v in values]
     if not values:
         raise ParameterError(key, f"must list at least one number in {unit}, got {shown}")
-    if any(not 0 < v < float("inf") for v in values):
-        raise ParameterError(key, f"every value must be a finite number > 0 {unit}, got {shown}")
+    if any(not (0 <= v if zero else 0 < v) or v == float("inf") for v in values):
+        raise ParameterError(key, f"every value must be a finite number {'>=' if zero else '>'} 0 {unit}, got {shown}")
     twice = sorted({v for v in values if values.count(v) > 1})
     if twice:  # a result along them would have a coordinate with repeated values
         raise ParameterError(key, f"{', '.join(f'{v:g}' for v in twice)} {unit} is listed more than once, got {shown}")

@@ -21,7 +21,7 @@ if TYPE_CHECKING:  # xarray is imported where it is used
 __all__ = ["DPI", "FORMATS", "FigureFiles", "Scales", "cell_limits", "check_format", "contact_state",
            "draw_contact_maps", "draw_map", "fit_title", "format_duration", "is_periodic", "is_steady", "map_image",
            "nominal_pressure", "period", "phase_name", "positive_attr", "profile", "pyplot", "retardation_count",
-           "save_figure", "scales_line", "set_title", "tau_line", "time_index"]
+           "save_figure", "scales_line", "set_title", "tau_line", "time_index", "compact_log_ticks", "integer_ticks", "legend_key"]
 
 #: resolution of raster figures [dots per inch] unless asked otherwise
 DPI = 150
@@ -199,8 +199,8 @@ def set_title(fig: Any, ds: xr.Dataset, what: str) -> Any:
     """The figure's title: the result's title (or case), what is drawn, and its scales; returns the
     Text."""
     name = str(ds.attrs.get("title", "") or "")
-    return fig.suptitle("\n".join(line for line in (f"{name}: {what}" if name else what, scales_line(ds)) if line),
-                        fontsize=10)
+    head = f"{name}: {what}" if name and what else name or what
+    return fig.suptitle("\n".join(line for line in (head, scales_line(ds)) if line), fontsize=10)
 
 
 def fit_title(fig: Any, title: Any, margin: float = 0.02) -> float:
@@ -290,7 +290,7 @@ def draw_map(ax: Any, ds: xr.Dataset, k: int, values: np.ndarray, sc: Scales, **
     result limited to its period); returns the image."""
     data, extent = map_image(ds, k, values, sc)
     image = ax.imshow(data, origin="lower", extent=extent, interpolation="nearest", **imshow)
-    ax.locator_params(axis="x", nbins=5)  # no tick labels running into the next panel's
+    ax.locator_params(axis="x", nbins=3)  # no tick labels running into the next panel's (-0.4, -0.2 did)
     if is_periodic(ds):
         ax.set_xlim(*cell_limits(ds, sc))
     return image
@@ -308,11 +308,51 @@ def draw_contact_maps(ds: xr.Dataset, picks: list[int], titles: list[str], what:
 
     sc = Scales(ds)
     fig, axes = map_axes(len(picks))
-    cmap = ListedColormap(["white", "tab:orange", "tab:blue"])
+    colors = ["white", "tab:orange", "tab:blue"]
+    cmap = ListedColormap(colors)
     for ax, k, title in zip(axes[0], picks, titles):
         draw_map(ax, ds, k, contact_state(ds, k), sc, cmap=cmap, vmin=0, vmax=2)
         ax.set(title=title, xlabel=sc.length[1])
     axes[0, 0].set_ylabel(sc.length[1].replace("x", "y"))
     set_title(fig, ds, what)
     fig.tight_layout()
+    legend_key(fig, colors, ("no contact", "slip", "stick"))
     return fig
+
+
+def legend_key(fig: Any, colors: Sequence[str], labels: Sequence[str]) -> Any:
+    """A key of filled squares (``colors``, outlined) named ``labels``, in one row at the bottom of
+    ``fig``, with the room it takes; returns the Legend."""
+    from matplotlib.patches import Patch
+
+    handles = [Patch(facecolor=c, edgecolor="0.4", label=label) for c, label in zip(colors, labels)]
+    fig.subplots_adjust(bottom=fig.subplotpars.bottom + 0.45 / fig.get_size_inches()[1])  # its row, in inches
+    return fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=9, frameon=False)
+
+
+def compact_log_formatter(**kwargs: Any) -> Any:
+    """A formatter of log-axis tick labels written short (``0.02``, ``3e-05``: three significant
+    digits) on the ticks matplotlib's :class:`~matplotlib.ticker.LogFormatterSciNotation` (given
+    ``kwargs``) labels, so that the labels of an axis spanning less than a decade (its minor ticks
+    labelled ``2 x 10^-1``, ``3 x 10^-1`` ...) do not run into each other."""
+    from matplotlib.ticker import LogFormatterSciNotation
+
+    class CompactLogFormatter(LogFormatterSciNotation):
+        def __call__(self, x: float, pos: Any = None) -> str:
+            return f"{x:.3g}" if super().__call__(x, pos) else ""
+
+    return CompactLogFormatter(**kwargs)
+
+
+def integer_ticks(axis: Any) -> None:
+    """Ticks of ``axis`` (an Axes' ``xaxis`` or ``yaxis``) on integers only: a count."""
+    from matplotlib.ticker import MaxNLocator
+
+    axis.set_major_locator(MaxNLocator(integer=True))
+
+
+def compact_log_ticks(*axes: Any) -> None:
+    """Label the log x axes ``axes`` (an Axes or a secondary axis) with :func:`compact_log_formatter`."""
+    for ax in axes:
+        ax.xaxis.set_major_formatter(compact_log_formatter())
+        ax.xaxis.set_minor_formatter(compact_log_formatter(labelOnlyBase=False, minor_thresholds=(1, 0.4)))

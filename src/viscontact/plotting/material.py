@@ -33,14 +33,14 @@ def material_figure(ds: xr.Dataset) -> Any:
     twin.set_ylabel("J(t) [1/Pa]")
     ax.legend(handles=ax.get_lines() + twin.get_lines(), loc="center left")
     ax = axes[1]
-    ax.loglog(omega, ds["storage_modulus"].values, label="G'")
-    ax.loglog(omega, ds["loss_modulus"].values, label="G''")
-    ax.set(xlabel="omega [rad/s]", ylabel="G', G'' [Pa]", title="storage and loss moduli")
+    ax.loglog(omega, ds["storage_modulus"].values, label=r"$G'(\omega)$")
+    ax.loglog(omega, ds["loss_modulus"].values, label=r"$G''(\omega)$")
+    ax.set(xlabel=r"$\omega$ [rad/s]", ylabel="G', G'' [Pa]", title="storage and loss moduli")
     ax.legend()
     ax = axes[2]
     ax.semilogx(omega, ds["tan_delta"].values)
-    ax.set(xlabel="omega [rad/s]", ylabel="tan delta [-]", title="loss factor")
+    ax.set(xlabel=r"$\omega$ [rad/s]", ylabel=r"$\tan\delta = G''/G'$ [-]", title="loss factor")
     a_t = float(ds.attrs.get("a_T", 1.0))
     fig.suptitle(f"{ds.attrs.get('title') or 'material'}: G(0) = {ds.attrs['shear_modulus_instantaneous']:.4g} Pa, "
-                 f"G(inf) = {ds.attrs['shear_modulus_long_term']:.4g} Pa, a_T = {a_t:.4g}")
+                 f"G(∞) = {ds.attrs['shear_modulus_long_term']:.4g} Pa, " + r"$a_T$" + f" = {a_t:.4g}")
     return fig

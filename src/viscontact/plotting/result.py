@@ -18,9 +18,11 @@ from viscontact.plotting.base import (
     cell_limits,
     check_drawable,
     check_format,
+    compact_log_ticks,
     draw_contact_maps,
     draw_map,
     fit_title,
+    integer_ticks,
     is_periodic,
     is_steady,
     map_axes,
@@ -44,6 +46,9 @@ __all__ = ["ROUGH_VARIABLES", "contact_history_figure", "friction_figure", "is_r
            "rough_contact_figure", "speed_curve_figure", "stick_maps_figure", "subsurface_figure",
            "tangential_loop_figure"]
 
+#: the ratio of the largest to the smallest peak pressure of the maps beyond which each map has its own
+#: colour scale (:func:`pressure_maps_figure`)
+SHARED_SCALE_RANGE = 3.0
 #: frames of the pressure animation at most
 MAX_FRAMES = 60
 #: the rough-contact histories of a result (:mod:`viscontact.problem.roughness`)
@@ -247,25 +252,36 @@ def rough_contact_figure(ds: xr.Dataset) -> Any:
                ("contact_patches", 1.0, "contact patches [-]"), ("mean_gap", 1e6, "mean gap [µm]"))]
     panels += [(name, values, label) for name, values, label, _ in _normal_panels(ds)]
     count = len(panels) + sliding
-    cols = 2 if count <= 4 else 3
-    rows = -(-count // cols)
-    fig, axes = pyplot().subplots(rows, cols, figsize=(4.2 * cols, 3.4 * rows), squeeze=False, sharex=True)
-    flat = list(axes.flat)
+    fig, flat = _panel_grid(count)
     if sliding:
         _draw_friction(flat[0], ds, sc)
     for ax, (name, values, label) in zip(flat[sliding:], panels):
         if name == "contact_patches":
             ax.step(t, values, where="mid")
+            integer_ticks(ax.yaxis)  # a count: no fractional ticks
         else:
             ax.plot(t, values)
         _mark_gross_sliding(ax, ds, sc)
         ax.set(xlabel=sc.time[1], ylabel=label)
         ax.grid(alpha=0.3)
-    for ax in flat[count:]:
-        ax.set_visible(False)
     set_title(fig, ds, "rough contact against time" + _held_note(ds))
     fig.tight_layout()
     return fig
+
+
+def _panel_grid(count: int) -> tuple[Any, list[Any]]:
+    """A figure of ``count`` panels sharing their x axis, in rows of 2 (up to 4 panels) or 3, the
+    last row centred when it is not full (no empty panel); returns (Figure, the panels in order)."""
+    cols = 2 if count <= 4 else 3
+    rows = -(-count // cols)
+    fig = pyplot().figure(figsize=(4.2 * cols, 3.4 * rows))
+    grid = fig.add_gridspec(rows, 2 * cols)
+    axes: list[Any] = []
+    for i in range(count):
+        row, col = divmod(i, cols)
+        left = (cols - (count - row * cols)) if row == rows - 1 else 0  # half-columns: the last row centred
+        axes.append(fig.add_subplot(grid[row, left + 2 * col:left + 2 * col + 2], sharex=axes[0] if axes else None))
+    return fig, axes
 
 
 def _cattaneo_mindlin_references(ds: xr.Dataset) -> list[tuple[Any, str, str]]:
@@ -342,12 +358,24 @@ def _fretting_loop_figure(ds: xr.Dataset, mu: float) -> Any:
     """:func:`tangential_loop_figure` of a displacement history that reverses: Q / (μ_f W(t)) against
     the indenter's δ_x along the whole path (both signs: the hysteresis loops), with the elastic
     Mindlin-Deresiewicz loops between ±max |δ_x| of :func:`_cattaneo_mindlin_references` (exact for
-    ν = 0.5) where that amplitude is below their gross slip."""
+    ν = 0.5) where that amplitude is below their gross slip. The whole path is drawn in grey, each
+    full cycle (:func:`~viscontact.io.results.fretting_cycles`) over it in its own colour, named with
+    the energy it dissipates (the result's ``energy_per_cycle``, else computed from its series)."""
+    from viscontact.io.results import energy_per_cycle, fretting_cycles
+
     load, delta_x = ds["load"].values, ds["delta_x"].values
     with np.errstate(divide="ignore", invalid="ignore"):  # no load (no contact): no ratio
         ratio = np.where(load > 0, ds["friction_force"].values / (mu * load), np.nan)
-    fig, ax = pyplot().subplots(figsize=(6.4, 4.6))
-    ax.plot(delta_x * 1e6, ratio, "o-", ms=2.0, lw=1.0, label="viscontact")
+    fig, ax = pyplot().subplots(figsize=(7.4, 5.2))
+    cycles = fretting_cycles(delta_x)
+    ax.plot(delta_x * 1e6, ratio, "o-", ms=1.5, lw=0.8, color="0.65",
+            label="viscontact" + (" (grey: outside the full cycles)" if cycles else ""))
+    energies = ds["energy_per_cycle"].values if "energy_per_cycle" in ds else \
+        energy_per_cycle(delta_x, ds["friction_force"].values)
+    colors = pyplot().get_cmap("plasma")(np.linspace(0.0, 0.8, max(len(cycles), 1)))
+    for i, ((a, b), energy) in enumerate(zip(cycles, energies)):
+        ax.plot(delta_x[a:b + 1] * 1e6, ratio[a:b + 1], "o-", ms=2.0, lw=1.2, color=colors[i],
+                label=f"cycle {i + 1}: {energy * 1e6:.4g} µJ dissipated")
     amplitude = float(np.max(np.abs(delta_x)))
     up = np.linspace(-amplitude, amplitude, 200)
     for cm, name, style in _cattaneo_mindlin_references(ds):
@@ -361,7 +389,7 @@ def _fretting_loop_figure(ds: xr.Dataset, mu: float) -> Any:
            ylabel="Q / (μ_f W)" if _held(load) else "Q(t) / (μ_f W(t))")
     ax.grid(alpha=0.3)
     nu = float(ds.attrs.get("poisson_ratio", 0.5))
-    ax.legend(fontsize=8, title_fontsize=8, loc="lower right",
+    ax.legend(fontsize=7.5, title_fontsize=8, loc="lower right",
               title=f"Mindlin-Deresiewicz exact for ν = 0.5 (here {nu:g})" if nu != 0.5 else None)
     set_title(fig, ds, "fretting loops: tangential force against displacement" + _held_note(ds))
     fig.tight_layout()
@@ -371,19 +399,31 @@ def _fretting_loop_figure(ds: xr.Dataset, mu: float) -> Any:
 # --- maps ----------------------------------------------------------------------------------------------
 def pressure_maps_figure(ds: xr.Dataset, times: Sequence[float] | None = None) -> Any:
     """Maps of p/p0 in the indenter frame at ``times`` [s] (default: four records; a steady state:
-    its one state), one colour scale; returns the Figure."""
+    its one state): one colour scale, said in the title, unless the peaks of the maps differ by more
+    than :data:`SHARED_SCALE_RANGE` times, when each map has its own (a creeping contact's later
+    maps were washed out); returns the Figure."""
     sc = Scales(ds)
     picks = [0] if is_steady(ds) else _picks(ds, times, 4)
     pressure = ds["pressure"].values
-    top = float(max(pressure[k].max() for k in picks)) / sc.pressure[0] or 1.0
+    peaks = [float(pressure[k].max()) / sc.pressure[0] for k in picks]
+    own = len(picks) > 1 and min(peaks) > 0 and max(peaks) > SHARED_SCALE_RANGE * min(peaks)
     fig, axes = map_axes(len(picks))
-    for ax, k in zip(axes[0], picks):
+    if own:  # room for a colour bar under each map, the title above
+        fig.set_size_inches(fig.get_size_inches()[0], 4.6)
+        fig.subplots_adjust(top=0.80, bottom=0.08)
+    for ax, k, peak in zip(axes[0], picks, peaks):
+        top = (peak if own else max(peaks)) or 1.0
         image = draw_map(ax, ds, k, pressure[k] / sc.pressure[0], sc, vmin=0, vmax=top, cmap="viridis")
         ax.set(title=_steady_label(ds) if is_steady(ds) else sc.t_label(float(ds["t"].values[k])),
                xlabel=sc.length[1])
+        if own:
+            fig.colorbar(image, ax=ax, orientation="horizontal", location="bottom", pad=0.22, shrink=0.9,
+                         label=sc.pressure[1])
     axes[0, 0].set_ylabel(sc.length[1].replace("x", "y"))
-    fig.colorbar(image, ax=list(axes[0]), label=sc.pressure[1], shrink=0.85)
-    set_title(fig, ds, "pressure")
+    if not own:
+        fig.colorbar(image, ax=list(axes[0]), label=sc.pressure[1], shrink=0.85)
+    set_title(fig, ds, "pressure" + (", each map its own colour scale" if own else
+                                     ", one colour scale" if len(picks) > 1 else ""))
     return fig
 
 
@@ -626,13 +666,23 @@ def speed_curve_figure(ds: xr.Dataset) -> Any:
     deborah = "Deborah number v τ / a0" + (", τ the shortest retardation time" if retardation_count(ds) > 1 else "")
     for ax in axes[1]:
         ax.set_xlabel(deborah if k else "sliding speed v [m/s]")
+    compact_log_ticks(*axes[1])
     if k:
         for ax in axes[0]:
             top = ax.secondary_xaxis("top", functions=(lambda d, k=k: d / k, lambda v, k=k: v * k))
             top.set_xlabel("sliding speed v [m/s]")
-    set_title(fig, ds, "steady sliding against speed")
+            compact_log_ticks(top)
+    set_title(fig, ds.assign_attrs(title=without_speed(str(ds.attrs.get("title", "")))), "steady sliding against speed")
     fig.tight_layout()
     return fig
+
+
+def without_speed(title: str) -> str:
+    """A case's ``title`` without the one speed it names (``frictionless sliding at v = 0.8 a0/tau,
+    W = 0.148 N`` -> ``frictionless sliding, W = 0.148 N``): the title of a curve over speeds."""
+    import re
+
+    return re.sub(r"\s*,?\s*\b(?:at\s+)?v\s*=\s*[^,;:]+", "", title).strip()
 
 
 def plot_speed_curve(ds: xr.Dataset, out_dir: str | Path, *, fmt: str = "png", dpi: int | None = None) -> list[Path]:

@@ -58,8 +58,13 @@ def _title(fig: Any, runs: Runs, title: str) -> None:
 
 
 def _profile_axes(n: int) -> tuple[Any, Any]:
-    """A row of ``n`` profile panels sharing both axes, and one more panel for a time curve."""
-    fig, axes = pyplot().subplots(1, n + 1, figsize=(4.7 * (n + 1), 4.4))
+    """``n`` profile panels sharing both axes, and one more panel for a time curve: in a row, or
+    2 x 2 for four panels (Figs. 4, 6, 7: a row of four was 2805 x 654 px, its legends tiny)."""
+    if n + 1 == 4:
+        fig, grid = pyplot().subplots(2, 2, figsize=(10.5, 8.4))
+        axes = grid.flatten()
+    else:
+        fig, axes = pyplot().subplots(1, n + 1, figsize=(4.7 * (n + 1), 4.4))
     for ax in axes[1:n]:
         ax.sharex(axes[0])
         ax.sharey(axes[0])
@@ -75,7 +80,7 @@ def _profiles_panel(ax: Any, ds: xr.Dataset, times_tau: Sequence[float], title: 
         ax.plot(x / a0, p / p0, label=sc.t_label(float(ds["t"].values[k])))
     ax.set(xlabel="x / a0", ylabel="p / p0", title=title)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=8)
 
 
 def _mu_panel(ax: Any, runs: Runs, labels: Mapping[str, str], title: str) -> None:
@@ -161,6 +166,10 @@ def frictional_figure(runs: Runs, times_tau: Sequence[float], title: str, shear_
     a0, p0 = float(ref.attrs["a0"]), float(ref.attrs["p0"])
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     case_color = {name: colors[i % len(colors)] for i, name in enumerate(runs)}
+    # cases that coincide (fig9: case 4 on case 3) stay apparent: the later ones thinner and dashed
+    # over the earlier, each with its own markers
+    marks = {name: dict(marker="osD^v"[i % 5], markevery=(i, 6), ms=3.5, zorder=2 + i) for i, name in enumerate(runs)}
+    lines = {name: dict(ls=("-", "--", "-.", (0, (1, 1)))[i % 4], lw=2.4 - 0.45 * (i % 4)) for i, name in enumerate(runs)}
     for (ax_q, ax_p), t in zip(axes, times_tau):
         for name in shear_cases:
             ds = runs[name]
@@ -170,7 +179,8 @@ def frictional_figure(runs: Runs, times_tau: Sequence[float], title: str, shear_
             _, stick = profile(ds, "stick", k)
             mu = float(ds.attrs["friction_coefficient"])
             c = case_color[name]
-            ax_q.plot(x / a0, q / p0, color=c, label=f"{_short(name)}: q_x ({phase_name(ds['phase'].values[k])})")
+            ax_q.plot(x / a0, q / p0, color=c, lw=2.0 - 0.6 * (name != shear_cases[0]), **marks[name],
+                      label=f"{_short(name)}: q_x ({phase_name(ds['phase'].values[k])})")
             ax_q.plot(x / a0, mu * p / p0, color=c, ls=":", lw=1.0, label=f"{_short(name)}: μ_f p")
             _shade_stick(ax_q, x / a0, stick > 0.5, c)
         ax_q.set(xlabel="x / a0", ylabel="q_x / p0", title=f"t = {t:g}τ: shear traction (shaded: stick)")
@@ -178,7 +188,7 @@ def frictional_figure(runs: Runs, times_tau: Sequence[float], title: str, shear_
         ax_q.legend(fontsize=7)
         for name, ds in runs.items():
             x, p = profile(ds, "pressure", _at(ds, t))
-            ax_p.plot(x / a0, p / p0, color=case_color[name], label=_short(name))
+            ax_p.plot(x / a0, p / p0, color=case_color[name], **marks[name], **lines[name], label=_short(name))
         ax_p.set(xlabel="x / a0", ylabel="p / p0", title=f"t = {t:g}τ: pressure")
         ax_p.grid(alpha=0.3)
         ax_p.legend(fontsize=7)

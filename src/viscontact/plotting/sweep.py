@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from viscontact.plotting.base import FigureFiles, check_format, positive_attr, pyplot, set_title
+from viscontact.plotting.base import FigureFiles, check_format, compact_log_ticks, positive_attr, pyplot, set_title
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -30,6 +30,16 @@ def _legend(coord: Any, i: int) -> str:
     unit = coord.attrs.get("units", "")
     key = str(coord.attrs.get("key", coord.name)).rsplit(".", 1)[-1]
     return f"{key} = {text}{f' {unit}' if unit else ''}"
+
+
+def _what(ds: xr.Dataset, name: str) -> str:
+    """What the figure of ``name`` adds to the sweep's title: the kind of sweep and the quantity,
+    each unless the title says it already (``Steady mu_app vs speed``: nothing but ``sweep``)."""
+    title = str(ds.attrs.get("title", "")).lower().replace("mu_app", "μ_app")
+    quantity = _LABELS[name].split(" [")[0]
+    solver = str(ds.attrs.get("solver", ""))
+    kind = "" if "sweep" in title else "sweep" if solver.lower() in title else f"{solver} sweep".strip()
+    return ": ".join(part for part in (kind, "" if quantity.split(" =")[0].lower() in title else quantity) if part)
 
 
 def plot_sweep(ds: xr.Dataset, out_dir: str | Path, *, fmt: str = "png", dpi: int | None = None) -> list[Path]:
@@ -68,16 +78,18 @@ def plot_sweep(ds: xr.Dataset, out_dir: str | Path, *, fmt: str = "png", dpi: in
             ax.plot(xv[order] if numeric else np.arange(len(xv)), y[order], "o-", ms=4, label=label or None)
         if logx:
             ax.set_xscale("log")
+            compact_log_ticks(ax)
         if not numeric:
             ax.set_xticks(np.arange(len(xv)), [str(v) for v in xv])
         unit = ds[xdim].attrs.get("units", "")
         xlabel = "sliding speed v [m/s]" if xdim == _SPEED_DIM else f"{xkey}{f' [{unit}]' if unit else ''}"
         ax.set(xlabel=xlabel, ylabel=_LABELS[name])
-        set_title(fig, ds, f"{ds.attrs.get('solver', '')} sweep: {_LABELS[name].split(' [')[0]}")
+        set_title(fig, ds, _what(ds, name))
         if deborah:
             k = tau / a0
             top = ax.secondary_xaxis("top", functions=(lambda v, k=k: v * k, lambda d, k=k: d / k))
             top.set_xlabel("v τ / a0")
+            compact_log_ticks(top)
         ax.grid(alpha=0.3, which="both")
         if others:
             ax.legend(fontsize=7)

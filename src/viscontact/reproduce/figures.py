@@ -28,7 +28,21 @@ from typing import Any
 from viscontact.plotting import FigureFiles
 from viscontact.plotting import seed as draw
 
-__all__ = ["FIGURES", "FigureSpec"]
+__all__ = ["FIGURES", "SHOWS", "FigureSpec"]
+
+#: what each seed figure shows, in a line (``viscontact reproduce --help``)
+SHOWS: dict[str, str] = {
+    "fig4": "frictionless sliding at 0.4, 0.8, 1.2 a0/tau under a held load: p/p0 along y = 0 at t = 0, "
+            "0.5, 1, 2 tau per speed, and mu_app(t)",
+    "fig6": "frictionless sliding under a held approach (relaxation), G(0)/G(inf) = 3, 5, 10: p/p0 at "
+            "t = 0 ... 4 tau per ratio, and G(t)/G(0)",
+    "fig7": "the same under a held load (creep): p/p0 per ratio, and J(t) G(0)",
+    "fig8": "mu_app(t) of the fig6 and fig7 runs: relaxation | creep",
+    "fig9": "frictionless, gross sliding and partial slip at two rates under a held approach: q_x with "
+            "mu_f p and the stick zones, and p, at t = 0 ... 1.5 tau; stick/slip maps",
+    "fig10": "frictionless, gross sliding and partial slip under a held load of 0.15 N, at t = 0 ... "
+             "4 tau; a stick/slip map",
+}
 
 Runs = Mapping[str, Any]  # case name -> its result Dataset
 Render = Callable[[Runs, "FigureSpec", FigureFiles], list[Path]]
