@@ -35,7 +35,7 @@ from viscontact.numerics.arrays import CPU, ArrayBackend, cpu_fast_length, cupy_
 from viscontact.numerics.grid import Grid
 from viscontact.physics.materials import Material
 from viscontact.problem.problem import NormalLoading, PiecewiseLinear, Problem, TangentialLoading, TimeStepping
-from viscontact.bodies.body import substrate_for
+from viscontact.bodies.compliance import compliance_of
 from viscontact.solvers.transient import steps
 
 A0, TAU, RADIUS = 588.7e-6, 0.01, 0.01
@@ -58,11 +58,11 @@ def problem(case: str, n: int, n_steps: int) -> Problem:
 def run(pb: Problem, backend: ArrayBackend, synchronize) -> dict:
     """Times of every step (the record of each on the host), iterations, final pressure."""
     start = time.perf_counter()
-    substrate = substrate_for(pb, backend=backend)
+    compliance = compliance_of(pb, backend=backend)
     stamps, iterations, record = [], [], None
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the wake warning of a run stopped after a few steps
-        for _, record in steps(pb, substrate=substrate):
+        for _, record in steps(pb, compliance=compliance):
             synchronize()
             stamps.append(time.perf_counter())
             iterations.append(record.iterations)

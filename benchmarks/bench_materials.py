@@ -13,7 +13,7 @@ kernel/one-pass  the same kernel from ``steady_kernels.SteadyKernelBuilder`` (fi
                  IC node values; next speeds: without), and its largest difference to the per-mode one.
 curve            mu_app against speed: 30 speeds over 8 decades, 30-term material, n^2 (steady
                  solver, ``steady.speed_sweep``: one kernel builder, each speed warm-started), split
-                 into phases: setup (the substrate: influence coefficients, FFT plans), kernels
+                 into phases: setup (the compliance: influence coefficients, FFT plans), kernels
                  (``HalfSpace.steady_convolver``: the effective kernels and their spectra; the first
                  speed, which also evaluates the builder's IC nodes, apart) and solve (the rest: the
                  active-set / GMRES solve of each speed, its preconditioner and the record).
@@ -68,7 +68,7 @@ def sliding(mat: Material, n: int, steps: int, mode: str = "gross_sliding", fric
 
 
 def per_step(problem: Problem) -> tuple[float, float]:
-    """Wall time [s] to the first step's record (setup: substrate, kernels, first solve) and the
+    """Wall time [s] to the first step's record (setup: compliance, kernels, first solve) and the
     median time of the further steps (the per-step cost; the median rides out load spikes)."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -131,7 +131,7 @@ def call_times(owner: object, name: str) -> Iterator[list[float]]:
 def curve_row(n: int) -> None:
     problem = sliding(material(30), n, 1, "frictionless_sliding", 0.0)
     speeds = np.geomspace(1e-6, 1e2, 30)
-    with call_times(steady, "substrate_for") as setup, call_times(HalfSpace, "steady_convolver") as kernels:
+    with call_times(steady, "compliance_of") as setup, call_times(HalfSpace, "steady_convolver") as kernels:
         start = time.perf_counter()
         records = steady.speed_sweep(problem, speeds)
         wall = time.perf_counter() - start
@@ -142,7 +142,7 @@ def curve_row(n: int) -> None:
           f"v = {speeds[int(np.argmax(mu))]:.2g} m/s; GMRES iterations {sum(r.iterations for r in records)}")
     print("| phase | total [s] | per speed [s] |")
     print("|---|---|---|")
-    print(f"| setup (substrate) | {sum(setup):.2f} | - |")
+    print(f"| setup (compliance) | {sum(setup):.2f} | - |")
     print(f"| kernels, first speed (with the IC nodes) | {kernels[0]:.2f} | - |")
     print(f"| kernels, next {len(kernels) - 1} speeds | {sum(kernels[1:]):.2f} | "
           f"{sum(kernels[1:]) / max(len(kernels) - 1, 1):.2f} |")

@@ -37,7 +37,7 @@ def _cpu() -> float:
 
 def child(case: str, n: int, steps: int, result: str) -> None:
     from viscontact.solvers import transient
-    from viscontact.bodies.body import substrate_for
+    from viscontact.bodies.compliance import compliance_of
 
     if case == "sliding":
         from alternate import problem as sliding_problem
@@ -46,12 +46,12 @@ def child(case: str, n: int, steps: int, result: str) -> None:
         from bench_rough import rough_problem
         problem = rough_problem(n, steps)
     wall, cpu = time.perf_counter(), _cpu()
-    substrate = substrate_for(problem)
+    compliance = compliance_of(problem)
     marks = [(time.perf_counter() - wall, _cpu() - cpu)]
     iterations = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        for _, record in transient.steps(problem, substrate=substrate):
+        for _, record in transient.steps(problem, compliance=compliance):
             marks.append((time.perf_counter() - wall, _cpu() - cpu))
             iterations.append(record.iterations)
     np.savez(result, marks=np.asarray(marks), iterations=np.asarray(iterations), own_rss_mib=peak_rss_mib())

@@ -25,7 +25,7 @@ def test_run_accepts_a_path(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> 
     (tmp_path / "case.toml").write_text(text)
     seen = []
 
-    def fake(problem, *, progress=None, state=None, substrate=None):
+    def fake(problem, *, progress=None, state=None, compliance=None):
         seen.append(problem.grid.n)
         for k, rec in enumerate(fake_records(make_problem(), (0, 0))):
             if progress:
@@ -41,7 +41,7 @@ def test_run_accepts_a_path(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> 
 
 
 def test_failure_keeps_the_steps_done(monkeypatch: pytest.MonkeyPatch) -> None:
-    def failing(problem, *, progress=None, state=None, substrate=None):
+    def failing(problem, *, progress=None, state=None, compliance=None):
         for rec in fake_records(problem, (0, 1)):
             yield None, rec
         raise ConvergenceError("normal contact", 10, 1e-3, 1e-8)

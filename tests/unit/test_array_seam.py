@@ -32,8 +32,8 @@ from viscontact.io.case import load_case
 from viscontact.io.checkpoint import load_checkpoint, save_checkpoint
 from viscontact.problem.problem import LayerSettings, SolverSettings
 from viscontact.io.shipped import shipped_case
-from viscontact.bodies.body import substrate_for
-from viscontact.solvers import contact_laws, transient
+from viscontact.bodies.compliance import compliance_of
+from viscontact.solvers import contact_laws
 from viscontact.solvers.transient import steps
 from vc_testing import SEED_A0, SEED_RADIUS, SEED_TAU, seed_material, sphere_problem
 
@@ -242,7 +242,7 @@ def test_round_off_alone_moves_a_tightly_solved_run_by_round_off(mode):
 
     def both(problem):
         reference = [r for _, r in steps(problem)]
-        return [r for _, r in steps(problem, substrate=substrate_for(problem, backend=rounded))], reference
+        return [r for _, r in steps(problem, compliance=compliance_of(problem, backend=rounded))], reference
 
     problem = _transient(mode)
     with pytest.raises(AssertionError):
@@ -333,12 +333,12 @@ def _transient(mode: str):
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_the_transient_on_the_device_equals_numpy(backend, mode, monkeypatch):
     problem = _solved_to_round_off(_transient(mode), backend)
-    reference = list(steps(problem, substrate=substrate_for(problem, backend=_host_twin(backend))))
+    reference = list(steps(problem, compliance=compliance_of(problem, backend=_host_twin(backend))))
     direct_solves = []
     solve_direct = contact_laws.NormalContact.solve_direct
     monkeypatch.setattr(contact_laws.NormalContact, "solve_direct",
                         lambda self, ctx, p: direct_solves.append(ctx.k) or solve_direct(self, ctx, p))
-    ours = list(steps(problem, substrate=substrate_for(problem, backend=backend)))
+    ours = list(steps(problem, compliance=compliance_of(problem, backend=backend)))
     assert len(ours) == problem.time.n_steps
     _assert_same_records([r for _, r in ours], [r for _, r in reference], backend, problem.grid.spacing)
     final = ours[-1][0]
@@ -367,7 +367,7 @@ def test_a_step_after_the_first_moves_no_field_to_the_device(mode):
     back (p, q, u_z). The emulation's copies are free, a GPU's are not (an n x n field crosses the bus)."""
     problem = _transient(mode)
     n = problem.grid.n
-    run = steps(problem, substrate=substrate_for(problem, backend=emulated_device.BACKEND))
+    run = steps(problem, compliance=compliance_of(problem, backend=emulated_device.BACKEND))
     next(run)
     offsets = set()
     while True:
@@ -389,11 +389,11 @@ def test_the_steady_active_set_moves_no_field_to_the_device(body, monkeypatch):
     nothing as large as a grid row to the device."""
     from viscontact import steady
     from viscontact.solvers import steady_periodic
-    from viscontact.bodies import body as substrate
+    from viscontact.bodies import compliance
     from viscontact.solvers.steady import solve_steady
 
     problem = _steady(body)
-    monkeypatch.setattr(substrate, "array_backend", lambda device: emulated_device.BACKEND)
+    monkeypatch.setattr(compliance, "array_backend", lambda device: emulated_device.BACKEND)
     solves = []
     for module in (steady, steady_periodic):
         def counted(apply_k, gap, _solve=module.solve_contact_active_set, **kw):
@@ -413,20 +413,20 @@ def test_the_steady_active_set_moves_no_field_to_the_device(body, monkeypatch):
 def test_the_reference_hereditary_sum_refuses_a_device_in_one_line(backend):
     problem = _transient("creep")
     with pytest.raises(ParameterError, match="solver.history: 'direct' .* CPU only"):
-        substrate_for(dataclasses.replace(problem, solver=SolverSettings(history="direct")), backend=backend)
+        compliance_of(dataclasses.replace(problem, solver=SolverSettings(history="direct")), backend=backend)
 
 
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_a_checkpoint_of_a_device_state_resumes_bit_exact(backend, tmp_path):
     """Sliding (histories shifted, a wake on the host): saved after step 5, resumed on the device."""
     problem = _transient("frictionless_sliding")
-    substrate = substrate_for(problem, backend=backend)
-    run = list(steps(problem, substrate=substrate))
+    compliance = compliance_of(problem, backend=backend)
+    run = list(steps(problem, compliance=compliance))
     save_checkpoint(tmp_path / "c.npz", problem, run[5][0], backend=backend)
     state, _ = load_checkpoint(tmp_path / "c.npz", problem, backend=backend)
     assert not isinstance(state.pressure, np.ndarray) and state.wake.strips
     assert all(isinstance(strip, np.ndarray) for strip in state.wake.strips)  # the wake stays on the host
-    resumed = list(steps(problem, state=state, substrate=substrate))
+    resumed = list(steps(problem, state=state, compliance=compliance))
     assert len(resumed) == len(run) - 6
     for (_, ours), (_, want) in zip(resumed, run[6:]):
         np.testing.assert_array_equal(ours.pressure, want.pressure)
@@ -441,15 +441,15 @@ def test_a_streamed_run_stopped_and_resumed_on_the_device_equals_the_cpu_run(bac
 
     from viscontact.running import api
     from viscontact.io import checkpoint
-    from viscontact.bodies import body as substrate
+    from viscontact.bodies import compliance
     from viscontact.errors import RunInterrupted
 
     problem = dataclasses.replace(_transient("frictionless_sliding"),  # a dt the command's guards accept
                                   time=dataclasses.replace(_transient("frictionless_sliding").time, scheme="linear"))
     problem = _solved_to_round_off(problem, backend)
-    monkeypatch.setattr(substrate, "array_backend", lambda device: _host_twin(backend))
+    monkeypatch.setattr(compliance, "array_backend", lambda device: _host_twin(backend))
     api.run_to_file(problem, tmp_path / "cpu.nc")
-    monkeypatch.setattr(substrate, "array_backend", lambda device: backend)
+    monkeypatch.setattr(compliance, "array_backend", lambda device: backend)
     monkeypatch.setattr(checkpoint, "array_backend", lambda device: backend)
     done = []
     with pytest.raises(RunInterrupted):
@@ -490,12 +490,12 @@ def _steady(body: str):
 def test_the_steady_state_on_the_device_equals_numpy(backend, body, monkeypatch):
     from viscontact import steady
     from viscontact.solvers import steady_periodic
-    from viscontact.bodies import body as substrate
+    from viscontact.bodies import compliance
     from viscontact.solvers.steady import solve_steady
 
     problem = _solved_to_round_off(_steady(body), backend)
     reference = solve_steady(problem)
-    monkeypatch.setattr(substrate, "array_backend", lambda device: backend)  # solver.device -> the device
+    monkeypatch.setattr(compliance, "array_backend", lambda device: backend)  # solver.device -> the device
     gaps = []
     for module in (steady, steady_periodic):
         solve = module.solve_contact_active_set

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from vc_testing import SEED_A0, SEED_TAU, seed_material, sphere_problem
 
-from viscontact.bodies.body import substrate_for
+from viscontact.bodies.compliance import compliance_of
 from viscontact.errors import ParameterError
 from viscontact.problem.problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP
 from viscontact.solvers.contact_laws import (
@@ -48,7 +48,7 @@ def test_the_shipped_laws_are_registered():
 def test_every_registered_law_is_reachable_by_name(name):
     law = get_contact_law(name)
     assert law is CONTACT_LAWS[name] and law.name == name and issubclass(law, ContactLaw)
-    built = law.for_problem(_sliding(), substrate_for(_sliding()), PHASE_GROSS_SLIDING)
+    built = law.for_problem(_sliding(), compliance_of(_sliding()), PHASE_GROSS_SLIDING)
     assert isinstance(built, law) and built.friction == MU
 
 
@@ -87,7 +87,7 @@ def test_each_mode_starts_with_its_law(mode, phase, law, friction, coupled, labe
     where there is friction)."""
     problem = _sliding(mode, poisson_ratio=0.3, rate=1e-3 if mode == "partial_slip" else 0.0)
     assert first_phase(problem.tangential) == phase
-    built = contact_law(problem, substrate_for(problem), phase)
+    built = contact_law(problem, compliance_of(problem), phase)
     assert type(built) is law and built.name == law_name(problem, phase)
     assert (built.friction, built.coupled, built.label) == (friction, coupled, label)
     # partial slip ends in gross sliding, with the normal law and q_x = mu_f p
@@ -102,8 +102,8 @@ class HalfFriction(NormalContact):
     name: ClassVar[str] = "test_half_friction"
 
     @classmethod
-    def for_problem(cls, problem, substrate, phase):
-        law = super().for_problem(problem, substrate, phase)
+    def for_problem(cls, problem, compliance, phase):
+        law = super().for_problem(problem, compliance, phase)
         return dataclasses.replace(law, friction=0.5 * law.friction)
 
 

@@ -1,4 +1,4 @@
-"""The core seams: substrate, immutable state, generic checkpoints, and the defects of issue 9 item 6.
+"""The core seams: compliance, immutable state, generic checkpoints, and the defects of issue 9 item 6.
 
 Each defect test failed before its fix:
 * ``SolverSettings(max_coupling_iterations=0)`` was accepted and the step died with UnboundLocalError;
@@ -25,8 +25,8 @@ from viscontact.solvers.steady import solve_steady
 from viscontact.numerics.convolution import Convolver, FourierPreconditioner
 from viscontact.numerics.history import shift_material
 from viscontact.physics.kernels import influence_coefficients
-from viscontact.bodies.compliance import Term, TermSubstrate
-from viscontact.bodies.body import substrate_for
+from viscontact.bodies.compliance import Term, Compliance
+from viscontact.bodies.compliance import compliance_of
 from viscontact.solvers.transient import init, step
 from viscontact.running.loop import simulate
 
@@ -100,7 +100,7 @@ def test_a_periodic_gap_is_translated_exactly_at_a_sub_cell_offset():
 def test_step_leaves_its_input_state_alone_and_checkpoints_round_trip():
     pb = sphere_problem(seed_material(), 12, 1.5e-3, mode="partial_slip", friction=0.3, rate=2e-3,
                         speed=0.125, t_end=6 * 1.5e-3 / 6 / 0.125, solver=SolverSettings(workers=1))
-    sub = substrate_for(pb)
+    sub = compliance_of(pb)
     state = init(pb, sub)
     for _ in range(3):
         state, _ = step(pb, sub, state)
@@ -145,18 +145,18 @@ def test_steady_iterations_are_krylov_iterations(monkeypatch):
 
 def test_a_substrate_of_split_terms_plugs_in_without_touching_the_solvers():
     """The zz kernel split into two terms (0.3 and 0.7 of it, each its own history, as a nu(t) or
-    layered substrate would) gives the half-space's answer: the solvers only see the terms.
+    layered compliance would) gives the half-space's answer: the solvers only see the terms.
     Tolerance 1e-8: the two runs differ by the round-off of the split sums, amplified by the CG."""
     pb = sphere_problem(seed_material(), 16, 1.5e-3, t_end=6 * SEED_TAU / 20, scheme="linear",
                         solver=SolverSettings(workers=1, tolerance=1e-12))
     ic = influence_coefficients(pb.grid, pb.material.poisson_ratio)
     kernels = {"zz_a": 0.3 * ic["zz"], "zz_b": 0.7 * ic["zz"]}
-    split = TermSubstrate(pb.grid, [Term("z", "z", "zz_a", "a"), Term("z", "z", "zz_b", "b")],
+    split = Compliance(pb.grid, [Term("z", "z", "zz_a", "a"), Term("z", "z", "zz_b", "b")],
                           {"a": pb.material.creep, "b": pb.material.creep},
                           Convolver.from_kernels(pb.grid.n, kernels, 1),
                           {k: FourierPreconditioner.for_kernel(v, 1.0, 1) for k, v in kernels.items()},
                           pb.time.scheme, pb.time.dt)
-    ref, got = list(simulate(pb)), list(simulate(pb, substrate=split))
+    ref, got = list(simulate(pb)), list(simulate(pb, compliance=split))
     assert len(ref) == len(got) == 7
     for a, b in zip(ref, got):
         scale = np.max(np.abs(a.pressure))

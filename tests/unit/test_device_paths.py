@@ -43,7 +43,7 @@ def gpu(monkeypatch):
 @pytest.mark.parametrize("command", ["run", "dry-run", "steady"])
 def test_the_reference_sum_on_a_gpu_is_one_line_before_anything_is_written(gpu, tmp_path, capsys, command):
     """``solver.history = "direct"`` with ``solver.device = "gpu"``: ``--dry-run`` said the case would
-    run (only the run's substrate refused it); now every command refuses it with the case, one line
+    run (only the run's compliance refused it); now every command refuses it with the case, one line
     naming the key, status 2, nothing written."""
     out = tmp_path / "r.nc"
     argv = (["steady", str(CASES / "seed_table1_v0.8.toml")] if command == "steady" else

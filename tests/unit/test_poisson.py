@@ -197,7 +197,7 @@ def test_lee_radok_with_bulk_modulus():
 
 
 def test_term_substrate_of_an_elastic_shear_modulus_is_the_half_space():
-    """The core seam: the nu(t) terms with an elastic shear modulus give the HalfSpace substrate's
+    """The core seam: the nu(t) terms with an elastic shear modulus give the HalfSpace compliance's
     operators with nu = nu(0) (normal and tangential self operators, coupling)."""
     from viscontact.bodies.compliance import term_substrate
     from viscontact.bodies.half_space import HalfSpace

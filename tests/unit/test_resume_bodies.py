@@ -154,7 +154,7 @@ def test_memory_estimate_counts_the_histories_and_kernels_of_the_body(monkeypatc
     on each side): the estimate of its solver state grows by that much over the half-space's
     (Zener: M = 1, 9 nodes at the default tolerance), less the half-space's response history
     (M + 1 fields in the old and the new state), which a body of several kernels does not carry
-    (substrate.TermSubstrate.initial_response). The layer's own contact estimate (its stiffer base
+    (substrate.Compliance.initial_response). The layer's own contact estimate (its stiffer base
     narrows the contact) gives it smaller windows than the half-space's: both are counted here at the
     layer's side, so that the difference is the body's alone."""
     from viscontact.bodies.layer import shift_nodes

@@ -10,7 +10,7 @@ from viscontact.numerics.krylov import gmres
 from viscontact.problem.problem import SolverSettings
 from viscontact.numerics.active_set import solve_contact_active_set
 from viscontact.solvers.steady import solve_steady, steady_convolver, steady_preconditioner
-from viscontact.bodies.body import substrate_for
+from viscontact.bodies.compliance import compliance_of
 
 from vc_testing import SEED_A0, SEED_TAU, seed_material, sphere_problem
 
@@ -66,12 +66,12 @@ def test_preconditioner_symbol_is_the_operator():
     wrong side) does not."""
     v = SEED_A0 / SEED_TAU
     pb = sphere_problem(seed_material(), 64, 6 * SEED_A0, mode="frictionless_sliding", speed=v)
-    substrate = substrate_for(pb, ("zz",))
-    conv, kernels = steady_convolver(pb, v, substrate)
+    compliance = compliance_of(pb, ("zz",))
+    conv, kernels = steady_convolver(pb, v, compliance)
     x, y = pb.grid.mesh()
     load = np.exp(-(x**2 + y**2) / (2 * (0.5 * SEED_A0) ** 2))
     exact = conv.apply("zz", load)
-    inverse = steady_preconditioner(substrate, kernels, v).inverse_symbol
+    inverse = steady_preconditioner(compliance, kernels, v).inverse_symbol
     spectrum = np.fft.rfft2(load)
 
     def mismatch(symbol: np.ndarray) -> float:

@@ -2,7 +2,7 @@
 
 * the window operator (cropped kernels on an m x m box) is the full DC-FFT operator restricted to the
   box, to round-off (1e-12 of the largest value): a wrong crop or wrap-around layout is off by O(1);
-  for the one-term half-space and a two-term nu(t) substrate (``combine``);
+  for the one-term half-space and a two-term nu(t) compliance (``combine``);
 * the windowed constrained CG equals the full-domain Polonsky-Keer solve to the solver tolerance
   (unique solution of a strictly convex programme), under load and displacement control, from a
   warm start whose support is far smaller than the contact: the first box is too small, the check
@@ -178,7 +178,7 @@ def test_a_creeping_contact_on_the_device_ladder_keeps_its_window_longer(monkeyp
     """A GPU plans its transforms anew for every window side (a tenth of a second each on an H200):
     on the device ladder a creeping contact changes side less than half as often as on scipy's fast
     lengths, and the records are the same to the solver tolerance (the box holds the support)."""
-    from viscontact.bodies.body import substrate_for
+    from viscontact.bodies.compliance import compliance_of
 
     problem = sphere_problem(seed_material(), 96, 2.5 * SEED_A0, t_end=0.03, dt=0.001,
                              solver=SolverSettings(tolerance=1e-10), fields=("pressure",))
@@ -189,7 +189,7 @@ def test_a_creeping_contact_on_the_device_ladder_keeps_its_window_longer(monkeyp
         monkeypatch.setattr(support_window, "window_side",
                             lambda extent, n, *f: used.append(window_side(extent, n, *f)) or used[-1])
         backend = dataclasses.replace(CPU, fast_length=lengths)
-        runs[name] = [r for _, r in transient.steps(problem, substrate=substrate_for(problem, backend=backend))]
+        runs[name] = [r for _, r in transient.steps(problem, compliance=compliance_of(problem, backend=backend))]
         sides[name] = [m for m in used if m is not None]
     changes = {name: sum(a != b for a, b in zip(used, used[1:])) for name, used in sides.items()}
     assert all(device_fast_length(2 * m) == 2 * m for m in sides["device"])

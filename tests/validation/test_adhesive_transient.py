@@ -86,9 +86,9 @@ def test_the_stepper_gives_the_direct_solves_of_an_elastic_sphere():
 
 
 def _elastic_operator(problem: Problem):
-    from viscontact.bodies.body import substrate_for
+    from viscontact.bodies.compliance import compliance_of
 
-    return substrate_for(problem).elastic_operator("z", True).apply
+    return compliance_of(problem).elastic_operator("z", True).apply
 
 
 def test_load_control_pull_off_ends_the_run_cleanly_at_maugis_dugdale(tmp_path):

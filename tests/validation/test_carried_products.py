@@ -1,9 +1,9 @@
 """What the transient state carries from step to step instead of transforming again: the products
 of the last two pressures (the warm start's K x0) and the response history (the history
-displacement in displacement space, substrate.TermSubstrate.initial_response).
+displacement in displacement space, compliance.Compliance.initial_response).
 
 The truth for each is the product it replaces, computed by the DC-FFT from the tractions: the
-history displacement from the traction history (substrate.known_displacement), the warm start's
+history displacement from the traction history (compliance.known_displacement), the warm start's
 product from the elastic operator. A run with the carried fields switched off is the reference of
 the run with them: both are solves of the same problems to the CG tolerance.
 """
@@ -20,7 +20,7 @@ from viscontact.solvers import transient
 from viscontact.running import loop
 from viscontact.physics.materials import Material
 from viscontact.problem.problem import LayerSettings
-from viscontact.bodies.body import substrate_for
+from viscontact.bodies.compliance import compliance_of
 
 THREE_MODES = Material.prony(0.2e6, [0.5e6, 0.8e6, 0.4e6], [1e-3, 1e-2, 1e-1], 0.3)
 
@@ -37,14 +37,14 @@ def test_response_history_is_the_transformed_traction_history(body, scheme):
     problem = _creep(THREE_MODES if body == "three modes" else seed_material(), scheme)
     if body == "layer on a rigid base":
         problem = dataclasses.replace(problem, layer=LayerSettings(0.5e-3))
-    substrate = substrate_for(problem)
-    state = transient.init(problem, substrate)
+    compliance = compliance_of(problem)
+    state = transient.init(problem, compliance)
     assert state.response is not None
     worst = 0.0
-    for state, _ in transient.steps(problem, state=state, substrate=substrate):
+    for state, _ in transient.steps(problem, state=state, compliance=compliance):
         t = state.t + problem.time.dt
-        carried = substrate.known_from_response(state.response, t, False)
-        transformed, _ = substrate.known_displacement(state.histories, t, False, need_x=False)
+        carried = compliance.known_from_response(state.response, t, False)
+        transformed, _ = compliance.known_displacement(state.histories, t, False, need_x=False)
         worst = max(worst, float(np.abs(carried - transformed).max() / np.abs(transformed).max()))
     assert worst < 1e-12
 
@@ -58,26 +58,26 @@ def test_response_history_ends_at_the_first_frame_shift():
     assert carried[0] and not any(carried[2:])
 
 
-@pytest.mark.parametrize("body", ["direct history", "layer on an elastic substrate", "periodic"])
+@pytest.mark.parametrize("body", ["direct history", "layer on an elastic base", "periodic"])
 def test_no_response_history_where_it_would_not_hold(body):
     problem = _creep(seed_material(), "constant", steps=3)
     if body == "direct history":
         problem = dataclasses.replace(problem, solver=dataclasses.replace(problem.solver, history="direct"))
-    elif body == "layer on an elastic substrate":
+    elif body == "layer on an elastic base":
         problem = dataclasses.replace(problem, layer=LayerSettings(0.3e-3, substrate="elastic",
                                                                    substrate_shear_modulus=10e6))
     else:
         problem = dataclasses.replace(problem, grid=dataclasses.replace(problem.grid, periodic=True))
-    assert substrate_for(problem).initial_response() is None
+    assert compliance_of(problem).initial_response() is None
 
 
 def test_warm_start_product_is_the_operator_applied_to_it():
     problem = _creep(seed_material(), "constant", steps=12)
-    substrate = substrate_for(problem)
-    op = substrate.elastic_operator("z", False)
+    compliance = compliance_of(problem)
+    op = compliance.elastic_operator("z", False)
     checked = 0
-    for state, _ in transient.steps(problem, substrate=substrate):
-        warm, product = transient._warm_start(substrate, state, state.step + 1)
+    for state, _ in transient.steps(problem, compliance=compliance):
+        warm, product = transient._warm_start(compliance, state, state.step + 1)
         if product is None:
             continue
         checked += 1
@@ -90,19 +90,19 @@ def test_warm_start_with_many_clipped_points_has_no_product():
     """Where the extrapolation is negative at more than WARM_CLIP_POINTS points the warm start's
     product is left to the solve (direct sums would cost more than the transform)."""
     problem = _creep(seed_material(), "constant", steps=6)
-    substrate = substrate_for(problem)
-    state = list(transient.steps(problem, substrate=substrate))[-1][0]
+    compliance = compliance_of(problem)
+    state = list(transient.steps(problem, compliance=compliance))[-1][0]
     receding = dataclasses.replace(state, pressure_previous=3.0 * state.pressure)  # 2 p - 3 p < 0 wherever p > 0
     assert np.count_nonzero(state.pressure) > transient.WARM_CLIP_POINTS
-    warm, product = transient._warm_start(substrate, receding, state.step + 1)
+    warm, product = transient._warm_start(compliance, receding, state.step + 1)
     assert product is None and not warm.any()
 
 
 def test_start_product_gives_the_solve_of_the_product_it_replaces():
     problem = _creep(seed_material(), "constant", steps=3)
-    substrate = substrate_for(problem)
-    state = list(transient.steps(problem, substrate=substrate))[-1][0]
-    op = substrate.elastic_operator("z", False)
+    compliance = compliance_of(problem)
+    state = list(transient.steps(problem, compliance=compliance))[-1][0]
+    op = compliance.elastic_operator("z", False)
     b = -(problem.gap + 0.2 * op.apply(state.pressure))
     kwargs = dict(total=0.15, cell_area=problem.grid.cell_area, tolerance=1e-10, **op.cg_options(False))
     plain = constrained.constrained_cg(op.apply, b, state.pressure, 0.0, np.inf, **kwargs)
@@ -122,9 +122,9 @@ def test_carried_products_give_the_solves_without_them(mode, monkeypatch):
         problem = sphere_problem(seed_material(), 48, 2.56 * SEED_A0, mode="frictionless_sliding",
                                  speed=0.8 * SEED_A0 / SEED_TAU, t_end=0.01)
     carried = list(loop.simulate(problem))
-    monkeypatch.setattr(transient, "_warm_start", lambda substrate, state, k: (
+    monkeypatch.setattr(transient, "_warm_start", lambda compliance, state, k: (
         np.maximum(2.0 * state.pressure - state.pressure_previous, 0.0) if k > 1 else state.pressure, None))
-    monkeypatch.setattr(type(substrate_for(problem)), "initial_response", lambda self: None)
+    monkeypatch.setattr(type(compliance_of(problem)), "initial_response", lambda self: None)
     plain = list(loop.simulate(problem))
     for a, b in zip(carried, plain):
         assert np.abs(a.pressure - b.pressure).sum() < 1e-8 * np.abs(b.pressure).sum()
@@ -138,12 +138,12 @@ def test_a_checkpoint_without_the_carried_fields_resumes():
     from viscontact.io.checkpoint import state_arrays, state_from_arrays
 
     problem = _creep(seed_material(), "constant", steps=10)
-    substrate = substrate_for(problem)
-    run = list(transient.steps(problem, substrate=substrate))
+    compliance = compliance_of(problem)
+    run = list(transient.steps(problem, compliance=compliance))
     arrays = {k: v for k, v in state_arrays(run[4][0]).items()
               if "pressure_product" not in k and ".response" not in k}
     old = state_from_arrays(arrays)
     assert old.response is None and old.pressure_product is None and old.step == 4
-    resumed = list(transient.steps(problem, state=old, substrate=substrate))
+    resumed = list(transient.steps(problem, state=old, compliance=compliance))
     for (_, a), (_, b) in zip(resumed, run[5:]):
         assert np.abs(a.pressure - b.pressure).sum() < 1e-8 * np.abs(b.pressure).sum()

@@ -21,7 +21,7 @@ from viscontact.numerics import constrained
 from viscontact.physics.kernels import half_space_convolver
 from viscontact.numerics.grid import Grid
 from viscontact.problem.problem import SolverSettings
-from viscontact.bodies.body import substrate_for
+from viscontact.bodies.compliance import compliance_of
 from viscontact.solvers.transient import init, step
 from viscontact.running.loop import simulate
 
@@ -67,7 +67,7 @@ def test_partial_slip_coupling_converges_in_mixed_precision_as_in_double():
     for mixed in (False, True):
         pb = sphere_problem(seed_material(), 12, 1.5e-3, mode="partial_slip", friction=0.3, rate=2e-3, speed=0.125,
                             t_end=0.012, solver=SolverSettings(workers=1, mixed_precision=mixed))
-        sub = substrate_for(pb)
+        sub = compliance_of(pb)
         state = init(pb, sub)
         for _ in range(4):
             state, record = step(pb, sub, state)

@@ -2,14 +2,14 @@
 (``bulk_modulus``, viscontact.bodies.bulk_elastic) and a viscoelastic layer on a rigid base (viscontact.bodies.layer),
 on DC-FFT and periodic grids, against independent truth.
 
-Each term's steady kernel is built from its own spectrum (TermSubstrate.steady_convolver, the
+Each term's steady kernel is built from its own spectrum (Compliance.steady_convolver, the
 shapes of viscontact.physics.steady_kernels.SteadyShape); on a periodic grid the operator is each term's
-spectrum times its complex compliance at -k_x v (TermSubstrate.steady_spectrum).
+spectrum times its complex compliance at -k_x v (Compliance.steady_spectrum).
 
 References and measured values (seed Zener G(0) = 1.93 MPa, G(inf) = G(0)/10, tau = 10 ms, R = 10 mm):
 
 Bodies: nu(t) with K = 2 G(0); a layer bonded to a rigid base; a viscoelastic layer bonded to an
-elastic substrate (G_s = 3 G(0), nu_s = 0.4: one kernel per shift node, viscontact.bodies.layer
+elastic base (G_s = 3 G(0), nu_s = 0.4: one kernel per shift node, viscontact.bodies.layer
 .elastic_base_terms).
 
 * slow sliding (v tau/a0 = 1e-4) is the elastic contact at G(inf), nu(inf); fast (1e4) at G(0), nu(0).
@@ -18,14 +18,14 @@ elastic substrate (G_s = 3 G(0), nu_s = 0.4: one kernel per shift node, visconta
   and v tau/a = 1e4 leaves a viscous residue below 1e-3). Layer h = 0.4 mm bonded to a rigid base,
   n = 32: against the transient solver's elastic layer at G(inf) / G(0) (same kernels, one step),
   approach within 1e-9 / 4.2e-4 and pressure within 1e-4 / 1.2e-3 of the peak (tolerance 1 %); on
-  the elastic substrate 1.2e-7 / 3.0e-4 and 1.0e-4 / 1.4e-3.
+  the elastic base 1.2e-7 / 3.0e-4 and 1.0e-4 / 1.4e-3.
 * the transient's sliding state after 6 tau tends to the steady state on the same grid (the wake on
   the grid): the remaining difference is the time discretisation of the moving frame (v dt = dx,
   linear scheme), as for the half-space (tests/validation/test_steady.py). DC-FFT, n = 32 (64):
   nu(t) mu_app 0.09 % (0.16 %), load 0.43 % (0.14 %); layer h = 0.5 mm mu_app 0.35 % (0.13 %), load
-  0.51 % (0.17 %), on the elastic substrate mu_app 0.28 %, load 0.53 %; tolerance 1 %. Periodic,
+  0.51 % (0.17 %), on the elastic base mu_app 0.28 %, load 0.53 %; tolerance 1 %. Periodic,
   n = 32, load control: mu_app and approach within 0.08 % and 0.11 % (nu(t)), 0.14 % and 0.17 %
-  (layer), 0.10 % and 0.14 % (on the elastic substrate), as the periodic half-space (0.07 %,
+  (layer), 0.10 % and 0.14 % (on the elastic base), as the periodic half-space (0.07 %,
   0.11 %); tolerance 0.5 %.
 * K -> inf (1e15 Pa) is the incompressible half-space, computed by the half-space's own steady
   kernels (one builder at nu = 0.5) and periodic spectrum (the material's complex modulus): the
@@ -88,7 +88,7 @@ def test_bulk_modulus_steady_limits_are_hertz(speed_ratio):
     assert abs(other.approach / rec.delta_z - 1) > 0.05
 
 
-# on an elastic substrate (3 G(0), nu_s = 0.4) a viscoelastic layer has one kernel per shift node
+# on an elastic base (3 G(0), nu_s = 0.4) a viscoelastic layer has one kernel per shift node
 ON_RIGID, ON_ELASTIC = LayerSettings(0.4e-3), LayerSettings(0.4e-3, "elastic", "bonded", 3 * SEED_G0, 0.4)
 
 

@@ -35,10 +35,10 @@ from viscontact.running.loop import simulate
 ZENER = seed_material()
 
 
-def held_load(problem, substrate):
+def held_load(problem, compliance):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ViscontactWarning)  # dt above the shortest material time
-        return list(simulate(problem, substrate=substrate))
+        return list(simulate(problem, compliance=compliance))
 
 
 def test_lee_radok_with_time_dependent_poisson_ratio():
@@ -46,8 +46,8 @@ def test_lee_radok_with_time_dependent_poisson_ratio():
     nu0 = bulk.poisson_ratio_instantaneous
     problem = sphere_problem(Material.zener(SEED_G0, SEED_G0 / 10, SEED_TAU, nu0), 64, 2e-3, t_end=0.02,
                              dt=5e-4, scheme="linear", solver=SolverSettings(tolerance=1e-11))
-    substrate = term_substrate(problem.grid, half_space_terms(problem.grid, bulk, ("zz",)), "linear", 5e-4)
-    records = held_load(problem, substrate)
+    compliance = term_substrate(problem.grid, half_space_terms(problem.grid, bulk, ("zz",)), "linear", 5e-4)
+    records = held_load(problem, compliance)
     t = np.array([r.t for r in records])
     delta = np.array([r.delta_z for r in records])
     ref = lee_radok_creep(SEED_LOAD, SEED_RADIUS, bulk, t).approach
@@ -61,8 +61,8 @@ def test_thin_viscoelastic_layer_creeps_as_square_root_of_compliance():
     problem = sphere_problem(ZENER, 48, 1.2e-3, t_end=0.02, dt=5e-4, scheme="linear",
                              solver=SolverSettings(tolerance=1e-11))
     layer = Layer(0.12e-3, SEED_G0, 0.3)
-    substrate = term_substrate(problem.grid, rigid_base_terms(problem.grid, layer, ZENER, ("zz",)), "linear", 5e-4)
-    records = held_load(problem, substrate)
+    compliance = term_substrate(problem.grid, rigid_base_terms(problem.grid, layer, ZENER, ("zz",)), "linear", 5e-4)
+    records = held_load(problem, compliance)
     t = np.array([r.t for r in records])
     delta = np.array([r.delta_z for r in records])
     winkler0 = np.sqrt(SEED_LOAD * layer.thickness / (np.pi * layer.oedometric_modulus * SEED_RADIUS))

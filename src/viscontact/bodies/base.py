@@ -22,7 +22,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any, Protocol, runtime_checkable
 
-from viscontact.bodies.compliance import ComplianceTerm, TermSubstrate, ordered_components, term_substrate
+from viscontact.bodies.compliance import ComplianceTerm, Compliance, ordered_components, term_substrate
 from viscontact.numerics.arrays import ArrayBackend
 from viscontact.numerics.exponentials import CreepSpectrum
 from viscontact.numerics.grid import Grid
@@ -65,7 +65,7 @@ class Body(Protocol):
 
     def compliance(self, grid: Grid, components: Sequence[str], scheme: str | TimeScheme, dt: float, *,
                    workers: int = -1, direct: bool = False, fft: str = "scipy",
-                   backend: ArrayBackend | None = None) -> TermSubstrate:
+                   backend: ArrayBackend | None = None) -> Compliance:
         """The surface compliance on ``grid`` (the kernels ``components`` among ``zz``, ``zx``, ``xz``,
         ``xx``; ``zz`` always) with the hereditary integral of ``scheme`` and step ``dt`` [s]: what
         the contact solvers use. ``workers``: FFT threads; ``direct``: the literal hereditary sum;
@@ -132,8 +132,8 @@ class TermBody:
 
     def compliance(self, grid: Grid, components: Sequence[str], scheme: str | TimeScheme, dt: float, *,
                    workers: int = -1, direct: bool = False, fft: str = "scipy",
-                   backend: ArrayBackend | None = None) -> TermSubstrate:
-        """:meth:`terms` as a :class:`~viscontact.bodies.compliance.TermSubstrate` (:meth:`Body.compliance`)."""
+                   backend: ArrayBackend | None = None) -> Compliance:
+        """:meth:`terms` as a :class:`~viscontact.bodies.compliance.Compliance` (:meth:`Body.compliance`)."""
         terms = self.terms(grid, ordered_components(components))
         return term_substrate(grid, terms, scheme, dt, workers=workers, direct=direct, backend=backend, fft=fft)
 

@@ -1,7 +1,7 @@
 """The compliance of a body: what its surface does under a traction history.
 
 Words: the *body* is the whole compliant solid (:mod:`viscontact.bodies.base`); what lies under a
-layer is its *base*; the *compliance* (a :class:`TermSubstrate`, named before bodies had a word of
+layer is its *base*; the *compliance* (a :class:`Compliance`, named before bodies had a word of
 their own) is what a body gives the contact solvers.
 
 Data model (linear viscoelasticity, seed Eqs. 5-6): the surface displacement u_i (i in z, x) is a
@@ -20,23 +20,23 @@ One term, two stages, two types:
 * :class:`ComplianceTerm` is a term as a body *builds* it: its kernel as an array and its time
   response as a spectrum (:func:`~viscontact.bodies.layer.rigid_base_terms`,
   :func:`~viscontact.bodies.bulk_elastic.half_space_terms`, ...);
-* :class:`Term` is the same term once *placed* in a :class:`TermSubstrate` (:meth:`ComplianceTerm.placed`):
+* :class:`Term` is the same term once *placed* in a :class:`Compliance` (:meth:`ComplianceTerm.placed`):
   its kernel by name in the convolver, its response by the key of the history it reads (the
-  substrate holds one response per history, shared by the terms that read it). Only the
-  :class:`TermSubstrate` and its subclasses (:class:`~viscontact.bodies.half_space.HalfSpace`, whose
+  compliance holds one response per history, shared by the terms that read it). Only the
+  :class:`Compliance` and its subclasses (:class:`~viscontact.bodies.half_space.HalfSpace`, whose
   convolver is built from the kernels directly) deal in :class:`Term`.
 
-:class:`TermSubstrate` turns (terms, responses, a convolver, preconditioners) into what the contact
-solvers use, and is all a new substrate has to provide:
+:class:`Compliance` turns (terms, responses, a convolver, preconditioners) into what the contact
+solvers use, and is all a new compliance has to provide:
 
-* :meth:`~TermSubstrate.elastic_operator`: the step's elastic operator for the normal (``zz``) or
+* :meth:`~Compliance.elastic_operator`: the step's elastic operator for the normal (``zz``) or
   tangential (``xx``) solve: action, Fourier preconditioner, sparse action;
-* :meth:`~TermSubstrate.cross_displacement`: the step's instantaneous coupling (``zx``, ``xz``);
-* :meth:`~TermSubstrate.known_displacement`: (u_z, u_x) of the history state;
-* :meth:`~TermSubstrate.advanced`, :meth:`~TermSubstrate.shifted`: the history after a step / a
+* :meth:`~Compliance.cross_displacement`: the step's instantaneous coupling (``zx``, ``xz``);
+* :meth:`~Compliance.known_displacement`: (u_z, u_x) of the history state;
+* :meth:`~Compliance.advanced`, :meth:`~Compliance.shifted`: the history after a step / a
   frame shift (new objects; nothing is mutated);
-* :meth:`~TermSubstrate.steady_convolver`: the effective kernel of steady sliding at a speed;
-* :meth:`~TermSubstrate.free_mean`: whether a uniform traction leaves the mean displacement
+* :meth:`~Compliance.steady_convolver`: the effective kernel of steady sliding at a speed;
+* :meth:`~Compliance.free_mean`: whether a uniform traction leaves the mean displacement
   undetermined (a periodic half-space);
 * ``backend`` (:class:`~viscontact.numerics.arrays.ArrayBackend`: the array namespace ``xp`` and the FFT
   module ``fft`` of the fields, ``to_host`` for what the results keep).
@@ -47,10 +47,10 @@ one history per traction component). Other substrates plug in by building other 
 
 * a time-dependent Poisson ratio: the same kernels split into parts, each term its own computed
   spectrum (histories keyed e.g. ``"z:normal"``, ``"z:coupling"``);
-* a layer on an elastic substrate: one kernel (and one single-mode term) per relaxation mode;
+* a layer on an elastic base: one kernel (and one single-mode term) per relaxation mode;
 * a periodic domain: periodic kernels and a convolver with the same methods (``apply``,
   ``apply_sparse``, ``combine``, ``displacements``, ``spectrum``, ``inverse``) on unpadded
-  transforms, and its own :meth:`~TermSubstrate.steady_convolver`.
+  transforms, and its own :meth:`~Compliance.steady_convolver`.
 
 The contact solvers (:mod:`viscontact.solvers.transient`, :mod:`viscontact.solvers.steady`) see only this interface.
 """
@@ -64,7 +64,7 @@ from typing import Callable, Iterable, Mapping, Sequence
 import numpy as np
 
 from viscontact.errors import ParameterError
-from viscontact.numerics.arrays import CPU, ArrayBackend, cpu_fast_length
+from viscontact.numerics.arrays import CPU, ArrayBackend, array_backend, cpu_fast_length
 from viscontact.numerics.convolution import Convolver, FourierPreconditioner
 from viscontact.numerics.exponentials import CreepSpectrum
 from viscontact.numerics.fftbackends import DCFFTTransforms, ZeroBlockTransforms, dcfft_transforms
@@ -76,14 +76,14 @@ from viscontact.physics.steady_kernels import SteadyShape, steady_operator_spect
 
 Array = np.ndarray
 Operator = Callable[[Array], Array]
-#: window sides whose convolvers a substrate keeps (:meth:`TermSubstrate.elastic_operator`'s ``window``)
+#: window sides whose convolvers a compliance keeps (:meth:`Compliance.elastic_operator`'s ``window``)
 WINDOWS_KEPT = 3
 #: retardation modes up to which the history displacement is carried in displacement space
-#: (:meth:`TermSubstrate.initial_response`): its 2 M field updates a step cost less than the transform
+#: (:meth:`Compliance.initial_response`): its 2 M field updates a step cost less than the transform
 #: pair they spare up to about this many modes
 RESPONSE_MODES = 8
 #: a periodic kernel whose mean (its q = 0 spectral value) is below this fraction of its largest
-#: spectral value has zero mean up to round-off (:meth:`TermSubstrate.free_mean`)
+#: spectral value has zero mean up to round-off (:meth:`Compliance.free_mean`)
 FREE_MEAN_TOLERANCE = 1e-9
 
 
@@ -99,7 +99,7 @@ def ordered_components(components: Iterable[str]) -> tuple[str, ...]:
 
 @dataclass(frozen=True)
 class Term:
-    """One term of the displacement as placed in a :class:`TermSubstrate`:
+    """One term of the displacement as placed in a :class:`Compliance`:
     u_displacement += K_kernel * (phi_history (*) d traction), the kernel named in the convolver and
     the response keyed by its history (a body builds a :class:`ComplianceTerm`; module docstring).
 
@@ -108,7 +108,7 @@ class Term:
     displacement, traction
         Components ``"z"`` (normal; the traction is the pressure p) or ``"x"`` (the shear q_x).
     kernel
-        Name of its unit-modulus kernel in the substrate's convolver.
+        Name of its unit-modulus kernel in the compliance's convolver.
     history
         Key of the hereditary history it reads (one traction component under one time response).
     """
@@ -148,8 +148,8 @@ class ElasticOperator:
                 "apply_k_sparse": self.apply_sparse, "apply_k_increment": self.apply_increment if mixed else None}
 
 
-class TermSubstrate:
-    """A substrate given as terms (module docstring).
+class Compliance:
+    """A compliance given as terms (module docstring).
 
     Parameters
     ----------
@@ -279,7 +279,7 @@ class TermSubstrate:
     # --- the history displacement carried in displacement space ----------------------------------
     def response_term(self) -> Term | None:
         """The term whose history displacement can be carried in displacement space
-        (:meth:`initial_response`), or None: the substrate's only u_z term, a self term (``zz``) on
+        (:meth:`initial_response`), or None: the compliance's only u_z term, a self term (``zz``) on
         a support-window (DC-FFT) grid with the recursive history of at most
         :data:`RESPONSE_MODES` retardation modes."""
         z_terms = [t for t in self.terms if t.displacement == "z"]
@@ -380,7 +380,7 @@ class TermSubstrate:
     def cross_displacement(self, displacement: str, traction: str, field: Array, first: bool,
                            factor: float = 1.0) -> Array | None:
         """(J_inst factor) K_term field summed over the (displacement, traction) terms of this step:
-        the instantaneous coupling [m] of a traction [Pa]; None when the substrate has no such term."""
+        the instantaneous coupling [m] of a traction [Pa]; None when the compliance has no such term."""
         terms = self._terms(displacement, traction)
         if not terms:
             return None
@@ -492,7 +492,7 @@ def _operator(factors: Sequence[tuple[str, float]], conv: Convolver,
 @dataclass(frozen=True)
 class ComplianceTerm:
     """One term of the compliance operator as a body builds it: kernel array and time response
-    (placed in a :class:`TermSubstrate` it becomes a :class:`Term`: :meth:`placed`; module docstring).
+    (placed in a :class:`Compliance` it becomes a :class:`Term`: :meth:`placed`; module docstring).
 
     Attributes
     ----------
@@ -524,7 +524,7 @@ class ComplianceTerm:
     steady: SteadyShape | None = None
 
     def placed(self) -> Term:
-        """The term as a :class:`TermSubstrate` holds it: the kernel by its :attr:`name`, the response by
+        """The term as a :class:`Compliance` holds it: the kernel by its :attr:`name`, the response by
         its :func:`history_key`."""
         return Term(self.displacement, self.traction, self.name, history_key(self))
 
@@ -549,12 +549,12 @@ def grid_transforms(n: int, workers: int, fft: str = "scipy", backend: ArrayBack
 
 def term_substrate(grid, terms: Iterable[ComplianceTerm], scheme, dt: float, *, workers: int = -1,
                    direct: bool = False, backend=None, fft: str = "scipy"):
-    """A :class:`~viscontact.bodies.compliance.TermSubstrate` of compliance terms: each term a kernel named
+    """A :class:`~viscontact.bodies.compliance.Compliance` of compliance terms: each term a kernel named
     after it, terms with the same :func:`history_key` sharing one history (they must share the
     response), Fourier preconditioners for the self (zz, xx) kernels, the terms' steady shapes. On
     a periodic grid the kernels are periodic (n x n) and the convolver is the unpadded
     :class:`~viscontact.physics.periodic.PeriodicConvolver`; otherwise DC-FFT. For the solvers'
-    ``substrate=`` argument (e.g. :func:`viscontact.solvers.transient.steps`). ``backend``: where the fields
+    ``compliance=`` argument (e.g. :func:`viscontact.solvers.transient.steps`). ``backend``: where the fields
     live (an :class:`~viscontact.numerics.arrays.ArrayBackend`; None: the CPU). ``fft``: the DC-FFT
     transforms by name (``solver.fft``, :func:`grid_transforms`); a periodic grid's unpadded
     transforms are its backend's FFT module's whatever the name, as for every body."""
@@ -577,5 +577,28 @@ def term_substrate(grid, terms: Iterable[ComplianceTerm], scheme, dt: float, *, 
         precond = {name: FourierPreconditioner.for_kernel(kernels[name], 1.0, workers, fft=backend.fft)
                    for name in selves}
     core_terms = [t.placed() for t in terms]
-    return TermSubstrate(grid, core_terms, responses, conv, precond, scheme, dt, direct, periodic=grid.periodic,
+    return Compliance(grid, core_terms, responses, conv, precond, scheme, dt, direct, periodic=grid.periodic,
                          steady_shapes={t.name: t.steady for t in terms if t.steady is not None}, backend=backend)
+
+
+def compliance_of(problem, components: Sequence[str] | None = None,
+                  backend: ArrayBackend | None = None) -> Compliance:
+    """The compliance of ``problem``'s body (:meth:`~viscontact.bodies.base.Body.compliance`).
+
+    ``components``: the kernels to build; by default what the transient needs: ``zz``, ``xx`` for
+    partial slip, and the coupling ``xz``, ``zx`` when sliding with friction, nu < 0.5 and
+    ``solver.coupling``. The steady solver asks for ``("zz",)`` (it builds its own kernels).
+
+    ``backend``: where the fields live (:mod:`viscontact.numerics.arrays`); None: that of ``solver.device``.
+    """
+    backend = backend or array_backend(problem.solver.device)
+    if components is None:
+        nu = problem.material.poisson_ratio
+        mode = problem.tangential.mode
+        components = ["zz"] + (["xx"] if mode == "partial_slip" else [])
+        if nu < 0.5 and problem.solver.coupling and mode in ("partial_slip", "gross_sliding"):
+            components += ["xz", "zx"]
+    solver = problem.solver
+    return problem.body.compliance(problem.grid, components, problem.time.scheme, problem.time.dt,
+                                   workers=solver.workers, direct=solver.history == "direct", fft=solver.fft,
+                                   backend=backend)

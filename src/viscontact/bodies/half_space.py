@@ -2,7 +2,7 @@
 coefficient (Boussinesq-Cerruti, Love 1929) times the shear creep compliance J(t).
 
 :class:`HomogeneousHalfSpace` is the body (:class:`~viscontact.bodies.base.Body`), :class:`HalfSpace`
-its compliance (a :class:`~viscontact.bodies.compliance.TermSubstrate`).
+its compliance (a :class:`~viscontact.bodies.compliance.Compliance`).
 """
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from viscontact.bodies.compliance import COMPONENT_ORDER, Term, TermSubstrate, grid_transforms, ordered_components
+from viscontact.bodies.compliance import COMPONENT_ORDER, Term, Compliance, grid_transforms, ordered_components
 from viscontact.numerics.arrays import CPU, ArrayBackend
 from viscontact.numerics.convolution import Convolver, FourierPreconditioner
 from viscontact.numerics.exponentials import CreepSpectrum, complex_compliance
@@ -27,7 +27,7 @@ from viscontact.physics.steady_kernels import SteadyKernelBuilder
 Array = np.ndarray
 
 
-class HalfSpace(TermSubstrate):
+class HalfSpace(Compliance):
     """Homogeneous viscoelastic half-space with constant Poisson ratio (kernels x J(t)).
 
     Terms ``zz``, ``zx`` (u_z of p, q_x) and ``xz``, ``xx`` (u_x), the kernels of
@@ -48,7 +48,7 @@ class HalfSpace(TermSubstrate):
         DC-FFT transforms by backend name (:func:`~viscontact.numerics.fftbackends.dcfft_transforms`; on a device
         ``backend``, its own FFT module's zero-block transforms).
     grid, scheme, dt, direct, backend
-        As for :class:`TermSubstrate`.
+        As for :class:`Compliance`.
     """
 
     ORDER = COMPONENT_ORDER

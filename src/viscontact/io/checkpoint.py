@@ -153,7 +153,7 @@ def state_arrays(state: State, backend: ArrayBackend = CPU) -> dict[str, np.ndar
 
 
 #: the part of a state that a device run keeps on the host: the wake's columns
-#: (:meth:`~viscontact.bodies.compliance.TermSubstrate.shifted` copies the dropped history there)
+#: (:meth:`~viscontact.bodies.compliance.Compliance.shifted` copies the dropped history there)
 _HOST_PART = f"{_ROOT}.wake."
 
 

@@ -18,7 +18,7 @@ from viscontact.solvers import transient
 def observed_steps(problem: Problem, observers: Sequence[Observer], *, start: Any = None,
                    progress: Callable[[int, int], None] | None = None,
                    should_stop: Callable[[], str | None] | None = None,
-                   substrate: Any = None) -> Iterator[tuple[Any, StepRecord]]:
+                   compliance: Any = None) -> Iterator[tuple[Any, StepRecord]]:
     """The run: each (state, record) of :func:`viscontact.solvers.transient.steps` handed to the
     ``observers`` (:mod:`viscontact.running.observers`) and then yielded; stops cleanly with
     :class:`~viscontact.errors.RunInterrupted` when one of them (or ``should_stop``) asks, and tells
@@ -30,7 +30,7 @@ def observed_steps(problem: Problem, observers: Sequence[Observer], *, start: An
         What to solve.
     observers
         Told of every step (:meth:`~viscontact.running.observers.Observer.on_step`), of a stop and of the end.
-    start, substrate
+    start, compliance
         Resume from a state (a checkpoint's) / reuse a body's compliance.
     progress
         Called as ``progress(steps_done, steps_total)`` after each step.
@@ -44,7 +44,7 @@ def observed_steps(problem: Problem, observers: Sequence[Observer], *, start: An
     if should_stop is not None:
         observers = [*observers, StopRequest(should_stop)]
     state = start
-    run = transient.steps(problem, progress=progress, state=start, substrate=substrate)
+    run = transient.steps(problem, progress=progress, state=start, compliance=compliance)
     while True:
         try:
             state, record = next(run)
@@ -70,7 +70,7 @@ def drive(problem: Problem, observers: Sequence[Observer], *, start: Any = None,
 
 
 def simulate(problem: Problem, *, progress: Callable[[int, int], None] | None = None,
-             state: Any = None, substrate: Any = None) -> Iterator[StepRecord]:
+             state: Any = None, compliance: Any = None) -> Iterator[StepRecord]:
     """Run the transient and yield the records the output settings keep (every ``output.every``
     steps, the last and the histories' turning points, with the ``output.fields``), warning about a
     biasing wake (:class:`~viscontact.running.observers.WakeWarning`) and a contact growing under the
@@ -81,7 +81,7 @@ def simulate(problem: Problem, *, progress: Callable[[int, int], None] | None = 
     recorder = Recorder(problem)
     observers = [WakeWarning(), ContactGrowthWarning(problem)]
     record = kept = None
-    for _, record in observed_steps(problem, observers, start=state, progress=progress, substrate=substrate):
+    for _, record in observed_steps(problem, observers, start=state, progress=progress, compliance=compliance):
         kept = recorder.kept(record)
         if kept is not None:
             yield kept

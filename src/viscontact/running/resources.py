@@ -190,7 +190,7 @@ def estimate(problem: Problem, *, topography: bool | None = None, transform: flo
     kernels = per_component * (4 if problem.tangential.mode in ("partial_slip", "gross_sliding") else 1)
     # carried by the state of a DC-FFT grid: the warm start's two products and, for a body of one
     # kernel per component, the response history (M + 1 fields,
-    # :meth:`viscontact.bodies.compliance.TermSubstrate.initial_response`)
+    # :meth:`viscontact.bodies.compliance.Compliance.initial_response`)
     from viscontact.bodies.compliance import RESPONSE_MODES
 
     response = modes + 1 if per_component == 1 and modes <= RESPONSE_MODES else 0

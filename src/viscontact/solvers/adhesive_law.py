@@ -50,7 +50,7 @@ class AdhesiveNormal(ContactLaw):
               product: np.ndarray | None) -> StepSolution:
         problem, settings = ctx.problem, ctx.problem.solver
         adhesion = problem.adhesion
-        op = ctx.substrate.elastic_operator("z", ctx.first)
+        op = ctx.compliance.elastic_operator("z", ctx.first)
         known = ctx.gap + ctx.known_uz
         zone = ctx.interaction
         control = problem.normal.control

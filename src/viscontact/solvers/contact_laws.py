@@ -15,7 +15,7 @@ with the instantaneous compliance J_inst plus the known hereditary displacement 
 How a law is chosen from the problem (the one place: change it here, nowhere else): the tangential
 mode gives the first phase (:func:`first_phase`), the phase gives the law's name
 (:data:`PHASE_LAWS`, :func:`law_name`), the name gives the class (:func:`get_contact_law`) and the
-class builds the step's law from the problem and the substrate (:meth:`ContactLaw.for_problem`;
+class builds the step's law from the problem and the compliance (:meth:`ContactLaw.for_problem`;
 :func:`contact_law` does all of it). Phases change in the stepper (partial slip turns into gross
 sliding when the stick zone of a contact vanishes).
 
@@ -36,7 +36,7 @@ and its entry in :func:`law_name` (or :data:`PHASE_LAWS`). What it implements:
 * :meth:`ContactLaw.solve` (required): one pass from the iterate (p, q) given the step's
   :class:`StepContext`, returning a :class:`StepSolution` (its ``iterations`` those of this pass);
 * :meth:`ContactLaw.for_problem` (optional): the law's parameters from the problem (default: mu_f
-  and whether the substrate couples the normal and tangential components);
+  and whether the compliance couples the normal and tangential components);
 * :meth:`ContactLaw.finish` (optional): the converged solution completed (default: as it is);
 * :meth:`ContactLaw.stuck` (optional): the stuck points of a solution (default: none);
 * ``solve_direct(ctx, pressure)`` (optional): a direct solve of a step whose coupling is too strong
@@ -45,7 +45,7 @@ and its entry in :func:`law_name` (or :data:`PHASE_LAWS`). What it implements:
 A law holds only its parameters (a frozen dataclass, built anew each step): what carries over from
 step to step is in :class:`viscontact.solvers.transient.State` and reaches the law through the
 :class:`StepContext` (e.g. the incremental slip ``slip_x``). A line contact is a body and a grid
-(:mod:`viscontact.bodies`), not a law: the laws see the body through the substrate only.
+(:mod:`viscontact.bodies`), not a law: the laws see the body through the compliance only.
 """
 from __future__ import annotations
 
@@ -54,7 +54,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from viscontact.bodies.compliance import TermSubstrate
+from viscontact.bodies.compliance import Compliance
 from viscontact.errors import ParameterError
 from viscontact.numerics.support_window import windowed_bounded_cg, windowed_cg
 from viscontact.problem.problem import (
@@ -76,12 +76,12 @@ class StepContext:
 
     Attributes
     ----------
-    problem, substrate
-        What is solved, and the body's operators (:class:`~viscontact.bodies.compliance.TermSubstrate`).
+    problem, compliance
+        What is solved, and the body's operators (:class:`~viscontact.bodies.compliance.Compliance`).
     k, t, first
         Step index, time [s] and whether it is the step at t = 0.
     gap
-        Undeformed gap at the frame offset [m], on the substrate's device.
+        Undeformed gap at the frame offset [m], on the compliance's device.
     known_uz, known_ux
         History displacement [m] (seed Eq. 5 without the step's own increment); ``known_ux`` only
         for a law that solves the shear (:attr:`ContactLaw.solves_shear`), else None.
@@ -97,7 +97,7 @@ class StepContext:
     """
 
     problem: Problem
-    substrate: TermSubstrate
+    compliance: Compliance
     k: int
     t: float
     first: bool
@@ -160,11 +160,11 @@ class ContactLaw:
     label: str = ""
 
     @classmethod
-    def for_problem(cls, problem: Problem, substrate: TermSubstrate, phase: int) -> ContactLaw:
+    def for_problem(cls, problem: Problem, compliance: Compliance, phase: int) -> ContactLaw:
         """The law of a step of ``phase`` of ``problem``: mu_f the mode's effective friction, coupled
-        where the substrate couples the components and mu_f > 0."""
+        where the compliance couples the components and mu_f > 0."""
         mu = problem.tangential.effective_friction
-        return cls(mu, substrate.has_coupling() and mu > 0, PHASE_NAMES.get(phase, cls.name))
+        return cls(mu, compliance.has_coupling() and mu > 0, PHASE_NAMES.get(phase, cls.name))
 
     def solve(self, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray,
               product: np.ndarray | None) -> StepSolution:
@@ -234,10 +234,10 @@ def law_name(problem: Problem, phase: int) -> str:
     return PHASE_LAWS[phase]
 
 
-def contact_law(problem: Problem, substrate: TermSubstrate, phase: int) -> ContactLaw:
-    """The contact law of a step of ``phase`` of ``problem`` on ``substrate``, built from the
+def contact_law(problem: Problem, compliance: Compliance, phase: int) -> ContactLaw:
+    """The contact law of a step of ``phase`` of ``problem`` on ``compliance``, built from the
     problem (:func:`law_name`, :func:`get_contact_law`, :meth:`ContactLaw.for_problem`)."""
-    return get_contact_law(law_name(problem, phase)).for_problem(problem, substrate, phase)
+    return get_contact_law(law_name(problem, phase)).for_problem(problem, compliance, phase)
 
 
 def solve_normal(ctx: StepContext, known_uz: np.ndarray, warm: np.ndarray, warm_product: np.ndarray | None
@@ -262,7 +262,7 @@ def solve_normal(ctx: StepContext, known_uz: np.ndarray, warm: np.ndarray, warm_
         the pressure [m] or None).
     """
     problem, s, gap = ctx.problem, ctx.problem.solver, ctx.gap
-    op = ctx.substrate.elastic_operator("z", ctx.first)
+    op = ctx.compliance.elastic_operator("z", ctx.first)
     if problem.normal.control == "load":
         sol = windowed_cg(op, -(gap + known_uz), warm, total=ctx.value, cell_area=problem.grid.cell_area,
                           tolerance=s.tolerance, max_iterations=s.max_iterations, what="normal contact (load control)",
@@ -291,7 +291,7 @@ class NormalContact(ContactLaw):
     name: ClassVar[str] = "normal_contact"
 
     def solve(self, ctx, pressure, shear, product):
-        cross = ctx.substrate.cross_displacement("z", "x", pressure, ctx.first, self.friction) if self.coupled else None
+        cross = ctx.compliance.cross_displacement("z", "x", pressure, ctx.first, self.friction) if self.coupled else None
         p, delta_z, its, u_z, product = solve_normal(ctx, _plus(ctx.known_uz, cross), pressure, product)
         return StepSolution(p, self.friction * p if self.friction else np.zeros_like(p), float(delta_z), u_z, its,
                             pressure_product=product)
@@ -304,7 +304,7 @@ class NormalContact(ContactLaw):
         its ``pressure_product`` K_zz p [m]."""
         from viscontact.numerics.active_set import solve_contact_active_set
 
-        problem, s, sub = ctx.problem, ctx.problem.solver, ctx.substrate
+        problem, s, sub = ctx.problem, ctx.problem.solver, ctx.compliance
         op = sub.elastic_operator("z", ctx.first)
 
         def apply_k(p: np.ndarray) -> np.ndarray:
@@ -333,7 +333,7 @@ class PartialSlip(ContactLaw):
     change of s, zero where stuck (a stuck point keeps its slip) and opposed to q where slipping
     (Mindlin-Deresiewicz); with nothing entering the contact and a monotonic loading both give the
     same solution. ``free_mean``: a uniform shear is in the null space of the tangential operator
-    (:meth:`~viscontact.bodies.compliance.TermSubstrate.free_mean`), so a contact over every cell is
+    (:meth:`~viscontact.bodies.compliance.Compliance.free_mean`), so a contact over every cell is
     refused (:func:`check_not_full_contact`)."""
 
     name: ClassVar[str] = "partial_slip"
@@ -342,12 +342,12 @@ class PartialSlip(ContactLaw):
     free_mean: bool = False
 
     @classmethod
-    def for_problem(cls, problem, substrate, phase):
-        law = super().for_problem(problem, substrate, phase)
-        return replace(law, free_mean=substrate.free_mean("x"))
+    def for_problem(cls, problem, compliance, phase):
+        law = super().for_problem(problem, compliance, phase)
+        return replace(law, free_mean=compliance.free_mean("x"))
 
     def solve(self, ctx, pressure, shear, product):
-        sub, s = ctx.substrate, ctx.problem.solver
+        sub, s = ctx.compliance, ctx.problem.solver
         cross_z = sub.cross_displacement("z", "x", shear, ctx.first) if self.coupled else None
         p, delta_z, it_n, u_z, product = solve_normal(ctx, _plus(ctx.known_uz, cross_z), pressure, product)
         if self.free_mean:
@@ -368,7 +368,7 @@ class PartialSlip(ContactLaw):
         if not self.coupled:
             return solution
         # the last tangential update changed the coupling term of u_z: recompute it
-        u_z = ctx.substrate.instantaneous_displacement({"z": solution.pressure, "x": solution.shear_x}, ctx.first)
+        u_z = ctx.compliance.instantaneous_displacement({"z": solution.pressure, "x": solution.shear_x}, ctx.first)
         return replace(solution, displacement_z=u_z + ctx.known_uz)
 
     def stuck(self, pressure, shear):

@@ -11,7 +11,7 @@ i.e. a convolution with the *effective steady kernel*
     K(d) = J_0 IC(d) + sum_m J_m F_m(d),   F_m(d) = int_0^inf exp(-xi/L_m)/L_m IC(d + xi) dxi.
 
 F_m integrates the whole past of the material, far beyond the grid, so only the contact needs to
-be on the grid (no wake truncation). It is built once per speed by the substrate
+be on the grid (no wake truncation). It is built once per speed by the compliance
 (:meth:`viscontact.bodies.half_space.HalfSpace.steady_convolver`, all modes in one pass by
 :mod:`viscontact.physics.steady_kernels`).
 
@@ -35,7 +35,7 @@ What makes it fast:
 
 For gross sliding (q_x = mu_f p) the operator is K_zz + mu_f K_zx.
 
-The fields are those of the substrate's array backend (:mod:`viscontact.numerics.arrays`); the record comes
+The fields are those of the compliance's array backend (:mod:`viscontact.numerics.arrays`); the record comes
 back to the host, measured by :func:`viscontact.solvers.measure.measure` as a transient step is.
 """
 from __future__ import annotations
@@ -45,8 +45,8 @@ from typing import Sequence
 
 import numpy as np
 
-from viscontact.bodies.body import substrate_for
-from viscontact.bodies.compliance import TermSubstrate
+from viscontact.bodies.compliance import compliance_of
+from viscontact.bodies.compliance import Compliance
 from viscontact.errors import ParameterError
 from viscontact.numerics.active_set import solve_contact_active_set
 from viscontact.numerics.convolution import Convolver, FourierPreconditioner
@@ -57,13 +57,13 @@ from viscontact.solvers.measure import measure
 from viscontact.solvers.sliding import check_speed
 
 
-def steady_convolver(problem: Problem, speed: float, substrate: TermSubstrate | None = None
+def steady_convolver(problem: Problem, speed: float, compliance: Compliance | None = None
                      ) -> tuple[Convolver, dict[str, np.ndarray]]:
-    """The substrate's effective steady kernels at ``speed`` [m/s] (``zz``, and ``zx`` when sliding with
+    """The compliance's effective steady kernels at ``speed`` [m/s] (``zz``, and ``zx`` when sliding with
     friction and coupling): ``apply("zz", p)`` is u_z [m] of the pressure p [Pa]."""
     components = steady_components(problem)
-    substrate = substrate or substrate_for(problem, components)
-    return substrate.steady_convolver(speed, components)
+    compliance = compliance or compliance_of(problem, components)
+    return compliance.steady_convolver(speed, components)
 
 
 def steady_components(problem: Problem) -> list[str]:
@@ -74,17 +74,17 @@ def steady_components(problem: Problem) -> list[str]:
     return ["zz"] + (["zx"] if coupled else [])
 
 
-def steady_preconditioner(substrate: TermSubstrate, kernels: dict[str, np.ndarray], speed: float,
+def steady_preconditioner(compliance: Compliance, kernels: dict[str, np.ndarray], speed: float,
                           workers: int = -1, symmetric: bool = False) -> FourierPreconditioner:
     """Fourier preconditioner of the steady operator K_zz [m/Pa] at ``speed`` [m/s]: the compliance's
     own where it knows the operator's symbol
-    (:meth:`~viscontact.bodies.compliance.TermSubstrate.steady_preconditioner`: the
+    (:meth:`~viscontact.bodies.compliance.Compliance.steady_preconditioner`: the
     :class:`~viscontact.bodies.half_space.HalfSpace`'s, with the phase of the viscous lag: 2.5-3x fewer
     GMRES iterations), else the symmetric part of the wrapped effective kernel (|Re K^|)."""
-    known = substrate.steady_preconditioner(speed, workers, symmetric)
+    known = compliance.steady_preconditioner(speed, workers, symmetric)
     if known is not None:
         return known
-    return FourierPreconditioner.for_kernel(substrate.backend.to_device(kernels["zz"]), 1.0, workers, fft=substrate.fft)
+    return FourierPreconditioner.for_kernel(compliance.backend.to_device(kernels["zz"]), 1.0, workers, fft=compliance.fft)
 
 
 def _symmetric_guess(conv: Convolver, problem: Problem, value: float, coupled: bool, mu: float,
@@ -176,7 +176,7 @@ def check_steady(problem: Problem, speed: float | None = None) -> None:
 
 
 def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.ndarray | None = None,
-                 substrate: TermSubstrate | None = None) -> StepRecord:
+                 compliance: Compliance | None = None) -> StepRecord:
     """Steady state of sliding at ``speed`` [m/s] (default: the problem's sliding speed).
 
     Frictionless (``frictionless_sliding``) or with q_x = mu_f p (``gross_sliding``,
@@ -193,23 +193,23 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
     mu = problem.tangential.effective_friction if problem.tangential.mode != "none" else 0.0
     value = problem.normal.history(problem.time.t_end)
     tolerance = min(problem.solver.tolerance, 1e-10)
-    substrate = substrate or substrate_for(problem, steady_components(problem))
-    backend = substrate.backend
+    compliance = compliance or compliance_of(problem, steady_components(problem))
+    backend = compliance.backend
     if initial is not None:
         initial = backend.to_device(initial)
     if grid.periodic:
         from viscontact.solvers.steady_periodic import solve_periodic_steady
 
-        state = solve_periodic_steady(substrate.convolver, problem.material, grid, problem.gap,
+        state = solve_periodic_steady(compliance.convolver, problem.material, grid, problem.gap,
                                       speed=v, control=problem.normal.control, value=value, friction=mu,
                                       initial=initial, tolerance=tolerance,
                                       max_iterations=problem.solver.max_iterations,
-                                      spectrum=substrate.steady_spectrum(v, mu), to_host=backend.to_host)
+                                      spectrum=compliance.steady_spectrum(v, mu), to_host=backend.to_host)
         p, delta, krylov, u_z = state.pressure, state.delta_z, state.iterations, state.displacement_z
     else:
-        conv, kernels = steady_convolver(problem, v, substrate)
+        conv, kernels = steady_convolver(problem, v, compliance)
         coupled = "zx" in conv.spectra
-        precondition = steady_preconditioner(substrate, kernels, v, problem.solver.workers)
+        precondition = steady_preconditioner(compliance, kernels, v, problem.solver.workers)
 
         def apply_k(p: np.ndarray) -> np.ndarray:
             return conv.combine([("zz", 1.0, p)] + ([("zx", mu, p)] if coupled else []))
@@ -218,7 +218,7 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
             initial = backend.to_device(coarse_start(problem, v))
         elif initial is None:
             initial = _symmetric_guess(conv, problem, value, coupled, mu,
-                                       steady_preconditioner(substrate, kernels, v, problem.solver.workers, True))
+                                       steady_preconditioner(compliance, kernels, v, problem.solver.workers, True))
         p, delta, krylov, _ = solve_contact_active_set(apply_k, backend.to_device(problem.gap),
                                                        control=problem.normal.control, value=value,
                                                        cell_area=grid.cell_area, initial=initial, tolerance=tolerance,
@@ -232,12 +232,12 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
 
 def speed_sweep(problem: Problem, speeds: Sequence[float]) -> list[StepRecord]:
     """Steady states at each speed [m/s], in the given order, each warm-started from the previous;
-    one substrate serves them all (its kernel builder keeps what does not depend on the speed)."""
+    one compliance serves them all (its kernel builder keeps what does not depend on the speed)."""
     out: list[StepRecord] = []
     previous = None
-    substrate = substrate_for(problem, steady_components(problem))
+    compliance = compliance_of(problem, steady_components(problem))
     for v in speeds:
-        rec = solve_steady(problem, v, initial=previous, substrate=substrate)
+        rec = solve_steady(problem, v, initial=previous, compliance=compliance)
         previous = rec.pressure
         out.append(rec)
     return out

@@ -112,7 +112,7 @@ def solve_periodic_steady(conv: PeriodicConvolver, material: Material, grid: Gri
         Pressure to start the active set from (e.g. the previous speed's).
     spectrum
         The steady operator's spectrum when the body is not the half-space of ``material``
-        (:meth:`viscontact.bodies.compliance.TermSubstrate.steady_spectrum`; ``material`` is then not used).
+        (:meth:`viscontact.bodies.compliance.Compliance.steady_spectrum`; ``material`` is then not used).
     to_host
         The array backend's copy to the host (:mod:`viscontact.numerics.arrays`) for the fields returned, when
         ``conv`` holds device fields.

@@ -30,8 +30,8 @@ from typing import Callable, Generator
 
 import numpy as np
 
-from viscontact.bodies.body import substrate_for
-from viscontact.bodies.compliance import TermSubstrate
+from viscontact.bodies.compliance import compliance_of
+from viscontact.bodies.compliance import Compliance
 from viscontact.errors import ParameterError
 from viscontact.numerics.adhesive import NoEquilibriumError
 from viscontact.numerics.allocator import tune_allocator
@@ -76,8 +76,8 @@ class State:
         costs no transform (:func:`_warm_start`).
     response
         The normal history in displacement space, which gives the history displacement without a
-        transform (:meth:`~viscontact.bodies.compliance.TermSubstrate.initial_response`); None where the
-        substrate has none, from the first frame shift on, and from the first partial-slip step on.
+        transform (:meth:`~viscontact.bodies.compliance.Compliance.initial_response`); None where the
+        compliance has none, from the first frame shift on, and from the first partial-slip step on.
     substep
         Steps since the last frame shift (0 .. steps_per_cell - 1).
     t_gross_sliding
@@ -133,17 +133,17 @@ class State:
     t_pull_off: float | None = None
 
 
-def init(problem: Problem, substrate: TermSubstrate | None = None) -> State:
+def init(problem: Problem, compliance: Compliance | None = None) -> State:
     """State before the first step (t = 0 is solved by the first call of :func:`step`)."""
     validate(problem)
-    substrate = substrate or substrate_for(problem)
-    n, xp = problem.grid.n, substrate.xp
+    compliance = compliance or compliance_of(problem)
+    n, xp = problem.grid.n, compliance.xp
     phase = first_phase(problem.tangential)
     return State(step=-1, t=-problem.time.dt, phase=phase, pressure=xp.zeros((n, n)),
-                 shear_x=xp.zeros((n, n)), histories=substrate.initial_histories(),
+                 shear_x=xp.zeros((n, n)), histories=compliance.initial_histories(),
                  pressure_previous=xp.zeros((n, n)), shear_previous=xp.zeros((n, n)),
                  t_gross_sliding=0.0 if phase == PHASE_GROSS_SLIDING else None,
-                 response=substrate.initial_response(),
+                 response=compliance.initial_response(),
                  slip_x=xp.zeros((n, n)) if problem.tangential.incremental_slip else None)
 
 
@@ -195,7 +195,7 @@ def gross_slip_under_history(t: float, delta_x: float, force: float, load: float
 WARM_CLIP_POINTS = 24
 
 
-def _warm_start(substrate: TermSubstrate, state: State, k: int) -> tuple[np.ndarray, np.ndarray | None]:
+def _warm_start(compliance: Compliance, state: State, k: int) -> tuple[np.ndarray, np.ndarray | None]:
     """The warm start of step ``k``'s pressure [Pa]: the linear extrapolation of the last two steps
     (frame fields) clipped at 0, or the last pressure at k <= 1; and the step's normal operator
     applied to it [m] where the state's products give it (J_inst K is linear: 2 K p_-1 - K p_-2, plus
@@ -212,11 +212,11 @@ def _warm_start(substrate: TermSubstrate, state: State, k: int) -> tuple[np.ndar
         return warm, None
     product = 2.0 * state.pressure_product - state.pressure_product_previous
     if points:
-        product += substrate.elastic_operator("z", False).apply_sparse(clipped)
+        product += compliance.elastic_operator("z", False).apply_sparse(clipped)
     return warm, product
 
 
-def _advance_frame(problem: Problem, substrate: TermSubstrate, state: State, k: int, t: float) -> State:
+def _advance_frame(problem: Problem, compliance: Compliance, state: State, k: int, t: float) -> State:
     """The state with the frame moved (gross sliding after the step at which it began: v dt per
     step, the history shifted by a cell every steps_per_cell steps) or delta_x ramped or following its
     history (partial slip)."""
@@ -226,10 +226,10 @@ def _advance_frame(problem: Problem, substrate: TermSubstrate, state: State, k: 
         histories, wake, substep = state.histories, state.wake, state.substep + 1
         if substep == tan.steps_per_cell:
             substep = 0
-            histories, dropped = substrate.shifted(histories, 1)
-            if substrate.normal_history in dropped:
-                wake = wake.dropped(dropped[substrate.normal_history])
-        wake = wake.ticked(substrate.responses[substrate.normal_history], dt)
+            histories, dropped = compliance.shifted(histories, 1)
+            if compliance.normal_history in dropped:
+                wake = wake.dropped(dropped[compliance.normal_history])
+        wake = wake.ticked(compliance.responses[compliance.normal_history], dt)
         return replace(state, sliding_distance=state.sliding_distance + tan.sliding_speed * dt,
                        delta_x=state.delta_x + tan.sliding_speed * dt, substep=substep, histories=histories,
                        wake=wake, response=state.response if histories is state.histories else None)
@@ -238,10 +238,10 @@ def _advance_frame(problem: Problem, substrate: TermSubstrate, state: State, k: 
     return state
 
 
-def step(problem: Problem, substrate: TermSubstrate, state: State,
+def step(problem: Problem, compliance: Compliance, state: State,
          frame_gaps: FrameGaps | None = None) -> tuple[State, StepRecord]:
     """Advance ``state`` by one time step; returns the new state and the step's record (``state``
-    itself is left as it was). ``frame_gaps``: the gap's arrays on the substrate's device
+    itself is left as it was). ``frame_gaps``: the gap's arrays on the compliance's device
     (:meth:`~viscontact.problem.problem.Problem.frame_gaps`; :func:`steps` moves them there once), else moved
     for this step."""
     grid, tan = problem.grid, problem.tangential
@@ -250,19 +250,19 @@ def step(problem: Problem, substrate: TermSubstrate, state: State,
     first = k == 0
     mu = tan.effective_friction
 
-    state = _advance_frame(problem, substrate, state, k, t)
+    state = _advance_frame(problem, compliance, state, k, t)
     offset = state.substep * grid.spacing / tan.steps_per_cell if tan.slides else 0.0
-    law = contact_law(problem, substrate, state.phase)
+    law = contact_law(problem, compliance, state.phase)
     if law.solves_shear and state.response is not None:
         # partial slip needs u_x of the traction history anyway, and ends in sliding, whose first
         # frame shift would drop the response history: it is not kept up
         state = replace(state, response=None)
     if state.response is not None:
-        known_uz, known_ux = substrate.known_from_response(state.response, t, first), None
+        known_uz, known_ux = compliance.known_from_response(state.response, t, first), None
     else:
-        known_uz, known_ux = substrate.known_displacement(state.histories, t, first, need_x=law.solves_shear)
+        known_uz, known_ux = compliance.known_displacement(state.histories, t, first, need_x=law.solves_shear)
     gap = problem.frame_gap(offset)  # on the host, for the record
-    backend = substrate.backend
+    backend = compliance.backend
     if backend.is_cpu:
         device_gap = gap
     else:
@@ -271,12 +271,12 @@ def step(problem: Problem, substrate: TermSubstrate, state: State,
     # step, when the last one had none); incremental slip: they keep the slip of the last step
     origin = state.delta_x if state.slip_origin is None else state.slip_origin
     incremental = law.solves_shear and state.slip_x is not None
-    ctx = StepContext(problem, substrate, k, t, first, device_gap, known_uz, known_ux,
+    ctx = StepContext(problem, compliance, k, t, first, device_gap, known_uz, known_ux,
                       problem.normal.history(t), state.delta_x if incremental else state.delta_x - origin,
                       state.slip_x if incremental else None, state.interaction)
     adhesive = problem.adhesion is not None
     # adhesion: the last pressure (its tensions kept: the extrapolation is clipped at 0) and zone
-    p0, p0_product = (state.pressure, None) if adhesive else _warm_start(substrate, state, k)
+    p0, p0_product = (state.pressure, None) if adhesive else _warm_start(compliance, state, k)
     q0 = 2.0 * state.shear_x - state.shear_previous if k > 1 else state.shear_x
     sol = solve_coupled(law, ctx, p0, q0, p0_product)
     p, q = sol.pressure, sol.shear_x
@@ -302,13 +302,13 @@ def step(problem: Problem, substrate: TermSubstrate, state: State,
         slip_x = np.where(law.stuck(p, q), state.slip_x, state.slip_x + sol.slip)
     state = replace(state, step=k, t=t, phase=phase, t_gross_sliding=t_gross,
                     slip_origin=origin if n_contact else None, slip_x=slip_x,
-                    histories=substrate.advanced(state.histories, {"z": p, "x": q}, t, first),
+                    histories=compliance.advanced(state.histories, {"z": p, "x": q}, t, first),
                     pressure_previous=state.pressure, shear_previous=state.shear_x,
                     pressure=p, shear_x=q, delta_z=sol.delta_z,
                     pressure_product_previous=state.pressure_product,
                     pressure_product=None if first else sol.pressure_product,
                     response=None if state.response is None else
-                    substrate.advanced_response(state.response, p, sol.pressure_product, t, first))
+                    compliance.advanced_response(state.response, p, sol.pressure_product, t, first))
     interaction = None if sol.interaction is None else to_host(sol.interaction)
 
     # -- record
@@ -320,17 +320,17 @@ def step(problem: Problem, substrate: TermSubstrate, state: State,
         state = replace(state, interaction=sol.interaction)
         if record.load < state.most_tensile_load:
             state = replace(state, most_tensile_load=record.load, t_most_tensile=t)
-    return state, replace(record, wake_loss=_wake_loss(problem, substrate, state, p_host, record.mu_app, sol.delta_z))
+    return state, replace(record, wake_loss=_wake_loss(problem, compliance, state, p_host, record.mu_app, sol.delta_z))
 
 
-def _wake_loss(problem: Problem, substrate: TermSubstrate, state: State, pressure: np.ndarray, mu_app: float,
+def _wake_loss(problem: Problem, compliance: Compliance, state: State, pressure: np.ndarray, mu_app: float,
                delta_z: float) -> float:
     """Estimated relative error of the result from the history dropped at the trailing edge:
     |d mu_app| / |mu_app| from the slope of the lost displacement, and under displacement control
     also the load error 3/2 u_lost / delta_z (W ~ delta^(3/2) for a sphere)."""
     if not state.wake.strips:
         return 0.0
-    u_lost, slope = state.wake.lost_displacement(substrate.responses[substrate.normal_history],
+    u_lost, slope = state.wake.lost_displacement(compliance.responses[compliance.normal_history],
                                                  problem.material.poisson_ratio, problem.grid, problem.time.dt,
                                                  pressure)
     err = abs(slope) / max(abs(mu_app), 1e-3)
@@ -340,7 +340,7 @@ def _wake_loss(problem: Problem, substrate: TermSubstrate, state: State, pressur
 
 
 def steps(problem: Problem, *, progress: Callable[[int, int], None] | None = None,
-          state: State | None = None, substrate: TermSubstrate | None = None
+          state: State | None = None, compliance: Compliance | None = None
           ) -> Generator[tuple[State, StepRecord], None, State | None]:
     """Run the transient one step at a time: yields (state after the step, its full record).
 
@@ -359,18 +359,18 @@ def steps(problem: Problem, *, progress: Callable[[int, int], None] | None = Non
         What to solve.
     progress
         Called as ``progress(steps_done, steps_total)`` after each step.
-    state, substrate
-        Resume from a state (e.g. a checkpoint) / reuse a substrate.
+    state, compliance
+        Resume from a state (e.g. a checkpoint) / reuse a compliance.
     """
     tune_allocator()  # reuse freed temporaries instead of faulting them in again (glibc; opt-out documented)
-    substrate = substrate or substrate_for(problem)
-    state = state or init(problem, substrate)
+    compliance = compliance or compliance_of(problem)
+    state = state or init(problem, compliance)
     total = problem.time.n_steps
-    # the gap on the substrate's device, moved there once (each step shifts it there)
-    frame_gaps = None if substrate.backend.is_cpu else problem.frame_gaps(substrate.backend.to_device)
+    # the gap on the compliance's device, moved there once (each step shifts it there)
+    frame_gaps = None if compliance.backend.is_cpu else problem.frame_gaps(compliance.backend.to_device)
     while state.step + 1 < total:
         try:
-            state, record = step(problem, substrate, state, frame_gaps)
+            state, record = step(problem, compliance, state, frame_gaps)
         except NoEquilibriumError:
             if problem.adhesion is None:
                 raise
