@@ -75,19 +75,17 @@ def _modules(packages: bool) -> list[str]:
                   and not any(part.startswith("_") for part in m.name.split(".")))
 
 
-#: the internals' sections, in the order of the layers (docs/architecture.md): title, package prefixes
-INTERNAL_SECTIONS = (
-    ("Foundation", ("viscontact.errors", "viscontact.version")),
-    ("Numerics", ("viscontact.numerics",)),
-    ("Physics", ("viscontact.physics",)),
-    ("Bodies", ("viscontact.bodies",)),
-    ("Problem", ("viscontact.problem",)),
-    ("Solvers", ("viscontact.solvers",)),
-    ("Files", ("viscontact.io",)),
-    ("Running", ("viscontact.running",)),
-    ("Plots", ("viscontact.plotting",)),
-    ("Edges: sweeps, reproductions, the command line", ("viscontact.sweep", "viscontact.reproduce", "viscontact.cli")),
-)
+def _layers() -> list[tuple[str, tuple[str, ...]]]:
+    """The internals' sections, in the order of the layers: (layer, package prefixes) of the layer table
+    of architecture.md (which ``tests/unit/test_architecture.py`` checks against the imports), the
+    package itself left out (its names are the public API)."""
+    table = (HERE / "architecture.md").read_text(encoding="utf-8").split("<!-- layer-table")[1]
+    rows = []
+    for line in table.split("<!-- /layer-table -->")[0].splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) >= 3 and cells[1].startswith("`") and cells[1] != "`viscontact`":
+            rows.append((cells[0], tuple(p.strip(" `") for p in cells[1].split(","))))
+    return rows
 
 
 def _write_api_page() -> None:
@@ -107,7 +105,7 @@ def _write_api_page() -> None:
     lines += ["", "Internals", "---------", "",
               "The modules behind the public API, by layer (:doc:`architecture`): for developers and for scripts",
               "that need more than the public names; they may change between releases.", ""]
-    for title, prefixes in INTERNAL_SECTIONS:
+    for title, prefixes in _layers():
         lines += [title, "~" * len(title), ""]
         # a package's page is its docstring (its modules have their own); a module's lists its members
         for packages, template in ((True, ["   :template: autosummary/package.rst"]), (False, [])):
