@@ -253,7 +253,7 @@ class BulkElasticHalfSpace(TermBody):
                 f"{bulk.poisson_ratio_instantaneous:.6g} (t = 0) to {bulk.poisson_ratio_long_term:.6g} (t = inf)")
 
     def contact_radius(self, load: float, sphere_radius: float, compliance_factor: float = 1.0) -> float:
-        """Hertz with G(0) and nu(0) (the material's ``poisson_ratio``), grown as ``compliance_factor``^(1/3)
+        """Hertz with G(0) and nu(0) (the material's ``poisson_ratio``), grown as ``compliance_factor`` to the power 1/3
         (:func:`~viscontact.bodies.half_space.hertz_radius`): as nu rises the normal compliance
         (1 - nu)/G creeps less than J(t), so this bounds the crept radius from above."""
         mat = self.material

@@ -163,7 +163,7 @@ class HomogeneousHalfSpace:
         return f"poisson_ratio = {self.material.poisson_ratio:g}"
 
     def contact_radius(self, load: float, sphere_radius: float, compliance_factor: float = 1.0) -> float:
-        """Hertz with G(0) and nu (:func:`hertz_radius`), grown by creep as ``compliance_factor``^(1/3)
+        """Hertz with G(0) and nu (:func:`hertz_radius`), grown by creep as ``compliance_factor`` to the power 1/3
         (Lee & Radok 1960)."""
         mat = self.material
         return hertz_radius(load, sphere_radius, mat.shear_modulus_instantaneous, mat.poisson_ratio,

@@ -37,6 +37,8 @@ def observed_steps(problem: Problem, observers: Sequence[Observer], *, start: An
     should_stop
         Asked after each step; a reason stops the run.
 
+    Notes
+    -----
     A run with adhesion under load control ends at the pull-off (the first step no equilibrium
     carries): the observers are told ``on_finish`` with the last equilibrium's state, whose
     ``t_pull_off`` is set (:func:`viscontact.solvers.transient.steps`).
