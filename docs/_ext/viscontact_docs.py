@@ -143,7 +143,9 @@ def key_table(model: type[BaseModel], prefix: str) -> list[str]:
     """reST list-table of the leaf keys of ``model`` (sub-sections are left to the caller)."""
     rows = [".. list-table::", "   :header-rows: 1", "   :widths: 22 20 9 12 12 25", "",
             "   * - key", "     - type", "     - unit", "     - default", "     - range", "     - description"]
-    for name, info in model.model_fields.items():
+    from viscontact.io.case import required_first
+
+    for name, info in required_first(model):  # required keys first (material.type)
         if _models_in(info.annotation):
             continue
         rows += [f"   * - ``{prefix}{name}``", f"     - {_cell(_type_name(info.annotation))}",

@@ -23,6 +23,8 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import json
+import re
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Annotated, Any, Callable, Literal
@@ -34,7 +36,7 @@ from pydantic.fields import FieldInfo
 
 from viscontact.bodies.bulk_elastic import BulkElasticMaterial
 from viscontact.bodies.registry import body_kind
-from viscontact.errors import ParameterError, check_type
+from viscontact.errors import ParameterError, check_type, warn_caller
 from viscontact.io.case_errors import closest, model_of, parameter_error
 from viscontact.io.prony_table import parse_prony_table
 from viscontact.io.safe_read import MAX_INPUT_BYTES, npy_layout, read_text_input, regular_input
@@ -57,7 +59,7 @@ from viscontact.problem.problem import (
 from viscontact.problem.records import StepRecord
 
 __all__ = ["FILE_KEYS", "MATERIALS", "MAX_GRID_N", "MAX_INPUT_BYTES", "MIN_GRID_N", "Case", "case_keys", "closest",
-           "load_case", "read_input_file"]
+           "load_case", "read_input_file", "required_first"]
 
 #: the case keys that name a file the case reads (:meth:`Case.input_files`)
 FILE_KEYS = ("material.file", "indenter.file")
@@ -303,7 +305,7 @@ class IndenterSection(_SelfAffineKeys):
       ``short_cutoff`` [m] and ``seed``: a periodic surface by Fourier synthesis;
     * ``shape = "topography"`` with ``file``: anything SurfaceTopography reads (x3p, opd, sur, di,
       NetCDF, plain text, ...), heights of the rigid surface z up, in the file's physical size and
-      units (``physical_size`` and ``unit`` for a file that gives none); ``resample = true``
+      units (``physical_size_m`` [m] and ``unit`` for a file that gives none); ``resample = true``
       interpolates it onto the grid.
 
     Files are relative to the case file's folder.
@@ -314,16 +316,22 @@ class IndenterSection(_SelfAffineKeys):
         "a generated self-affine surface, or a measured topography file")
     radius: float | None = _num(None, unit="m", gt=0, description="sphere radius R; required with shape = 'sphere'")
     file: str | None = Field(None, description="with shape = 'surface': .npy of the undeformed gap h0 [m], "
-                             "(grid.n, grid.n), indexed [y, x], its lowest point touching first; with shape = "
+                             "(grid.n, grid.n), indexed [y, x], its lowest point touching first, h0[j, i] the gap "
+                             "at the cell centre (x_i, y_j), x_i = y_i = -half_width + (i + 1/2) dx, dx = "
+                             "2 half_width / n (numerics.grid.Grid.x); with shape = "
                              "'topography': any file SurfaceTopography reads that carries its physical size and "
                              "unit, heights z up (highest point touching first); relative to the case file's folder")
     resample: bool | None = Field(None, description="with shape = 'topography': interpolate the file onto the grid")
+    physical_size_m: list[Annotated[float, Field(gt=0, allow_inf_nan=False)]] | None = Field(
+        None, min_length=2, max_length=2, json_schema_extra={"unit": "m"},
+        description="with shape = 'topography': [width, height] [m] of a file that does not give its size (a "
+        ".npy, a text matrix without header); needs indenter.unit, the unit of the file's heights")
     physical_size: list[Annotated[float, Field(gt=0, allow_inf_nan=False)]] | None = Field(
-        None, min_length=2, max_length=2, description="with shape = 'topography': [width, height] of a file that "
-        "does not give its size (a .npy, a text matrix without header), in indenter.unit")
+        None, min_length=2, max_length=2, description="deprecated (warns): [width, height] in indenter.unit, "
+        "not SI; use indenter.physical_size_m (metres)")
     unit: Literal["m", "mm", "um", "nm"] | None = Field(
-        None, description="with shape = 'topography': the length unit of the heights (and of physical_size) of a "
-        "file that does not give it")
+        None, description="with shape = 'topography': the length unit of the heights of a file that does not "
+        "give it (and of the deprecated physical_size)")
     roughness: RoughnessSection | None = Field(None, description="with shape = 'sphere': self-affine roughness "
                                                "([indenter.roughness], the self-affine keys)")
 
@@ -340,19 +348,47 @@ class IndenterSection(_SelfAffineKeys):
             if getattr(self, key) is None:
                 what = "> 0 m" if key == "radius" else "a file name"
                 raise ParameterError(f"indenter.{key}", f"required for shape = '{shape}' ({what})")
-        for key in ("radius", "file", "resample", "physical_size", "unit", "roughness", *_SELF_AFFINE_KEYS):
+        for key in ("radius", "file", "resample", "physical_size", "physical_size_m", "unit", "roughness",
+                    *_SELF_AFFINE_KEYS):
             if getattr(self, key) is not None and key not in _ALLOWED[shape]:
                 owners = " or ".join(repr(s) for s, keys in _ALLOWED.items() if key in keys)
                 raise ParameterError(f"indenter.{key}", f"only with shape = {owners}")
         if shape == "self_affine":
             self._check_self_affine("indenter")
+        if self.physical_size_m is not None and self.physical_size is not None:
+            raise ParameterError("indenter.physical_size", "give indenter.physical_size_m (metres) only: "
+                                 "physical_size (in indenter.unit) is its deprecated form")
+        if self.physical_size_m is not None and self.unit is None:
+            raise ParameterError("indenter.unit", "required with indenter.physical_size_m: the length unit of the "
+                                 "file's heights (\"m\", \"mm\", \"um\" or \"nm\")")
         return self
+
+    def warn_deprecated(self) -> None:
+        """Warn (:class:`~viscontact.errors.ViscontactWarning`) where the deprecated ``physical_size``
+        (in ``unit``, not SI) is given, naming the ``physical_size_m`` [m] to write instead; called
+        once the file it sizes has been read (:meth:`Case.gap`), so that a refused file is one line."""
+        if self.physical_size is not None:
+            scale = _LENGTH_UNITS[self.unit or "m"]
+            warn_caller(f"indenter.physical_size is deprecated: it is in indenter.unit, not SI; use "
+                        f"indenter.physical_size_m = {[x * scale for x in self.physical_size]!r} (metres)")
+
+    def physical_sizes(self) -> tuple[float, float] | None:
+        """[width, height] of the topography file in its unit ``indenter.unit`` (what SurfaceTopography
+        takes), from ``physical_size_m`` [m] or the deprecated ``physical_size``; None when neither is given."""
+        if self.physical_size_m is not None:
+            scale = _LENGTH_UNITS[self.unit]
+            return (self.physical_size_m[0] / scale, self.physical_size_m[1] / scale)
+        return None if self.physical_size is None else tuple(self.physical_size)
+
+
+#: metres per unit of indenter.unit
+_LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "nm": 1e-9}
 
 
 #: keys each indenter shape requires, and all the keys it accepts
 _REQUIRED = {"sphere": ("radius",), "surface": ("file",), "self_affine": (), "topography": ("file",)}
 _ALLOWED = {"sphere": {"radius", "roughness"}, "surface": {"file"}, "self_affine": set(_SELF_AFFINE_KEYS),
-            "topography": {"file", "resample", "physical_size", "unit"}}
+            "topography": {"file", "resample", "physical_size", "physical_size_m", "unit"}}
 
 
 class GridSection(_Section):
@@ -642,6 +678,23 @@ class Case(_Section):
         return cls._from_data(data, text, Path(base_dir))
 
     @classmethod
+    def from_dict(cls, data: Mapping[str, Any], base_dir: str | Path = ".") -> Case:
+        """A case from a dict of its tables, as a case file nests them (``{"grid": {"n": 64, ...},
+        ...}``); relative paths in it are taken from ``base_dir``. Its :attr:`text` is the TOML that
+        the dict spells (stored in the result like a case file's); numpy scalars and arrays are taken
+        as the numbers and lists they hold.
+
+        Raises
+        ------
+        TypeError
+            ``data`` is not a mapping (of section names to tables).
+        ParameterError
+            A key or value the case refuses, as for a case file.
+        """
+        check_type(data, Mapping, "Case.from_dict's data", "a dict of case tables, e.g. {'grid': {'n': 64, ...}}")
+        return cls.from_toml_text(toml_text(data), base_dir, source="the dict")
+
+    @classmethod
     def _from_data(cls, data: dict, text: str, base_dir: Path) -> Case:
         try:
             case = cls.model_validate(data)
@@ -742,8 +795,9 @@ class Case(_Section):
         elif ind.shape == "topography":
             check_topography_file(self._base_dir / ind.file, grid.n, "indenter.file")
             heights = read_heights(self._base_dir / ind.file, grid, resample=bool(ind.resample),
-                                   physical_sizes=None if ind.physical_size is None else tuple(ind.physical_size),
+                                   physical_sizes=ind.physical_sizes(),
                                    unit={"um": "µm"}.get(ind.unit, ind.unit))
+            ind.warn_deprecated()
             gap, key = gap_from_heights(heights), "indenter.file"
         else:
             h0 = read_height_file(self._base_dir / ind.file, (grid.n, grid.n))
@@ -783,6 +837,46 @@ class Case(_Section):
             surface_topography=self.indenter.uses_surface_topography,
             adhesion=None if self.adhesion is None else self.adhesion.build(),
         )
+
+
+def toml_text(data: Mapping[str, Any]) -> str:
+    """The TOML text of a case's nested dict (:meth:`Case.from_dict`): its top-level keys, then one
+    ``[table]`` per nested dict; numbers, booleans, strings and (nested) lists as values. Raises
+    :class:`~viscontact.errors.ParameterError` (key: the dotted key) for a value TOML cannot hold."""
+    scalars, tables = [], []
+    for key, value in data.items():
+        check_type(key, str, "each key of a case dict", "a section or key name (a str)")
+        (tables if isinstance(value, Mapping) else scalars).append((key, value))
+    lines = [f"{_toml_key(k)} = {_toml_value(v, k)}" for k, v in scalars]
+    for name, table in tables:
+        lines += ["", f"[{_toml_key(name)}]"]
+        lines += [f"{_toml_key(k)} = {_toml_value(v, f'{name}.{k}')}" for k, v in table.items()
+                  if not isinstance(v, Mapping)]
+        nested = {k: v for k, v in table.items() if isinstance(v, Mapping)}
+        for sub, inner in nested.items():  # [indenter.roughness]
+            lines += ["", f"[{_toml_key(name)}.{_toml_key(sub)}]"]
+            lines += [f"{_toml_key(k)} = {_toml_value(v, f'{name}.{sub}.{k}')}" for k, v in inner.items()]
+    return "\n".join(lines) + "\n"
+
+
+def _toml_key(name: str) -> str:
+    """A TOML key: bare when it can be, else quoted."""
+    return name if re.fullmatch(r"[A-Za-z0-9_-]+", name) else json.dumps(name)
+
+
+def _toml_value(value: Any, key: str) -> str:
+    """One TOML value (:func:`toml_text`)."""
+    value = value.item() if isinstance(value, np.generic) else value
+    value = value.tolist() if isinstance(value, np.ndarray) else value
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return repr(value) if np.isfinite(value) else {"inf": "inf", "-inf": "-inf"}.get(repr(value), "nan")
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(v, key) for v in value) + "]"
+    raise ParameterError(key, f"a case value must be a number, bool, str or list, got {type(value).__name__}")
 
 
 def read_height_file(path: Path, shape: tuple[int, int]) -> np.ndarray:
@@ -851,7 +945,7 @@ def case_keys() -> dict[str, Any]:
     keys: dict[str, Any] = {}
 
     def walk(model: type[BaseModel], prefix: str) -> None:
-        for name, info in model.model_fields.items():
+        for name, info in required_first(model):
             if model is Case and name == "material":
                 keys.update(_material_keys())
                 continue
@@ -865,6 +959,14 @@ def case_keys() -> dict[str, Any]:
     return keys
 
 
+def required_first(model: type[BaseModel]) -> list[tuple[str, FieldInfo]]:
+    """The fields of ``model`` as (name, FieldInfo): the required ones first (``material.type``
+    before the optional keys a material inherits), each group in declaration order; the order of
+    :func:`case_keys` and of the case-key reference."""
+    fields = list(model.model_fields.items())
+    return [f for f in fields if f[1].is_required()] + [f for f in fields if not f[1].is_required()]
+
+
 def _material_keys() -> dict[str, Any]:
     """The ``material.`` keys of every type of :data:`MATERIALS` -> FieldInfo: ``material.type`` one
     of every type; a key that only some types take, a copy whose description ends with them
@@ -872,7 +974,7 @@ def _material_keys() -> dict[str, Any]:
     takers: dict[str, list[str]] = {}
     fields: dict[str, Any] = {}
     for tag, model in MATERIALS.items():
-        for name, info in model.model_fields.items():
+        for name, info in required_first(model):
             takers.setdefault(name, []).append(tag)
             fields.setdefault(name, info)
     keys = {}
