@@ -18,7 +18,7 @@ MARKER = "<!-- checked by tests/unit/test_python_api_docs.py"
 def _checked_block() -> str:
     text = (ROOT / "docs" / "getting_started.md").read_text(encoding="utf-8")
     after = text[text.index(MARKER):]
-    return re.search(r"```python\n(.*?)```", after, re.S).group(1)
+    return re.search(r"```python\n(.*?)```", after, re.DOTALL).group(1)
 
 
 @pytest.mark.filterwarnings("ignore::viscontact.ViscontactWarning")  # a coarse grid

@@ -489,7 +489,9 @@ class TimeSection(_Section):
 
     t_end: float = _num(unit="s", gt=0, description="end time")
     dt: float | None = _num(None, unit="s", gt=0, description="time step, <= t_end; required without sliding "
-                            "(tangential.mode = 'none', or a tangential.displacement_history)")
+                            "(tangential.mode = 'none', or a tangential.displacement_history); when sliding, "
+                            "leave it out: dt = (2 half_width / n) / sliding_speed / steps_per_cell (the frame "
+                            "moves by whole cells), made smaller by tangential.steps_per_cell")
     scheme: Literal["constant", "linear"] = Field("linear", description="traction linear within a step (the "
                                                   "default: second order, stable for any dt) or constant "
                                                   "(the seed's, first order)")
