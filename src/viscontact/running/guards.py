@@ -514,8 +514,11 @@ def _time_step_suggestion(problem: Problem) -> str:
                           if _accepted(_with_step(problem, cell / k, k), TIME_WARNING_LIMIT)),
                          tan.steps_per_cell * factor)
                 return f"use tangential.steps_per_cell = {k} (time.dt = {cell / k:.3g} s){linear}"
-            if not _meets_turning_points(trial):
-                return _turning_point_advice(trial, 0.0)[1] + linear
+            missed = [turning_point_miss(trial, key=key) for key in _histories(trial)]
+            missed = [m[1] for m, (h, _, _) in zip(missed, _histories(trial).values())
+                      if m is not None and m[0] > TURNING_POINT_MISS * max(abs(v) for v in h.values)]
+            if missed:  # the halved step misses a turning point: the step that meets them all
+                return _turning_point_advice(trial, missed[0])[1] + linear
             return f"use time.dt = {trial.time.dt:.3g} s{linear}"
     return f"use a much smaller time.dt{linear}"
 
