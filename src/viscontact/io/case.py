@@ -24,6 +24,7 @@ from __future__ import annotations
 import copy
 import dataclasses
 import json
+import math
 import re
 from collections.abc import Mapping
 from pathlib import Path
@@ -69,6 +70,8 @@ MIN_GRID_N, MAX_GRID_N = 8, 16384
 #: from the grid (cells per contact radius, steps per cell of sliding) overflow
 MIN_HALF_WIDTH, MAX_HALF_WIDTH = 1e-9, 1e3
 _SLIDING_MODES = ("frictionless_sliding", "gross_sliding", "partial_slip")
+#: the keys of [normal] that give its values, one at a time
+_NORMAL_FORMS = ("value", "history", "oscillation")
 
 
 def _num(default: Any = ..., unit: str = "", **constraints: Any) -> Any:
@@ -401,21 +404,56 @@ class GridSection(_Section):
                            "(periodic kernels, the moving frame wrapping around)")
 
 
+class OscillationSection(_Section):
+    """``[normal] oscillation = {mean, amplitude, frequency, cycles}``: a load or approach
+    mean + amplitude sin(2 pi frequency t) from t = 0 for ``cycles`` cycles, then held at its last
+    value (the mean after whole or half cycles; a DMA-like test), turned into the piecewise-linear ``normal.history`` through
+    ``points_per_cycle`` points a cycle (a multiple of 4: every peak and trough is a point)."""
+
+    mean: float = _num(unit="N or m", description="mean load or approach, reached at t = 0")
+    amplitude: float = _num(unit="N or m", ge=0, description="amplitude of the sine about the mean")
+    frequency: float = _num(unit="Hz", gt=0, description="frequency f of the sine")
+    cycles: float = _num(unit="", gt=0, le=1e5, description="number of cycles (after them the last value is held)")
+    points_per_cycle: int = _int(64, ge=4, le=4096, multiple_of=4, description="points of the piecewise-linear "
+                                 "history per cycle, a multiple of 4 (peaks and troughs on points); its "
+                                 "chord error is about amplitude (pi / points_per_cycle)^2 / 2")
+
+    def history(self) -> list[list[float]]:
+        """The [[t, value], ...] points [s, N or m] of the oscillation: phases k / points_per_cycle
+        (cycles) up to ``cycles`` (and ``cycles`` itself), peaks, troughs and crossings of the mean exact."""
+        steps = self.cycles * self.points_per_cycle
+        phase = np.arange(int(math.floor(steps + 1e-9)) + 1) / self.points_per_cycle
+        if steps - math.floor(steps + 1e-9) > 1e-9:
+            phase = np.append(phase, self.cycles)
+        quarters = phase * 4.0
+        on_quarter = np.abs(quarters - np.round(quarters)) < 1e-9
+        wave = np.where(on_quarter, np.array([0.0, 1.0, 0.0, -1.0])[np.round(quarters).astype(int) % 4],
+                        np.sin(2.0 * np.pi * phase))
+        return [[float(p / self.frequency), float(self.mean + self.amplitude * w)] for p, w in zip(phase, wave)]
+
+
 class NormalSection(_Section):
-    """Load W [N] or approach delta_z [m]: a held ``value`` or a piecewise-linear ``history``."""
+    """Load W [N] or approach delta_z [m]: a held ``value``, a piecewise-linear ``history`` or an
+    ``oscillation`` (a sine about a mean, made a history)."""
 
     control: Literal["load", "displacement"] = Field(description="prescribe the load W or the approach delta_z")
-    value: float | None = _num(None, unit="N or m", gt=0, description="held from t = 0 (give value or history)")
+    value: float | None = _num(None, unit="N or m", gt=0, description="held from t = 0 (give value, history "
+                               "or oscillation)")
     history: list[list[float]] | None = Field(None, json_schema_extra={"unit": "[s, N or m]"},
                                               description="[[t, value], ...], piecewise linear, times increasing "
-                                              "from >= 0 (give value or history)")
+                                              "from >= 0 (give value, history or oscillation)")
+    oscillation: OscillationSection | None = Field(None, description="{mean, amplitude, frequency, cycles}: "
+                                                   "mean + amplitude sin(2 pi frequency t) for cycles cycles, "
+                                                   "then held (give value, history or oscillation)")
 
     @model_validator(mode="after")
     def _one_of(self) -> NormalSection:
-        if (self.value is None) == (self.history is None):
-            raise ParameterError("normal.value" if self.value is not None else "normal",
+        given = [k for k in ("value", "history", "oscillation") if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise ParameterError(f"normal.{given[0]}" if given else "normal",
                                  "give exactly one of 'value' (held from t = 0) or 'history' "
-                                 "([[t, value], ...], piecewise linear)")
+                                 "([[t, value], ...], piecewise linear) or 'oscillation' ({mean, amplitude, "
+                                 "frequency, cycles})")
         # the pairs (piecewise_linear), finite values, increasing times: NormalLoading; the sign (values
         # >= 0 without [adhesion]) is checked by the case, which knows whether the surface adheres
         self.build(tensile=True)
@@ -423,6 +461,9 @@ class NormalSection(_Section):
 
     def build(self, tensile: bool = False) -> NormalLoading:
         """The normal loading; ``tensile``: values below zero allowed (with ``[adhesion]``)."""
+        if self.oscillation is not None:
+            return NormalLoading(self.control, piecewise_linear(self.oscillation.history(), "normal.oscillation"),
+                                 tensile)
         if self.history is None:
             return NormalLoading(self.control, PiecewiseLinear.constant(self.value), tensile)
         return NormalLoading(self.control, piecewise_linear(self.history, "normal.history"), tensile)
@@ -720,8 +761,8 @@ class Case(_Section):
     def with_overrides(self, overrides: Mapping[str, Any]) -> Case:
         """A new case with dotted keys replaced, e.g. ``{"tangential.sliding_speed": 0.1}``.
 
-        A value of ``None`` removes the key (its default applies). Setting ``normal.value`` drops
-        ``normal.history`` and vice versa. The new case is validated
+        A value of ``None`` removes the key (its default applies). Setting one of ``normal.value``,
+        ``normal.history`` and ``normal.oscillation`` drops the others. The new case is validated
         as a whole; its ``text`` is the original one followed by the overrides as comments. A numpy
         array or scalar is taken as the list or number it holds.
 
@@ -751,8 +792,9 @@ class Case(_Section):
                 lines.append(f"# {key} removed")
                 continue
             node[parts[-1]] = value
-            if parts[:-1] == ["normal"] and parts[-1] in ("value", "history"):
-                node.pop("history" if parts[-1] == "value" else "value", None)
+            if parts[:-1] == ["normal"] and parts[-1] in _NORMAL_FORMS:
+                for other in set(_NORMAL_FORMS) - {parts[-1]}:
+                    node.pop(other, None)
             lines.append(f"# {key} = {value!r}")
         text = self._text.rstrip("\n") + "\n\n# overrides applied by viscontact:\n" + "\n".join(lines) + "\n"
         return self._from_data(data, text, self._base_dir)
