@@ -47,7 +47,7 @@ from viscontact.physics.materials import Material
 from viscontact.problem.problem import PiecewiseLinear, Problem
 from viscontact.solvers.time_step_error import time_step_error
 
-__all__ = ["ContactEstimate", "check_material", "check_problem", "contact_estimate",
+__all__ = ["ContactEstimate", "check_material", "check_problem", "check_sliding_step", "contact_estimate",
            "flat_face_cells", "flat_face_grid", "grid_suggestion", "peak_pressure_error"]
 
 #: cells across the adhesive cohesive zone (or the contact radius, when smaller) below which a run is
@@ -417,12 +417,14 @@ def _check_turning_points(problem: Problem) -> None:
                              f"history, and the run would turn at {reached:.4g} {unit}; {advice}")
 
 
-def _check_sliding_step(problem: Problem) -> None:
+def check_sliding_step(problem: Problem) -> None:
     """Refuse a ``time.dt`` given while sliding that is not the sliding's own step,
     :attr:`~viscontact.problem.problem.Problem.sliding_dt` (the frame moves by whole cells, so dt =
     (2 half_width / n) / sliding_speed / steps_per_cell), before the other guards judge it: the
     advice is the smallest ``tangential.steps_per_cell`` whose step is at most the one given and
-    that every time-step guard accepts, with time.dt removed."""
+    that every time-step guard accepts, with time.dt removed. The solver's own check
+    (:func:`viscontact.solvers.transient.validate`, which cannot know the guards) with that advice:
+    called before it by :func:`viscontact.running.preflight.preflight`."""
     dt, sliding_dt = problem.time.dt, problem.sliding_dt
     if sliding_dt is None or abs(dt - sliding_dt) <= 1e-6 * sliding_dt:
         return
@@ -560,7 +562,6 @@ def check_problem(problem: Problem, *, transient: bool = True) -> None:
     _check_device(problem)
     _check_adhesion(problem, transient)
     if transient:
-        _check_sliding_step(problem)
         _check_time(problem)
         _check_end(problem)
         _check_turning_points(problem)
