@@ -75,3 +75,22 @@ def periodic_elastic_contact(grid: Grid, gap, shear_modulus: float, poisson_rati
                          total=load, cell_area=grid.cell_area, tolerance=1e-12,
                          preconditioner=conv.preconditioner("zz", 1.0 / shear_modulus))
     return sol.x, sol.multiplier, conv.apply("zz", sol.x) / shear_modulus, sol.iterations
+
+
+def dry_run(capsys, case, *sets: str) -> tuple[int, list[str]]:
+    """``viscontact run CASE --dry-run`` with ``--set`` each of ``sets``: (exit status, the non-empty
+    lines of stderr)."""
+    import os
+    import tempfile
+    from pathlib import Path
+
+    from viscontact import cli
+
+    # a folder that does not exist (a dry run writes nothing), in a writable place and one per process:
+    # the run's lock file goes there while the command runs, and pytest-xdist's workers run side by side
+    out = Path(tempfile.gettempdir()) / f"viscontact-dry-run-{os.getpid()}" / "r.nc"
+    args = ["run", str(case), "--out", str(out), "--dry-run"]
+    for s in sets:
+        args += ["--set", s]
+    code = cli.main(args)
+    return code, [line for line in capsys.readouterr().err.splitlines() if line.strip()]

@@ -143,13 +143,19 @@ def key_table(model: type[BaseModel], prefix: str) -> list[str]:
     """reST list-table of the leaf keys of ``model`` (sub-sections are left to the caller)."""
     rows = [".. list-table::", "   :header-rows: 1", "   :widths: 22 20 9 12 12 25", "",
             "   * - key", "     - type", "     - unit", "     - default", "     - range", "     - description"]
-    for name, info in model.model_fields.items():
-        if _models_in(info.annotation):
+    nested_rows: list[list[str]] = []
+    from viscontact.io.case import required_first
+
+    for name, info in required_first(model):  # required keys first (material.type)
+        nested = _models_in(info.annotation)
+        if nested:  # a table inside a section ([indenter.roughness], normal.oscillation): its keys follow
+            if prefix:  # (the sections themselves have their own parts)
+                nested_rows.append(key_table(nested[0], f"{prefix}{name}.")[10:-1])  # rows only
             continue
         rows += [f"   * - ``{prefix}{name}``", f"     - {_cell(_type_name(info.annotation))}",
                  f"     - {_cell(_unit(info))}", f"     - {_cell(_default(info))}",
                  f"     - {_cell(_range(info))}", f"     - {_cell(_plain(info.description or ''))}"]
-    return rows + [""]
+    return rows + [row for table in nested_rows for row in table] + [""]
 
 
 def _heading(title: str, char: str) -> list[str]:

@@ -171,6 +171,23 @@ def test_case_keys_list_every_material_type() -> None:
     assert keys["grid.n"].description  # the other sections as they are
 
 
+
+def test_case_keys_list_required_keys_first() -> None:
+    """The case-key reference listed ``material.type`` after the optional keys every material inherits
+    (poisson_ratio, temperature, ...). In :func:`case_keys` (and the reference built from
+    :func:`required_first`) each section's required keys come first."""
+    from viscontact.io.case import MATERIALS, case_keys, required_first
+
+    keys = list(case_keys())
+    material = [k for k in keys if k.startswith("material.")]
+    assert material[:4] == ["material.type", "material.shear_modulus_instantaneous",
+                            "material.shear_modulus_long_term", "material.retardation_time"]
+    assert [k for k in keys if k.startswith("normal.")][0] == "normal.control"
+    for model in MATERIALS.values():
+        required = [info.is_required() for _, info in required_first(model)]
+        assert required == sorted(required, reverse=True) and required[0]
+
+
 FRETTING = ROOT / "cases" / "fretting_zener.toml"
 
 

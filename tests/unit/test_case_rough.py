@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from viscontact.io.case import Case
-from viscontact.errors import ParameterError
+from viscontact.errors import ParameterError, ViscontactWarning
 from viscontact.numerics.grid import Grid
 from viscontact.problem.topography import gap_from_heights, self_affine_heights, sphere_heights
 
@@ -116,3 +116,26 @@ def test_a_map_without_its_size_reads_with_physical_size_and_unit(tmp_path):
     both = {'file = "s.nc"': 'file = "s.nc"\nphysical_size = [1000.0, 1000.0]\nunit = "um"'}
     with pytest.raises(ParameterError, match="the file gives its own size and unit"):
         _case(_topography_case(tmp_path, 64, False).text, both, tmp_path).to_problem()
+
+
+def test_physical_size_in_metres_and_its_deprecated_form_in_the_unit(tmp_path):
+    """``indenter.physical_size_m`` is SI (metres) whatever the heights' ``unit``; the older
+    ``physical_size`` (in ``indenter.unit``) keeps its meaning and warns, naming the SI key and value.
+    Both at once, or physical_size_m without the heights' unit, are refused, each in one line."""
+    heights = self_affine_heights(Grid(64, 0.0005), hurst=0.8, rms_slope=0.1, seed=1)
+    np.save(tmp_path / "s.npy", heights.T * 1e6)  # SurfaceTopography's [x, y], in um
+    text = _topography_case(tmp_path, 64, False).text
+    from_netcdf = _topography_case(tmp_path, 64, False).to_problem().gap
+    si = {'file = "s.nc"': 'file = "s.npy"\nphysical_size_m = [1e-3, 1e-3]\nunit = "um"'}
+    np.testing.assert_allclose(_case(text, si, tmp_path).to_problem().gap, from_netcdf, rtol=0,
+                               atol=1e-12 * np.ptp(from_netcdf))
+    old = {'file = "s.nc"': 'file = "s.npy"\nphysical_size = [1000.0, 1000.0]\nunit = "um"'}
+    with pytest.warns(ViscontactWarning, match=r"indenter.physical_size is deprecated.*use "
+                      r"indenter.physical_size_m = \[0.001, 0.001\] \(metres\)"):
+        deprecated = _case(text, old, tmp_path).to_problem().gap
+    np.testing.assert_array_equal(deprecated, _case(text, si, tmp_path).to_problem().gap)
+    both = {'file = "s.nc"': 'file = "s.npy"\nphysical_size_m = [1e-3, 1e-3]\nphysical_size = [1e3, 1e3]\nunit = "um"'}
+    with pytest.raises(ParameterError, match="^indenter.physical_size: give indenter.physical_size_m"):
+        _case(text, both, tmp_path)
+    with pytest.raises(ParameterError, match="^indenter.unit: required with indenter.physical_size_m"):
+        _case(text, {'file = "s.nc"': 'file = "s.npy"\nphysical_size_m = [1e-3, 1e-3]'}, tmp_path)

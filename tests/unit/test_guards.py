@@ -29,7 +29,7 @@ from viscontact.problem.problem import PiecewiseLinear, TimeStepping
 from viscontact.physics.reference import hertz_from_load
 from viscontact.running.loop import simulate
 
-from vc_testing import seed_material, sphere_problem, observed_order
+from vc_testing import dry_run, seed_material, sphere_problem, observed_order
 
 ROOT = Path(__file__).resolve().parents[2]
 CREEP = ROOT / "cases" / "creep_indentation.toml"
@@ -39,14 +39,7 @@ ELASTIC = {"material.type": "elastic", "material.shear_modulus": 1.93e6, "materi
 
 
 def _dry_run(capsys, case: Path, *sets: str) -> tuple[int, list[str]]:
-    # a folder that does not exist (a dry run writes nothing), in a writable place and one per process:
-    # the run's lock file goes there while the command runs, and pytest-xdist's workers run side by side
-    out = Path(tempfile.gettempdir()) / f"viscontact-dry-run-{os.getpid()}" / "r.nc"
-    args = ["run", str(case), "--out", str(out), "--dry-run"]
-    for s in sets:
-        args += ["--set", s]
-    code = cli.main(args)
-    return code, [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    return dry_run(capsys, case, *sets)
 
 
 def _problem(path: Path, **overrides):

@@ -23,6 +23,9 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import json
+import math
+import re
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Annotated, Any, Callable, Literal
@@ -34,7 +37,7 @@ from pydantic.fields import FieldInfo
 
 from viscontact.bodies.bulk_elastic import BulkElasticMaterial
 from viscontact.bodies.registry import body_kind
-from viscontact.errors import ParameterError, check_type
+from viscontact.errors import ParameterError, check_type, warn_caller
 from viscontact.io.case_errors import closest, model_of, parameter_error
 from viscontact.io.prony_table import parse_prony_table
 from viscontact.io.safe_read import MAX_INPUT_BYTES, npy_layout, read_text_input, regular_input
@@ -57,7 +60,7 @@ from viscontact.problem.problem import (
 from viscontact.problem.records import StepRecord
 
 __all__ = ["FILE_KEYS", "MATERIALS", "MAX_GRID_N", "MAX_INPUT_BYTES", "MIN_GRID_N", "Case", "case_keys", "closest",
-           "load_case", "read_input_file"]
+           "load_case", "read_input_file", "required_first"]
 
 #: the case keys that name a file the case reads (:meth:`Case.input_files`)
 FILE_KEYS = ("material.file", "indenter.file")
@@ -67,6 +70,8 @@ MIN_GRID_N, MAX_GRID_N = 8, 16384
 #: from the grid (cells per contact radius, steps per cell of sliding) overflow
 MIN_HALF_WIDTH, MAX_HALF_WIDTH = 1e-9, 1e3
 _SLIDING_MODES = ("frictionless_sliding", "gross_sliding", "partial_slip")
+#: the keys of [normal] that give its values, one at a time
+_NORMAL_FORMS = ("value", "history", "oscillation")
 
 
 def _num(default: Any = ..., unit: str = "", **constraints: Any) -> Any:
@@ -303,7 +308,7 @@ class IndenterSection(_SelfAffineKeys):
       ``short_cutoff`` [m] and ``seed``: a periodic surface by Fourier synthesis;
     * ``shape = "topography"`` with ``file``: anything SurfaceTopography reads (x3p, opd, sur, di,
       NetCDF, plain text, ...), heights of the rigid surface z up, in the file's physical size and
-      units (``physical_size`` and ``unit`` for a file that gives none); ``resample = true``
+      units (``physical_size_m`` [m] and ``unit`` for a file that gives none); ``resample = true``
       interpolates it onto the grid.
 
     Files are relative to the case file's folder.
@@ -314,16 +319,22 @@ class IndenterSection(_SelfAffineKeys):
         "a generated self-affine surface, or a measured topography file")
     radius: float | None = _num(None, unit="m", gt=0, description="sphere radius R; required with shape = 'sphere'")
     file: str | None = Field(None, description="with shape = 'surface': .npy of the undeformed gap h0 [m], "
-                             "(grid.n, grid.n), indexed [y, x], its lowest point touching first; with shape = "
+                             "(grid.n, grid.n), indexed [y, x], its lowest point touching first, h0[j, i] the gap "
+                             "at the cell centre (x_i, y_j), x_i = y_i = -half_width + (i + 1/2) dx, dx = "
+                             "2 half_width / n (numerics.grid.Grid.x); with shape = "
                              "'topography': any file SurfaceTopography reads that carries its physical size and "
                              "unit, heights z up (highest point touching first); relative to the case file's folder")
     resample: bool | None = Field(None, description="with shape = 'topography': interpolate the file onto the grid")
+    physical_size_m: list[Annotated[float, Field(gt=0, allow_inf_nan=False)]] | None = Field(
+        None, min_length=2, max_length=2, json_schema_extra={"unit": "m"},
+        description="with shape = 'topography': [width, height] [m] of a file that does not give its size (a "
+        ".npy, a text matrix without header); needs indenter.unit, the unit of the file's heights")
     physical_size: list[Annotated[float, Field(gt=0, allow_inf_nan=False)]] | None = Field(
-        None, min_length=2, max_length=2, description="with shape = 'topography': [width, height] of a file that "
-        "does not give its size (a .npy, a text matrix without header), in indenter.unit")
+        None, min_length=2, max_length=2, description="deprecated (warns): [width, height] in indenter.unit, "
+        "not SI; use indenter.physical_size_m (metres)")
     unit: Literal["m", "mm", "um", "nm"] | None = Field(
-        None, description="with shape = 'topography': the length unit of the heights (and of physical_size) of a "
-        "file that does not give it")
+        None, description="with shape = 'topography': the length unit of the heights of a file that does not "
+        "give it (and of the deprecated physical_size)")
     roughness: RoughnessSection | None = Field(None, description="with shape = 'sphere': self-affine roughness "
                                                "([indenter.roughness], the self-affine keys)")
 
@@ -340,19 +351,47 @@ class IndenterSection(_SelfAffineKeys):
             if getattr(self, key) is None:
                 what = "> 0 m" if key == "radius" else "a file name"
                 raise ParameterError(f"indenter.{key}", f"required for shape = '{shape}' ({what})")
-        for key in ("radius", "file", "resample", "physical_size", "unit", "roughness", *_SELF_AFFINE_KEYS):
+        for key in ("radius", "file", "resample", "physical_size", "physical_size_m", "unit", "roughness",
+                    *_SELF_AFFINE_KEYS):
             if getattr(self, key) is not None and key not in _ALLOWED[shape]:
                 owners = " or ".join(repr(s) for s, keys in _ALLOWED.items() if key in keys)
                 raise ParameterError(f"indenter.{key}", f"only with shape = {owners}")
         if shape == "self_affine":
             self._check_self_affine("indenter")
+        if self.physical_size_m is not None and self.physical_size is not None:
+            raise ParameterError("indenter.physical_size", "give indenter.physical_size_m (metres) only: "
+                                 "physical_size (in indenter.unit) is its deprecated form")
+        if self.physical_size_m is not None and self.unit is None:
+            raise ParameterError("indenter.unit", "required with indenter.physical_size_m: the length unit of the "
+                                 "file's heights (\"m\", \"mm\", \"um\" or \"nm\")")
         return self
+
+    def warn_deprecated(self) -> None:
+        """Warn (:class:`~viscontact.errors.ViscontactWarning`) where the deprecated ``physical_size``
+        (in ``unit``, not SI) is given, naming the ``physical_size_m`` [m] to write instead; called
+        once the file it sizes has been read (:meth:`Case.gap`), so that a refused file is one line."""
+        if self.physical_size is not None:
+            scale = _LENGTH_UNITS[self.unit or "m"]
+            warn_caller(f"indenter.physical_size is deprecated: it is in indenter.unit, not SI; use "
+                        f"indenter.physical_size_m = {[x * scale for x in self.physical_size]!r} (metres)")
+
+    def physical_sizes(self) -> tuple[float, float] | None:
+        """[width, height] of the topography file in its unit ``indenter.unit`` (what SurfaceTopography
+        takes), from ``physical_size_m`` [m] or the deprecated ``physical_size``; None when neither is given."""
+        if self.physical_size_m is not None:
+            scale = _LENGTH_UNITS[self.unit]
+            return (self.physical_size_m[0] / scale, self.physical_size_m[1] / scale)
+        return None if self.physical_size is None else tuple(self.physical_size)
+
+
+#: metres per unit of indenter.unit
+_LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "nm": 1e-9}
 
 
 #: keys each indenter shape requires, and all the keys it accepts
 _REQUIRED = {"sphere": ("radius",), "surface": ("file",), "self_affine": (), "topography": ("file",)}
 _ALLOWED = {"sphere": {"radius", "roughness"}, "surface": {"file"}, "self_affine": set(_SELF_AFFINE_KEYS),
-            "topography": {"file", "resample", "physical_size", "unit"}}
+            "topography": {"file", "resample", "physical_size", "physical_size_m", "unit"}}
 
 
 class GridSection(_Section):
@@ -365,21 +404,56 @@ class GridSection(_Section):
                            "(periodic kernels, the moving frame wrapping around)")
 
 
+class OscillationSection(_Section):
+    """``[normal] oscillation = {mean, amplitude, frequency, cycles}``: a load or approach
+    mean + amplitude sin(2 pi frequency t) from t = 0 for ``cycles`` cycles, then held at its last
+    value (the mean after whole or half cycles; a DMA-like test), turned into the piecewise-linear ``normal.history`` through
+    ``points_per_cycle`` points a cycle (a multiple of 4: every peak and trough is a point)."""
+
+    mean: float = _num(unit="N or m", description="mean load or approach, reached at t = 0")
+    amplitude: float = _num(unit="N or m", ge=0, description="amplitude of the sine about the mean")
+    frequency: float = _num(unit="Hz", gt=0, description="frequency f of the sine")
+    cycles: float = _num(unit="", gt=0, le=1e5, description="number of cycles (after them the last value is held)")
+    points_per_cycle: int = _int(64, ge=4, le=4096, multiple_of=4, description="points of the piecewise-linear "
+                                 "history per cycle, a multiple of 4 (peaks and troughs on points); its "
+                                 "chord error is about amplitude (pi / points_per_cycle)^2 / 2")
+
+    def history(self) -> list[list[float]]:
+        """The [[t, value], ...] points [s, N or m] of the oscillation: phases k / points_per_cycle
+        (cycles) up to ``cycles`` (and ``cycles`` itself), peaks, troughs and crossings of the mean exact."""
+        steps = self.cycles * self.points_per_cycle
+        phase = np.arange(int(math.floor(steps + 1e-9)) + 1) / self.points_per_cycle
+        if steps - math.floor(steps + 1e-9) > 1e-9:
+            phase = np.append(phase, self.cycles)
+        quarters = phase * 4.0
+        on_quarter = np.abs(quarters - np.round(quarters)) < 1e-9
+        wave = np.where(on_quarter, np.array([0.0, 1.0, 0.0, -1.0])[np.round(quarters).astype(int) % 4],
+                        np.sin(2.0 * np.pi * phase))
+        return [[float(p / self.frequency), float(self.mean + self.amplitude * w)] for p, w in zip(phase, wave)]
+
+
 class NormalSection(_Section):
-    """Load W [N] or approach delta_z [m]: a held ``value`` or a piecewise-linear ``history``."""
+    """Load W [N] or approach delta_z [m]: a held ``value``, a piecewise-linear ``history`` or an
+    ``oscillation`` (a sine about a mean, made a history)."""
 
     control: Literal["load", "displacement"] = Field(description="prescribe the load W or the approach delta_z")
-    value: float | None = _num(None, unit="N or m", gt=0, description="held from t = 0 (give value or history)")
+    value: float | None = _num(None, unit="N or m", gt=0, description="held from t = 0 (give value, history "
+                               "or oscillation)")
     history: list[list[float]] | None = Field(None, json_schema_extra={"unit": "[s, N or m]"},
                                               description="[[t, value], ...], piecewise linear, times increasing "
-                                              "from >= 0 (give value or history)")
+                                              "from >= 0 (give value, history or oscillation)")
+    oscillation: OscillationSection | None = Field(None, description="{mean, amplitude, frequency, cycles}: "
+                                                   "mean + amplitude sin(2 pi frequency t) for cycles cycles, "
+                                                   "then held (give value, history or oscillation)")
 
     @model_validator(mode="after")
     def _one_of(self) -> NormalSection:
-        if (self.value is None) == (self.history is None):
-            raise ParameterError("normal.value" if self.value is not None else "normal",
+        given = [k for k in ("value", "history", "oscillation") if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise ParameterError(f"normal.{given[0]}" if given else "normal",
                                  "give exactly one of 'value' (held from t = 0) or 'history' "
-                                 "([[t, value], ...], piecewise linear)")
+                                 "([[t, value], ...], piecewise linear) or 'oscillation' ({mean, amplitude, "
+                                 "frequency, cycles})")
         # the pairs (piecewise_linear), finite values, increasing times: NormalLoading; the sign (values
         # >= 0 without [adhesion]) is checked by the case, which knows whether the surface adheres
         self.build(tensile=True)
@@ -387,6 +461,9 @@ class NormalSection(_Section):
 
     def build(self, tensile: bool = False) -> NormalLoading:
         """The normal loading; ``tensile``: values below zero allowed (with ``[adhesion]``)."""
+        if self.oscillation is not None:
+            return NormalLoading(self.control, piecewise_linear(self.oscillation.history(), "normal.oscillation"),
+                                 tensile)
         if self.history is None:
             return NormalLoading(self.control, PiecewiseLinear.constant(self.value), tensile)
         return NormalLoading(self.control, piecewise_linear(self.history, "normal.history"), tensile)
@@ -453,7 +530,9 @@ class TimeSection(_Section):
 
     t_end: float = _num(unit="s", gt=0, description="end time")
     dt: float | None = _num(None, unit="s", gt=0, description="time step, <= t_end; required without sliding "
-                            "(tangential.mode = 'none', or a tangential.displacement_history)")
+                            "(tangential.mode = 'none', or a tangential.displacement_history); when sliding, "
+                            "leave it out: dt = (2 half_width / n) / sliding_speed / steps_per_cell (the frame "
+                            "moves by whole cells), made smaller by tangential.steps_per_cell")
     scheme: Literal["constant", "linear"] = Field("linear", description="traction linear within a step (the "
                                                   "default: second order, stable for any dt) or constant "
                                                   "(the seed's, first order)")
@@ -642,6 +721,23 @@ class Case(_Section):
         return cls._from_data(data, text, Path(base_dir))
 
     @classmethod
+    def from_dict(cls, data: Mapping[str, Any], base_dir: str | Path = ".") -> Case:
+        """A case from a dict of its tables, as a case file nests them (``{"grid": {"n": 64, ...},
+        ...}``); relative paths in it are taken from ``base_dir``. Its :attr:`text` is the TOML that
+        the dict spells (stored in the result like a case file's); numpy scalars and arrays are taken
+        as the numbers and lists they hold.
+
+        Raises
+        ------
+        TypeError
+            ``data`` is not a mapping (of section names to tables).
+        ParameterError
+            A key or value the case refuses, as for a case file.
+        """
+        check_type(data, Mapping, "Case.from_dict's data", "a dict of case tables, e.g. {'grid': {'n': 64, ...}}")
+        return cls.from_toml_text(toml_text(data), base_dir, source="the dict")
+
+    @classmethod
     def _from_data(cls, data: dict, text: str, base_dir: Path) -> Case:
         try:
             case = cls.model_validate(data)
@@ -665,8 +761,8 @@ class Case(_Section):
     def with_overrides(self, overrides: Mapping[str, Any]) -> Case:
         """A new case with dotted keys replaced, e.g. ``{"tangential.sliding_speed": 0.1}``.
 
-        A value of ``None`` removes the key (its default applies). Setting ``normal.value`` drops
-        ``normal.history`` and vice versa. The new case is validated
+        A value of ``None`` removes the key (its default applies). Setting one of ``normal.value``,
+        ``normal.history`` and ``normal.oscillation`` drops the others. The new case is validated
         as a whole; its ``text`` is the original one followed by the overrides as comments. A numpy
         array or scalar is taken as the list or number it holds.
 
@@ -696,8 +792,9 @@ class Case(_Section):
                 lines.append(f"# {key} removed")
                 continue
             node[parts[-1]] = value
-            if parts[:-1] == ["normal"] and parts[-1] in ("value", "history"):
-                node.pop("history" if parts[-1] == "value" else "value", None)
+            if parts[:-1] == ["normal"] and parts[-1] in _NORMAL_FORMS:
+                for other in set(_NORMAL_FORMS) - {parts[-1]}:
+                    node.pop(other, None)
             lines.append(f"# {key} = {value!r}")
         text = self._text.rstrip("\n") + "\n\n# overrides applied by viscontact:\n" + "\n".join(lines) + "\n"
         return self._from_data(data, text, self._base_dir)
@@ -742,8 +839,9 @@ class Case(_Section):
         elif ind.shape == "topography":
             check_topography_file(self._base_dir / ind.file, grid.n, "indenter.file")
             heights = read_heights(self._base_dir / ind.file, grid, resample=bool(ind.resample),
-                                   physical_sizes=None if ind.physical_size is None else tuple(ind.physical_size),
+                                   physical_sizes=ind.physical_sizes(),
                                    unit={"um": "µm"}.get(ind.unit, ind.unit))
+            ind.warn_deprecated()
             gap, key = gap_from_heights(heights), "indenter.file"
         else:
             h0 = read_height_file(self._base_dir / ind.file, (grid.n, grid.n))
@@ -783,6 +881,46 @@ class Case(_Section):
             surface_topography=self.indenter.uses_surface_topography,
             adhesion=None if self.adhesion is None else self.adhesion.build(),
         )
+
+
+def toml_text(data: Mapping[str, Any]) -> str:
+    """The TOML text of a case's nested dict (:meth:`Case.from_dict`): its top-level keys, then one
+    ``[table]`` per nested dict; numbers, booleans, strings and (nested) lists as values. Raises
+    :class:`~viscontact.errors.ParameterError` (key: the dotted key) for a value TOML cannot hold."""
+    scalars, tables = [], []
+    for key, value in data.items():
+        check_type(key, str, "each key of a case dict", "a section or key name (a str)")
+        (tables if isinstance(value, Mapping) else scalars).append((key, value))
+    lines = [f"{_toml_key(k)} = {_toml_value(v, k)}" for k, v in scalars]
+    for name, table in tables:
+        lines += ["", f"[{_toml_key(name)}]"]
+        lines += [f"{_toml_key(k)} = {_toml_value(v, f'{name}.{k}')}" for k, v in table.items()
+                  if not isinstance(v, Mapping)]
+        nested = {k: v for k, v in table.items() if isinstance(v, Mapping)}
+        for sub, inner in nested.items():  # [indenter.roughness]
+            lines += ["", f"[{_toml_key(name)}.{_toml_key(sub)}]"]
+            lines += [f"{_toml_key(k)} = {_toml_value(v, f'{name}.{sub}.{k}')}" for k, v in inner.items()]
+    return "\n".join(lines) + "\n"
+
+
+def _toml_key(name: str) -> str:
+    """A TOML key: bare when it can be, else quoted."""
+    return name if re.fullmatch(r"[A-Za-z0-9_-]+", name) else json.dumps(name)
+
+
+def _toml_value(value: Any, key: str) -> str:
+    """One TOML value (:func:`toml_text`)."""
+    value = value.item() if isinstance(value, np.generic) else value
+    value = value.tolist() if isinstance(value, np.ndarray) else value
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return repr(value) if np.isfinite(value) else {"inf": "inf", "-inf": "-inf"}.get(repr(value), "nan")
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(v, key) for v in value) + "]"
+    raise ParameterError(key, f"a case value must be a number, bool, str or list, got {type(value).__name__}")
 
 
 def read_height_file(path: Path, shape: tuple[int, int]) -> np.ndarray:
@@ -851,7 +989,7 @@ def case_keys() -> dict[str, Any]:
     keys: dict[str, Any] = {}
 
     def walk(model: type[BaseModel], prefix: str) -> None:
-        for name, info in model.model_fields.items():
+        for name, info in required_first(model):
             if model is Case and name == "material":
                 keys.update(_material_keys())
                 continue
@@ -865,6 +1003,14 @@ def case_keys() -> dict[str, Any]:
     return keys
 
 
+def required_first(model: type[BaseModel]) -> list[tuple[str, FieldInfo]]:
+    """The fields of ``model`` as (name, FieldInfo): the required ones first (``material.type``
+    before the optional keys a material inherits), each group in declaration order; the order of
+    :func:`case_keys` and of the case-key reference."""
+    fields = list(model.model_fields.items())
+    return [f for f in fields if f[1].is_required()] + [f for f in fields if not f[1].is_required()]
+
+
 def _material_keys() -> dict[str, Any]:
     """The ``material.`` keys of every type of :data:`MATERIALS` -> FieldInfo: ``material.type`` one
     of every type; a key that only some types take, a copy whose description ends with them
@@ -872,7 +1018,7 @@ def _material_keys() -> dict[str, Any]:
     takers: dict[str, list[str]] = {}
     fields: dict[str, Any] = {}
     for tag, model in MATERIALS.items():
-        for name, info in model.model_fields.items():
+        for name, info in required_first(model):
             takers.setdefault(name, []).append(tag)
             fields.setdefault(name, info)
     keys = {}

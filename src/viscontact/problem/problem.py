@@ -545,6 +545,16 @@ class Problem:
         sphere = (x**2 + y**2) / (2.0 * self.radius)
         return bool(np.allclose(self.gap, sphere, rtol=0.0, atol=1e-13 * sphere.max()))
 
+    @property
+    def sliding_dt(self) -> float | None:
+        """The time step [s] that sliding ties ``time.dt`` to, (2 half_width / n) / sliding_speed /
+        steps_per_cell (the frame moves by whole cells, one every ``steps_per_cell`` steps); None
+        where the frame does not move (``time.dt`` is free) or the speed is not > 0."""
+        tan = self.tangential
+        if not (tan.frame_moves and tan.sliding_speed > 0):
+            return None
+        return self.grid.spacing / (tan.sliding_speed * tan.steps_per_cell)
+
     @cached_property
     def turning_steps(self) -> frozenset[int]:
         """The steps nearest the turning points of the run's histories (``normal.history``,

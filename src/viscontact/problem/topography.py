@@ -189,11 +189,12 @@ def read_heights(path: str | Path, grid: Grid, *, resample: bool = False, physic
     except Exception as exc:  # readers raise anything from ValueError to struct.error
         message = " ".join(str(exc).split()) or type(exc).__name__
         if "physical_sizes" in message:
-            message = ("its physical size is not in the file: give indenter.physical_size = [width, height] and "
-                       "indenter.unit, or use a format that carries them (a text map with '# Width: 1 mm', "
+            message = ("its physical size is not in the file: give indenter.physical_size_m = [width, height] in "
+                       "metres with the heights' indenter.unit (formerly physical_size = [width, height] and "
+                       "indenter.unit, in that unit), or use a format that carries them (a text map with '# Width: 1 mm', "
                        "'# Height: 1 mm' and '# Value units: um' header lines, NetCDF, x3p, ...)")
         elif "already fixed by file" in message:
-            message = "the file gives its own size and unit: remove indenter.physical_size and indenter.unit"
+            message = "the file gives its own size and unit: remove indenter.physical_size_m and indenter.unit"
         raise ParameterError(key, f"cannot read {path} as a topography: {message[:300]}") from None
     if topography.dim != 2 or len(topography.nb_grid_pts) != 2 or len(topography.physical_sizes) != 2:
         raise ParameterError(key, f"{path} holds a line scan or gives one physical size "

@@ -47,7 +47,7 @@ from viscontact.physics.materials import Material
 from viscontact.problem.problem import PiecewiseLinear, Problem
 from viscontact.solvers.time_step_error import time_step_error
 
-__all__ = ["ContactEstimate", "check_material", "check_problem", "contact_estimate",
+__all__ = ["ContactEstimate", "check_material", "check_problem", "check_sliding_step", "contact_estimate",
            "flat_face_cells", "flat_face_grid", "grid_suggestion", "peak_pressure_error"]
 
 #: cells across the adhesive cohesive zone (or the contact radius, when smaller) below which a run is
@@ -400,41 +400,127 @@ def turning_point_miss(problem: Problem, dt: float | None = None,
 def _check_turning_points(problem: Problem) -> None:
     """Refuse a time step that misses a turning point of a history (the displacement history, the
     normal load's or approach's) by more than :data:`TURNING_POINT_MISS` of its largest absolute
-    value (:func:`turning_point_miss`), suggesting the largest dt below it that meets every one."""
-    dt = problem.time.dt
+    value (:func:`turning_point_miss`), advising the change that meets every one
+    (:func:`_turning_point_advice`): the largest ``time.dt`` below it, or, when sliding ties dt to
+    the grid, the smallest ``tangential.steps_per_cell``."""
     for key, (history, symbol, unit) in _histories(problem).items():
         scale = max(abs(v) for v in history.values)
         worst = turning_point_miss(problem, key=key)
         if worst is None or not worst[0] > TURNING_POINT_MISS * scale:
             continue
         miss, t, value, reached = worst
-        # the largest step below dt that meets them: dt / m, or the missed turning point's time / m
-        first = int(np.ceil(t / dt))
-        candidates = sorted({dt / m for m in range(2, 101)} | {t / m for m in range(first, first + 100)},
-                            reverse=True)
-        trial = next((c for c in candidates if all(
-            not (turning_point_miss(problem, c, k) or (0.0,))[0] > TURNING_POINT_MISS * max(abs(v) for v in h.values)
-            for k, (h, _, _) in _histories(problem).items())), candidates[-1])
-        raise ParameterError("time.dt", f"{dt:.4g} s misses the turning point of {key} at t = {t:.6g} s ({symbol} = "
-                             f"{value:.4g} {unit}) by {miss:.3g} {unit} ({100 * miss / scale:.2g} % of its largest "
-                             f"|{symbol}|): the steps sample the history, and the run would turn at {reached:.4g} "
-                             f"{unit}; use time.dt = {trial:.4g} s, or one that puts the turning points on steps")
+        change, advice = _turning_point_advice(problem, t)
+        step = f"{problem.time.dt:.4g} s" if change == "time.dt" else f"time.dt = {problem.time.dt:.4g} s"
+        raise ParameterError(change, f"{step} misses the turning point of {key} at "
+                             f"t = {t:.6g} s ({symbol} = {value:.4g} {unit}) by {miss:.3g} {unit} "
+                             f"({100 * miss / scale:.2g} % of its largest |{symbol}|): the steps sample the "
+                             f"history, and the run would turn at {reached:.4g} {unit}; {advice}")
+
+
+def check_sliding_step(problem: Problem) -> None:
+    """Refuse a ``time.dt`` given while sliding that is not the sliding's own step,
+    :attr:`~viscontact.problem.problem.Problem.sliding_dt` (the frame moves by whole cells, so dt =
+    (2 half_width / n) / sliding_speed / steps_per_cell), before the other guards judge it: the
+    advice is the smallest ``tangential.steps_per_cell`` whose step is at most the one given and
+    that every time-step guard accepts, with time.dt removed. The solver's own check
+    (:func:`viscontact.solvers.transient.validate`, which cannot know the guards) with that advice:
+    called before it by :func:`viscontact.running.preflight.preflight`."""
+    dt, sliding_dt = problem.time.dt, problem.sliding_dt
+    if sliding_dt is None or abs(dt - sliding_dt) <= 1e-6 * sliding_dt:
+        return
+    tan = problem.tangential
+    cell = problem.grid.spacing / tan.sliding_speed
+    start = max(1, math.ceil(cell / dt - 1e-6))
+    k = next((k for k in range(start, start * MAX_STEPS_PER_CELL_FACTOR) if _accepted(_with_step(problem, cell / k, k))),
+             start)
+    raise ParameterError("time.dt", f"{dt:.6g} s is not the sliding's step: when sliding the frame moves by whole "
+                         f"cells, so time.dt = (2 half_width / n) / sliding_speed / steps_per_cell = {sliding_dt:.6g} s; "
+                         f"remove time.dt and use tangential.steps_per_cell = {k} (time.dt = {cell / k:.4g} s)")
+
+
+def _with_step(problem: Problem, dt: float, steps_per_cell: int | None = None) -> Problem | None:
+    """``problem`` with the time step ``dt`` [s] (and, when sliding, ``steps_per_cell``); None where
+    that is more steps than a run may take."""
+    from dataclasses import replace
+
+    try:
+        time = replace(problem.time, dt=dt)
+    except ParameterError:
+        return None
+    if steps_per_cell is None:
+        return replace(problem, time=time)
+    return replace(problem, time=time, tangential=replace(problem.tangential, steps_per_cell=steps_per_cell))
+
+
+def _meets_turning_points(problem: Problem) -> bool:
+    """Whether the steps of ``problem`` meet every turning point of its histories to
+    :data:`TURNING_POINT_MISS` (:func:`_check_turning_points` passes)."""
+    return all(not (turning_point_miss(problem, key=key) or (0.0,))[0] > TURNING_POINT_MISS * max(
+        abs(v) for v in history.values) for key, (history, _, _) in _histories(problem).items())
+
+
+def _accepted(problem: Problem | None, time_limit: float = TIME_ERROR_LIMIT) -> bool:
+    """Whether the time-step guards accept ``problem``: its turning points met, the one-point time
+    error (:func:`~viscontact.solvers.time_step_error.time_step_error`) at most ``time_limit``."""
+    return problem is not None and _meets_turning_points(problem) and time_step_error(problem) <= time_limit
+
+
+#: largest tangential.steps_per_cell (times the case's) that an advice tries before giving up
+MAX_STEPS_PER_CELL_FACTOR = 1000
+
+
+def _turning_point_advice(problem: Problem, t_missed: float) -> tuple[str, str]:
+    """(the key to change, the advice) that meets every turning point (:func:`_meets_turning_points`)
+    and that the time-step guard still accepts. Sliding (dt = dx / (v k), so time.dt cannot be
+    chosen): the smallest ``tangential.steps_per_cell`` k that does; otherwise the largest dt below
+    ``time.dt`` among dt / m and ``t_missed`` / m (the missed turning point on a step)."""
+    dt = problem.time.dt
+    tan = problem.tangential
+    if tan.frame_moves:
+        cell = problem.grid.spacing / tan.sliding_speed  # one cell of sliding [s]
+        for k in range(tan.steps_per_cell + 1, MAX_STEPS_PER_CELL_FACTOR * tan.steps_per_cell + 1):
+            if _accepted(_with_step(problem, cell / k, k)):
+                return "tangential.steps_per_cell", (
+                    f"use tangential.steps_per_cell = {k} (time.dt = {cell / k:.4g} s: when sliding, time.dt "
+                    "follows the grid and the speed, (2 half_width / n) / sliding_speed / steps_per_cell)")
+        return "tangential.steps_per_cell", (
+            f"no tangential.steps_per_cell up to {MAX_STEPS_PER_CELL_FACTOR * tan.steps_per_cell} meets them: put "
+            f"the turning points on multiples of one cell of sliding, (2 half_width / n) / sliding_speed = "
+            f"{cell:.4g} s")
+    first = int(np.ceil(t_missed / dt))
+    candidates = sorted({dt / m for m in range(2, 101)} | {t_missed / m for m in range(first, first + 100)},
+                        reverse=True)
+    trial = next((c for c in candidates if _accepted(_with_step(problem, c))), candidates[-1])
+    return "time.dt", f"use time.dt = {trial:.4g} s, or one that puts the turning points on steps"
 
 
 def _time_step_suggestion(problem: Problem) -> str:
-    """The step (halved until the estimate is under the warning limit) and the scheme to use."""
-    from dataclasses import replace
-
+    """The step (halved until the estimate is under the warning limit) and the scheme to use; when
+    that step misses a turning point of a history (:func:`_check_turning_points`), the next one that
+    meets them all, so that the advice is one the next run accepts: when sliding the smallest
+    ``tangential.steps_per_cell`` from the halved one on, otherwise the largest ``time.dt`` below
+    the halved one (:func:`_turning_point_advice`)."""
     linear = " (or time.scheme = \"linear\")" if problem.time.scheme == "constant" else ""
+    tan = problem.tangential
     for halvings in range(1, 11):
         factor = 2**halvings
-        trial = replace(problem, time=replace(problem.time, dt=problem.time.dt / factor))
+        trial = _with_step(problem, problem.time.dt / factor)
+        if trial is None:
+            break
         if time_step_error(trial) <= TIME_WARNING_LIMIT:
-            if problem.tangential.frame_moves and problem.radius is None:  # dt = dx / v: a finer height file
+            if tan.frame_moves and problem.radius is None:  # dt = dx / v: a finer height file
                 return f"use grid.n = {problem.grid.n * factor} (time.dt = {trial.time.dt:.3g} s){linear}"
-            if problem.tangential.frame_moves:
-                return (f"use tangential.steps_per_cell = {problem.tangential.steps_per_cell * factor} "
-                        f"(time.dt = {trial.time.dt:.3g} s){linear}")
+            if tan.frame_moves:
+                cell = problem.grid.spacing / tan.sliding_speed
+                k = next((k for k in range(tan.steps_per_cell * factor, MAX_STEPS_PER_CELL_FACTOR * tan.steps_per_cell)
+                          if _accepted(_with_step(problem, cell / k, k), TIME_WARNING_LIMIT)),
+                         tan.steps_per_cell * factor)
+                return f"use tangential.steps_per_cell = {k} (time.dt = {cell / k:.3g} s){linear}"
+            missed = [turning_point_miss(trial, key=key) for key in _histories(trial)]
+            missed = [m[1] for m, (h, _, _) in zip(missed, _histories(trial).values())
+                      if m is not None and m[0] > TURNING_POINT_MISS * max(abs(v) for v in h.values)]
+            if missed:  # the halved step misses a turning point: the step that meets them all
+                return _turning_point_advice(trial, missed[0])[1] + linear
             return f"use time.dt = {trial.time.dt:.3g} s{linear}"
     return f"use a much smaller time.dt{linear}"
 

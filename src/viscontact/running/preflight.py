@@ -198,8 +198,10 @@ def _check_output(out: str | Path | None, inputs: list[Path], *, force: bool, re
 def _check_solver(problem: Problem, transient: bool) -> None:
     """Step 5 of :func:`preflight`: the checks the solver makes before its first step."""
     if transient:
+        from viscontact.running.guards import check_sliding_step
         from viscontact.solvers.transient import validate
 
+        check_sliding_step(problem)  # a time.dt that sliding refuses: with the steps_per_cell that works
         validate(problem)
     else:
         from viscontact.solvers.steady import check_steady

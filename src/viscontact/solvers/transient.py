@@ -153,7 +153,7 @@ def validate(problem: Problem) -> None:
     if tan.frame_moves:
         if not tan.sliding_speed > 0:
             raise ParameterError("tangential.sliding_speed", f"must be > 0 m/s when sliding, got {tan.sliding_speed}")
-        cell_dt = problem.grid.spacing / (tan.sliding_speed * tan.steps_per_cell)
+        cell_dt = problem.sliding_dt
         if abs(problem.time.dt - cell_dt) > 1e-6 * cell_dt:
             raise ParameterError(
                 "time.dt", f"must equal (2*half_width/n)/sliding_speed/steps_per_cell = {cell_dt:.6g} s "
