@@ -12,6 +12,7 @@ Here on a 64² grid (``--n 64``) instead of the seed's 256²: a quick preview.
 """
 
 import tempfile
+import warnings
 from pathlib import Path
 
 import matplotlib.image as mpimg
@@ -20,7 +21,11 @@ import matplotlib.pyplot as plt
 from viscontact.reproduce import reproduce
 
 out = Path(tempfile.mkdtemp())
-files = reproduce("fig4", out, n=64)
+with warnings.catch_warnings(record=True) as caught:  # shown below as the command line shows them
+    warnings.simplefilter("always")
+    files = reproduce("fig4", out, n=64)
+for warning in caught:
+    print(f"viscontact: warning: {warning.message}")
 print("\n".join(p.name for p in files))
 
 # %%
@@ -28,4 +33,4 @@ print("\n".join(p.name for p in files))
 png = next(p for p in files if p.suffix == ".png")
 image = mpimg.imread(png)
 fig = plt.figure(figsize=(image.shape[1] / 150, image.shape[0] / 150), dpi=150)
-fig.figimage(image)
+_ = fig.figimage(image)
