@@ -8,7 +8,7 @@ import re
 from pathlib import Path
 
 import pytest
-from vc_testing import dry_run
+from vc_testing import SEED_MATERIAL_TOML, dry_run
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -17,12 +17,7 @@ ROOT = Path(__file__).resolve().parents[2]
 #: misses the turning points
 OSCILLATING_SLIDING = """\
 title = "oscillating load, gross sliding"
-[material]
-type = "zener"
-shear_modulus_instantaneous = 1.93e6
-shear_modulus_long_term = 193000.0
-retardation_time = 0.01
-poisson_ratio = 0.3
+""" + SEED_MATERIAL_TOML + """\
 [indenter]
 shape = "sphere"
 radius = 0.01

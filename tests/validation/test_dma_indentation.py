@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from vc_testing import SEED_MATERIAL_TOML
 
 import viscontact as vc
 
@@ -28,13 +29,7 @@ TAU = RETARDATION * G_INF / G0  # relaxation time, 1 ms
 MEAN = 34.45e-6
 FIT_CYCLES = 2
 
-CASE = """
-[material]
-type = "zener"
-shear_modulus_instantaneous = 1.93e6
-shear_modulus_long_term = 0.193e6
-retardation_time = 0.01
-poisson_ratio = 0.3
+CASE = SEED_MATERIAL_TOML + """
 
 [indenter]
 shape = "sphere"
