@@ -132,15 +132,6 @@ def _report(ds: Any, records: int, args: argparse.Namespace, started: float) -> 
                       note=f" ({records} records, {time.perf_counter() - started:.1f} s)")
 
 
-def _pull_off_line(attrs: dict) -> str:
-    """What ``viscontact run`` prints of an adhesive run's pull-off (result attributes
-    ``pull_off_force`` [N], ``t_pull_off`` [s])."""
-    force, t = attrs["pull_off_force"], attrs["t_pull_off"]
-    if force != force:  # NaN
-        return "pull-off: none (no tensile load in the run)"
-    return f"pull-off force {force:.6g} N at t = {t:.6g} s"
-
-
 def _cmd_run(args: argparse.Namespace) -> int:
     """The records are streamed to RESULT.nc.partial as the run goes and renamed to RESULT.nc at the
     end (:func:`viscontact.running.api.run_to_file`): memory does not grow with the number of steps."""
@@ -175,8 +166,6 @@ def _run_locked(args: argparse.Namespace, started: float) -> int:
                                   resume=args.resume, should_stop=signals.should_stop, history=_history_note(args),
                                   require_space=not args.force, finishing=signals.finish, force=args.force)
     _report(open_result(written.path) if args.plots else None, written.records, args, started)
-    if written.pull_off and not args.quiet:
-        print(_pull_off_line(written.pull_off))
     if signals.received:
         reason = signals.received[0]
         return error(f"{reason} received while the result was written: the complete result is in {args.out} "

@@ -30,6 +30,7 @@ __all__ = ["SETTLED", "UNITS", "format_summary", "print_summary", "steady_mu_app
 UNITS: dict[str, str] = {
     "t_end": "s", "load": "N", "delta_z": "m", "contact_radius": "m", "peak_pressure": "Pa", "mu_app": "1",
     "mu_app_steady": "1", "t_gross_sliding": "s", "friction_force": "N", "energy_last_cycle": "J",
+    "pull_off_force": "N", "t_pull_off": "s",
     "speed": "m/s", "deborah": "1", "run_time": "s",
 }
 #: how each quantity is named in the text
@@ -148,6 +149,9 @@ def _run_values(ds: Any) -> dict[str, Any]:
         values["friction_force"] = _last(ds, "friction_force")
     if "energy_per_cycle" in ds.variables and ds["energy_per_cycle"].shape[0]:
         values["energy_last_cycle"] = float(ds["energy_per_cycle"][-1])
+    if "pull_off_force" in ds.attrs:  # an adhesive run (NaN: no tensile load in it)
+        values["pull_off_force"] = float(ds.attrs["pull_off_force"])
+        values["t_pull_off"] = float(ds.attrs["t_pull_off"])
     return {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in values.items()}
 
 
@@ -197,9 +201,15 @@ def format_summary(s: dict[str, Any]) -> str:
     lines = [head + ":"]
     scales = {k: v for k, v in s.get("scales", {}).items() if v}
     if s["kind"] == "run":
-        width = max((len(LABELS.get(k, k)) for k in s["values"]), default=0)
-        for name, value in s["values"].items():
+        values = dict(s["values"])
+        pull_off = {k: values.pop(k) for k in ("pull_off_force", "t_pull_off") if k in values}
+        width = max((len(LABELS.get(k, k)) for k in values), default=0)
+        for name, value in values.items():
             lines.append(f"  {LABELS.get(name, name):<{width}}  {_quantity(name, value, s['units'], scales)}")
+        if pull_off:  # an adhesive run: its own line, last
+            force, t = pull_off["pull_off_force"], pull_off["t_pull_off"]
+            lines.append("pull-off: none (no tensile load in the run)" if force is None else
+                         f"pull-off force {force:.6g} N at t = {t:.6g} s")
     else:
         rows = s["rows"]
         if s["kind"] == "sweep" and s["values"]:
