@@ -477,7 +477,8 @@ class ResultStream:
 
     def drain(self) -> int:
         """Write the queued record, if any, and flush, with SIGINT / SIGTERM held meanwhile: the file
-        on disk then holds every record appended. Returns :attr:`count`.
+        on disk then holds every record appended. The record's disk claim (kept since :meth:`append`)
+        is handed back just before its bytes are written. Returns :attr:`count`.
 
         Raises
         ------
