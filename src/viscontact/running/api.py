@@ -114,7 +114,7 @@ def run(case: CaseLike | Preflight, *, progress: Callable[[int, int], None] | No
     ParameterError
         Invalid input (before any step is computed: :func:`~viscontact.running.preflight.preflight`, the
         machine's checks included), or a checkpoint of another case; or input found unsolvable at a step (partial slip in full contact on a periodic domain:
-        :func:`viscontact.solvers.transient.check_not_full_contact`), with the steps done as below.
+        :func:`viscontact.solvers.contact_laws.check_not_full_contact`), with the steps done as below.
     FileExistsError, IsADirectoryError
         ``checkpoint`` names a folder or a file that is no checkpoint (a result, a case file).
     ConvergenceError, NumericalGuardError, RunInterrupted, KeyboardInterrupt
@@ -222,7 +222,7 @@ def run_to_file(case: CaseLike | Preflight, out: str | Path, *, progress: Callab
         file to resume that is missing, unreadable or written for another case
         (:func:`viscontact.io.streaming.check_resumable`; the file is left as it was); or input found
         unsolvable at a step (partial slip in full contact on a periodic domain:
-        :func:`viscontact.solvers.transient.check_not_full_contact`), with the steps done kept as below.
+        :func:`viscontact.solvers.contact_laws.check_not_full_contact`), with the steps done kept as below.
     BlockingIOError
         Another process writes ``out`` (:func:`viscontact.io.output_files.output_lock`, held for the
         whole run).

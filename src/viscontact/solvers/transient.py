@@ -30,8 +30,7 @@ from typing import Callable, Generator
 
 import numpy as np
 
-from viscontact.bodies.compliance import compliance_of
-from viscontact.bodies.compliance import Compliance
+from viscontact.bodies.compliance import Compliance, compliance_of
 from viscontact.errors import ParameterError
 from viscontact.numerics.adhesive import NoEquilibriumError
 from viscontact.numerics.allocator import tune_allocator
@@ -43,7 +42,6 @@ from viscontact.problem.records import StepRecord
 from viscontact.solvers import adhesive_law  # noqa: F401 (registers the adhesive law)
 from viscontact.solvers.contact_laws import (
     StepContext,
-    check_not_full_contact,  # noqa: F401 (documented here: running.api)
     contact_law,
     first_phase,
 )
