@@ -465,6 +465,40 @@ def sweep_dataset(records: Sequence[StepRecord], speeds: Sequence[float], proble
     return _add_scales(ds)
 
 
+def creepage_dataset(records: Sequence[StepRecord], creepages: Sequence[float], problem: Problem, *,
+                     case_text: str = "") -> xr.Dataset:
+    """Dataset of steady rolling states along dimension ``creepage`` [-] (the traction-creepage
+    curve at the case's rolling speed): ``friction_force`` [N] (the traction), ``traction_ratio``
+    = friction_force / (mu_f W) [-], ``stick_ratio``, ``hysteresis_force`` (the rolling resistance)
+    and ``mu_app``, ``load``, ``delta_z``, ``contact_area``, and the fields ``pressure``, ``shear_x``
+    and ``stick`` on (``creepage``, ``y``, ``x``)."""
+    import xarray as xr
+
+    records = list(records)
+    mode = problem.tangential.mode
+    along = ("creepage",)
+    variables = {name: _variable(name, along, np.array([getattr(r, name) for r in records], dtype=float), mode)
+                 for name in ("friction_force", "stick_ratio", "hysteresis_force", "mu_app", "load", "delta_z",
+                              "contact_area")}
+    limit = problem.tangential.friction_coefficient * variables["load"][1]
+    variables["traction_ratio"] = (along, np.divide(variables["friction_force"][1], limit, out=np.zeros_like(limit),
+                                                    where=limit > 0),
+                                   {"units": "1", "long_name": "traction / (mu_f W)"})
+    for name in ("pressure", "shear_x", "stick"):
+        variables[name] = _variable(name, ("creepage", "y", "x"), _field_stack(records, name, problem.grid.n), mode)
+    coords = {"creepage": _coordinate_of_variable("creepage", np.asarray(creepages, dtype=float)), **_coords(problem)}
+    ds = xr.Dataset(variables, coords=coords)
+    ds.attrs.update(global_attrs(problem, case_text))
+    ds.attrs.update({"solver": "steady", "complete": 1})
+    return _add_scales(ds)
+
+
+def _coordinate_of_variable(name: str, data: np.ndarray) -> VariableSpec:
+    """A coordinate along itself with the units and long name of the variable ``name``."""
+    units, long_name = VARIABLES[name]
+    return (name,), data, {"units": units, "long_name": long_name}
+
+
 def material_dataset(material: Material, *, points: int = 200) -> xr.Dataset:
     """The material functions of ``material`` on log-spaced times and angular frequencies.
 
