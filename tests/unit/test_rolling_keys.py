@@ -51,3 +51,27 @@ def test_rolling_keys_refused_in_one_line(tangential, key):
     with pytest.raises(ParameterError) as info:
         _case(tangential).to_problem()
     assert info.value.key == key and "\n" not in str(info.value)
+
+
+ROLLING = 'mode = "rolling"\nrolling_speed = 0.1\ncreepage = -2e-3\nfriction_coefficient = 0.3\n'
+
+
+def test_traction_creepage_curve_in_one_call_and_its_figure(tmp_path):
+    """``run_steady(case, creepages=...)`` (``viscontact steady --creepages``): a Dataset along
+    ``creepage``, the traction odd in it and bounded by mu_f W; ``plot`` draws the curve."""
+    import numpy as np
+
+    from viscontact.plotting import plot_any
+    from viscontact.running.api import run_steady
+
+    decoupled = Case.from_toml_text((BASE + ROLLING).replace("poisson_ratio = 0.3", "poisson_ratio = 0.5"))
+    ds = run_steady(decoupled, creepages=[-0.1, -2e-3, 0.0, 2e-3])  # nu = 0.5: free rolling at creepage 0
+    ratio = ds["traction_ratio"].values
+    assert ratio[0] == pytest.approx(1.0) and ratio[2] == 0.0 and ratio[1] == pytest.approx(-ratio[3])
+    assert np.all(np.abs(ratio) <= 1 + 1e-12) and ds["creepage"].attrs["units"] == "1"
+    assert [p.name for p in plot_any(ds, tmp_path)] == ["creep_curve.png"]
+    single = run_steady(_case(ROLLING))
+    assert single["creepage"].values.tolist() == [-2e-3] and int(single["phase"][0]) == 3
+    with pytest.raises(ParameterError) as info:
+        run_steady(_case(ROLLING), speeds=[0.1])
+    assert info.value.key == "speeds"
