@@ -2,7 +2,9 @@
 creepage, from standstill. Checked: the traction builds from zero at t = 0 and settles, the stick zone
 at the leading edge, the rolling resistance resists the rolling, and the end state is the steady
 rolling solver's (the same case, :func:`viscontact.running.api.run_steady`): measured at 32^2 (the
-fast test) traction 0.4 %, rolling resistance 0.03 %; at 64^2 (the case's grid) 0.3 % and 0.02 %."""
+fast test) traction -0.77 %, rolling resistance -0.19 %; at 64^2 (the case's grid) +0.36 % and -0.21 %
+(the transient's domain drops the wake behind the grid, the steady kernel holds the whole past):
+tolerance 1 %."""
 from pathlib import Path
 
 import numpy as np
