@@ -151,3 +151,21 @@ def test_viscoelastic_transient_tends_to_the_steady_state(nu):
     assert last.friction_force == pytest.approx(steady.friction_force, rel=5e-3 if nu == 0.5 else 2e-2)
     assert last.hysteresis_force == pytest.approx(steady.hysteresis_force, rel=5e-3)
     assert last.delta_z == pytest.approx(steady.delta_z, rel=2e-3)
+
+
+def test_a_checkpoint_of_a_rolling_state_resumes_bit_exact(tmp_path):
+    """The state carries rolling's convected u_x and the last rigid creep: a run resumed from a
+    checkpoint after step 5 under a held force repeats the uninterrupted one bit for bit."""
+    from viscontact.io.checkpoint import load_checkpoint, save_checkpoint
+    from viscontact.solvers.transient import steps
+
+    pb, _ = _rolling(16, creepage=None, force=0.3 * MU * W, widths=2)
+    run = list(steps(pb))
+    save_checkpoint(tmp_path / "c.npz", pb, run[5][0])
+    state, _ = load_checkpoint(tmp_path / "c.npz", pb)
+    assert state.displacement_x is not None and state.rigid_x == run[5][0].rigid_x
+    resumed = list(steps(pb, state=state))
+    assert len(resumed) == len(run) - 6
+    for (_, ours), (_, want) in zip(resumed, run[6:]):
+        np.testing.assert_array_equal(ours.shear_x, want.shear_x)
+        assert ours.creepage == want.creepage
