@@ -27,8 +27,8 @@ A frictionless rolling is a frictionless sliding (Hunter 1961).
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import replace
-from typing import Sequence
 
 import numpy as np
 
@@ -102,41 +102,14 @@ def solve_tangential(apply_xx, pressure: np.ndarray, known_x: np.ndarray, fricti
     seen: list[np.ndarray] = []
     for _ in range(MAX_ROUNDS):
         fixed = side * bound  # the slipping points at their bound
-        idx = np.flatnonzero(stick)
-        m = idx.size
-        if m == 0 and creep is not None:
-            q = fixed
+        if stick.any() or creep is None:
+            q_stick, c, its = _solve_stick_set(apply_xx, stick, fixed, known_slip, q, c,
+                                               force if creep is None else None, cell_area,
+                                               tolerance, max_iterations, contact)
+            krylov += its
+            q = fixed + q_stick
         else:
-            rhs_field = -(known_slip + material_difference(apply_xx(fixed)))
-
-            def full(v: np.ndarray) -> np.ndarray:
-                out = np.zeros_like(pressure)
-                out.ravel()[idx] = v[:m]
-                return out
-
-            if creep is not None:
-                def op(v: np.ndarray) -> np.ndarray:
-                    return material_difference(apply_xx(full(v))).ravel()[idx]
-
-                rhs = rhs_field.ravel()[idx] - c
-                x0 = q.ravel()[idx]
-            else:  # the bordered system for (q on the stick set, the rigid creep)
-                row = float(np.mean(np.abs(material_difference(apply_xx(contact.astype(float)))[contact]))) or 1.0
-
-                def op(v: np.ndarray) -> np.ndarray:
-                    top = material_difference(apply_xx(full(v))).ravel()[idx] + v[m]
-                    return np.concatenate([top, [row * v[:m].sum() / max(m, 1)]])
-
-                rhs = np.concatenate([rhs_field.ravel()[idx],
-                                      [row * (force / cell_area - float(fixed.sum())) / max(m, 1)]])
-                x0 = np.concatenate([q.ravel()[idx], [c]])
-            sol = gmres(op, rhs, x0, rtol=tolerance, max_iterations=max_iterations)
-            if not sol.converged:
-                raise ConvergenceError("steady rolling GMRES", max_iterations, sol.residual, tolerance)
-            krylov += sol.iterations
-            q = fixed + full(sol.x)
-            if creep is None:
-                c = float(sol.x[m])
+            q = fixed
         slip = material_difference(apply_xx(q)) + known_slip + c
         leave = stick & (np.abs(q) > bound)
         join = contact & ~stick & (side * slip > 0)
@@ -151,6 +124,44 @@ def solve_tangential(apply_xx, pressure: np.ndarray, known_x: np.ndarray, fricti
         stick = new_stick
     raise ConvergenceError("steady rolling active set", MAX_ROUNDS, float(np.sum(stick != new_stick)), 0.0,
                            hint="the stick set did not settle")
+
+
+def _solve_stick_set(apply_xx, stick: np.ndarray, fixed: np.ndarray, known_slip: np.ndarray, q: np.ndarray,
+                     creep: float, force: float | None, cell_area: float, tolerance: float, max_iterations: int,
+                     contact: np.ndarray) -> tuple[np.ndarray, float, int]:
+    """One round's linear solve (GMRES) of the stick set ``stick``: s = 0 there, with the slipping points
+    at ``fixed`` [Pa]. Under a held ``force`` [N] (else None: ``creep`` [m] held) the bordered system of
+    (q on the set, the rigid creep) with the force as its last row (scaled to a slip: ``row`` [m/Pa],
+    the mean material difference of a unit traction over the contact). Returns (q_x on the set [Pa],
+    zeros elsewhere; the rigid creep [m]; GMRES iterations), starting from ``q`` and ``creep``."""
+    idx = np.flatnonzero(stick)
+    m = idx.size
+    rhs = -(known_slip + material_difference(apply_xx(fixed))).ravel()[idx]
+
+    def full(v: np.ndarray) -> np.ndarray:
+        out = np.zeros_like(fixed)
+        out.ravel()[idx] = v[:m]
+        return out
+
+    def slip_of(v: np.ndarray) -> np.ndarray:
+        return material_difference(apply_xx(full(v))).ravel()[idx]
+
+    if force is None:
+        sol = gmres(slip_of, rhs - creep, q.ravel()[idx], rtol=tolerance, max_iterations=max_iterations)
+    else:
+        row = float(np.mean(np.abs(material_difference(apply_xx(contact.astype(float)))[contact]))) or 1.0
+        per_point = max(m, 1)
+
+        def bordered(v: np.ndarray) -> np.ndarray:
+            return np.concatenate([slip_of(v) + v[m], [row * v[:m].sum() / per_point]])
+
+        rhs = np.concatenate([rhs, [row * (force / cell_area - float(fixed.sum())) / per_point]])
+        sol = gmres(bordered, rhs, np.concatenate([q.ravel()[idx], [creep]]), rtol=tolerance,
+                    max_iterations=max_iterations)
+        creep = float(sol.x[m])
+    if not sol.converged:
+        raise ConvergenceError("steady rolling GMRES", max_iterations, sol.residual, tolerance)
+    return full(sol.x), creep, sol.iterations
 
 
 def check_steady_rolling(problem: Problem, speed: float | None = None) -> None:
@@ -203,7 +214,7 @@ def solve_steady_rolling(problem: Problem, speed: float | None = None, *, creepa
     for _ in range(settings.max_coupling_iterations if coupled else 1):
         known_x = conv.apply("xz", p) if coupled else np.zeros_like(p)
         if mu > 0:
-            q, c, slip, its = solve_tangential(lambda f: conv.apply("xx", f), p, known_x, mu, grid.cell_area,
+            q, c, _, its = solve_tangential(lambda f: conv.apply("xx", f), p, known_x, mu, grid.cell_area,
                                                creep=creep, force=force, initial=q, tolerance=tolerance,
                                                max_iterations=settings.max_iterations)
             krylov += its
@@ -224,7 +235,7 @@ def solve_steady_rolling(problem: Problem, speed: float | None = None, *, creepa
         raise ConvergenceError("steady rolling normal/tangential coupling", settings.max_coupling_iterations,
                                change, settings.coupling_tolerance)
     if mu > 0 and coupled:  # the tangential state of the final pressure
-        q, c, slip, its = solve_tangential(lambda f: conv.apply("xx", f), p, conv.apply("xz", p), mu, grid.cell_area,
+        q, c, _, its = solve_tangential(lambda f: conv.apply("xx", f), p, conv.apply("xz", p), mu, grid.cell_area,
                                            creep=creep, force=force, initial=q, tolerance=tolerance,
                                            max_iterations=settings.max_iterations)
         krylov += its
