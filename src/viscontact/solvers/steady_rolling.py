@@ -97,7 +97,7 @@ def solve_tangential(apply_xx, pressure: np.ndarray, known_x: np.ndarray, fricti
         side = np.where(contact & ~stick, np.sign(initial), 0.0)
     known_slip = material_difference(known_x)
     c = 0.0 if creep is None else float(creep)
-    q = np.where(contact, np.clip(initial if initial is not None else 0.0, -bound, bound), 0.0)
+    q = np.zeros_like(pressure) if initial is None else np.where(contact, np.clip(initial, -bound, bound), 0.0)
     krylov = 0
     seen: list[np.ndarray] = []
     for _ in range(MAX_ROUNDS):
@@ -152,11 +152,14 @@ def _solve_stick_set(apply_xx, stick: np.ndarray, fixed: np.ndarray, known_slip:
         row = float(np.mean(np.abs(material_difference(apply_xx(contact.astype(float)))[contact]))) or 1.0
         per_point = max(m, 1)
 
-        def bordered(v: np.ndarray) -> np.ndarray:
-            return np.concatenate([slip_of(v) + v[m], [row * v[:m].sum() / per_point]])
+        def entry(value) -> np.ndarray:  # the one-element border, in the fields' library
+            return np.full_like(fixed, value, shape=1)
 
-        rhs = np.concatenate([rhs, [row * (force / cell_area - float(fixed.sum())) / per_point]])
-        sol = gmres(bordered, rhs, np.concatenate([q.ravel()[idx], [creep]]), rtol=tolerance,
+        def bordered(v: np.ndarray) -> np.ndarray:
+            return np.concatenate([slip_of(v) + v[m], entry(row * v[:m].sum() / per_point)])
+
+        rhs = np.concatenate([rhs, entry(row * (force / cell_area - float(fixed.sum())) / per_point)])
+        sol = gmres(bordered, rhs, np.concatenate([q.ravel()[idx], entry(creep)]), rtol=tolerance,
                     max_iterations=max_iterations)
         creep = float(sol.x[m])
     if not sol.converged:
@@ -206,9 +209,10 @@ def solve_steady_rolling(problem: Problem, speed: float | None = None, *, creepa
     sliding = replace(problem, tangential=TangentialLoading("frictionless_sliding", sliding_speed=v))
     normal = solve_steady(sliding, v, compliance=compliance,
                           initial=None if initial is None else initial.pressure)
-    p, delta = normal.pressure, normal.delta_z
+    to_device, to_host = compliance.backend.to_device, compliance.backend.to_host
+    p, delta, gap = to_device(normal.pressure), normal.delta_z, to_device(problem.gap)
     krylov = 0
-    q = initial.shear_x if initial is not None else None
+    q = to_device(initial.shear_x) if initial is not None else None
     creep = None if xi is None else xi * grid.spacing
     precondition = steady_preconditioner(compliance, kernels, v, settings.workers)
     for _ in range(settings.max_coupling_iterations if coupled else 1):
@@ -224,7 +228,7 @@ def solve_steady_rolling(problem: Problem, speed: float | None = None, *, creepa
             break
         cross = conv.apply("zx", q)
         p_new, delta, _, _ = solve_contact_active_set(
-            lambda f: conv.apply("zz", f), problem.gap + cross, control=problem.normal.control, value=value,
+            lambda f: conv.apply("zz", f), gap + cross, control=problem.normal.control, value=value,
             cell_area=grid.cell_area, initial=p, tolerance=tolerance, max_iterations=settings.max_iterations,
             preconditioner=precondition, what="steady rolling (normal)")
         change = float(np.abs(p_new - p).sum()) / max(float(np.abs(p_new).sum()), 1e-300)
@@ -239,7 +243,8 @@ def solve_steady_rolling(problem: Problem, speed: float | None = None, *, creepa
                                            creep=creep, force=force, initial=q, tolerance=tolerance,
                                            max_iterations=settings.max_iterations)
         krylov += its
-    u_z = conv.apply("zz", p) + (conv.apply("zx", q) if coupled else 0.0)
+    u_z = to_host(conv.apply("zz", p) + (conv.apply("zx", q) if coupled else 0.0))
+    p, q = to_host(p), to_host(q)
     stick = (p > 0) & (np.abs(q) < mu * p * (1 - 1e-9)) if mu > 0 else np.zeros(p.shape, dtype=bool)
     record = measure(problem, p, q, u_z, delta_z=delta, value=value, gap=problem.gap, step=0, t=problem.time.t_end,
                      phase=PHASE_ROLLING, stick=stick, sliding_distance=float("inf"), iterations=krylov,
