@@ -169,3 +169,22 @@ def test_a_checkpoint_of_a_rolling_state_resumes_bit_exact(tmp_path):
     for (_, ours), (_, want) in zip(resumed, run[6:]):
         np.testing.assert_array_equal(ours.shear_x, want.shear_x)
         assert ours.creepage == want.creepage
+
+
+def test_coupled_rolling_in_full_slip_is_steady_gross_sliding():
+    """nu = 0.3, elastic: at a creepage far beyond the creep region every point slips, q_x = mu_f p
+    (braking), so the coupled steady rolling state (the tangential and normal problems alternated) is
+    the steady gross sliding one, which the sliding solver finds with the coupling inside its operator
+    (K_zz + mu_f K_zx, another algorithm): the pressure shifted by the coupling as in sliding."""
+    from viscontact.solvers.steady import solve_steady
+
+    pb, _ = _rolling(32, material=Material.elastic(G, 0.3))
+    rolling = solve_steady_rolling(pb, creepage=-0.2)
+    sliding = solve_steady(replace(pb, tangential=TangentialLoading("gross_sliding", MU, sliding_speed=V)))
+    frictionless = solve_steady(replace(pb, tangential=TangentialLoading("frictionless_sliding", sliding_speed=V)))
+    assert rolling.stick_ratio == 0.0
+    assert rolling.friction_force == pytest.approx(MU * W, rel=1e-9)
+    peak = sliding.pressure.max()
+    assert np.abs(rolling.pressure - sliding.pressure).max() < 1e-6 * peak
+    assert rolling.delta_z == pytest.approx(sliding.delta_z, rel=1e-6)
+    assert np.abs(sliding.pressure - frictionless.pressure).max() > 1e-3 * peak  # the coupling shifts it
