@@ -56,6 +56,16 @@ def test_rolling_keys_refused_in_one_line(tangential, key):
 ROLLING = 'mode = "rolling"\nrolling_speed = 0.1\ncreepage = -2e-3\nfriction_coefficient = 0.3\n'
 
 
+def test_a_held_force_beyond_mu_w_is_refused_before_the_run():
+    from viscontact.solvers.transient import validate
+
+    problem = _case('mode = "rolling"\nrolling_speed = 0.1\ntangential_force = 0.05\nfriction_coefficient = 0.3\n'
+                    ).to_problem()  # mu_f W = 0.045 N
+    with pytest.raises(ParameterError, match="below mu_f W = 0.045 N") as info:
+        validate(problem)
+    assert info.value.key == "tangential.tangential_force"
+
+
 def test_traction_creepage_curve_in_one_call_and_its_figure(tmp_path):
     """``run_steady(case, creepages=...)`` (``viscontact steady --creepages``): a Dataset along
     ``creepage``, the traction odd in it and bounded by mu_f W; ``plot`` draws the curve."""

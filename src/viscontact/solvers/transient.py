@@ -175,6 +175,11 @@ def validate(problem: Problem) -> None:
         raise ParameterError("tangential.sliding_speed", "give none with tangential.displacement_history: the "
                              "indenter never slides under a history (a vanished stick zone stops the run), got "
                              f"{tan.sliding_speed:g} m/s")
+    if tan.tangential_force is not None and problem.normal.control == "load":
+        limit = tan.friction_coefficient * min(problem.normal.history.values)
+        if not abs(tan.tangential_force) < limit:
+            raise ParameterError("tangential.tangential_force", f"|{tan.tangential_force:g}| N must be below mu_f W = "
+                                 f"{limit:g} N (the smallest load of the run): the contact would slide, not roll")
     if tan.mode == "partial_slip" and tan.displacement_history is None and not tan.displacement_rate > 0:
         raise ParameterError("tangential.displacement_rate", f"must be > 0 m/s for partial_slip, got {tan.displacement_rate}")
     limit = min(stable_step_limit(r, problem.time.scheme) for r in problem.body.stability_responses())
