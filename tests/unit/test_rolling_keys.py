@@ -85,3 +85,14 @@ def test_traction_creepage_curve_in_one_call_and_its_figure(tmp_path):
     with pytest.raises(ParameterError) as info:
         run_steady(_case(ROLLING), speeds=[0.1])
     assert info.value.key == "speeds"
+
+
+def test_the_rolling_keys_enter_the_checkpoint_fingerprint():
+    """A checkpoint of another creepage or speed is another case's; the other modes' fingerprints are
+    those written before rolling came (pinned in test_resume_bodies)."""
+    from viscontact.io.checkpoint import problem_fingerprint
+
+    base = problem_fingerprint(_case(ROLLING).to_problem())
+    for change in ("creepage = -2e-3", "rolling_speed = 0.1"):
+        other = ROLLING.replace(change, change.replace("2e-3", "3e-3").replace("0.1", "0.2"))
+        assert problem_fingerprint(_case(other).to_problem()) != base
