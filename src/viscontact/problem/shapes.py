@@ -52,9 +52,14 @@ WALL_RADII = 1.0
 #: (tests/validation/test_flat_punch.py: -1.54 %, -0.75 %, -0.36 % at a/dx = 8, 16, 32), the rim's
 #: singular pressure averaged over its cells
 FLAT_FACE_LOAD_ERROR_PER_CELL = 0.12
-#: measured load error of a cone per cell of dx/a at a given approach, |W / W_Sneddon - 1| <= 0.25 dx/a
-#: (tests/validation/test_shapes.py), the tip's singular pressure averaged over its cells
-CONE_LOAD_ERROR_PER_CELL = 0.25
+#: measured load error of a cone per cell of dx/a at a given approach, |W / W_Sneddon - 1| <= 0.027 dx/a
+#: (tests/validation/test_shapes.py: 1.1 %, 0.8 %, 0.46 %, 0.11 %, 0.045 % at a/dx = 2, 3, 4, 8, 10), the
+#: tip's singular pressure averaged over its cells
+CONE_LOAD_ERROR_PER_CELL = 0.03
+#: cells across a punch's face or a cone's contact radius below which a run is refused, whatever its
+#: small load error: a contact of a cell or two is no face or cone the grid describes (the contact
+#: area, a count of cells, errs by up to 30 % at a/dx = 1.5 for a cone)
+SINGULAR_MIN_CELLS = 2.0
 #: a cone's flank slope cot(alpha) above which it is warned about (beyond the small-slope theory of the
 #: half-space) and refused (a half-angle in the wrong unit): those of a surface's rms slope
 #: (:data:`viscontact.problem.topography.WARN_RMS_SLOPE`, :data:`~viscontact.problem.topography.MAX_RMS_SLOPE`)
@@ -76,7 +81,9 @@ class Shape:
     Class attributes: ``name`` (the ``indenter.shape`` value), ``required`` and ``optional`` (its
     case keys besides ``shape``), ``model`` (the closed form of its estimates, in messages),
     ``grows`` (whether the contact grows with the load: not a flat punch's face), ``resolved`` (what
-    :meth:`resolution_error` estimates the error of), ``singular`` (what no grid resolves, or '').
+    :meth:`resolution_error` estimates the error of), ``singular`` (what no grid resolves, or ''),
+    ``min_cells`` (cells across the narrowest half-width below which a run is refused whatever the
+    error estimate; 0: none but the estimate's).
     """
 
     name: ClassVar[str]
@@ -86,6 +93,7 @@ class Shape:
     grows: ClassVar[bool] = True
     resolved: ClassVar[str] = "the peak pressure"
     singular: ClassVar[str] = ""
+    min_cells: ClassVar[float] = 0.0
 
     # --- geometry ---------------------------------------------------------------------------
     def gap(self, grid: Grid) -> np.ndarray:
@@ -368,6 +376,7 @@ class FlatPunch(Shape):
     model: ClassVar[str] = "Boussinesq flat punch"
     grows: ClassVar[bool] = False
     resolved: ClassVar[str] = "the load at a given approach"
+    min_cells: ClassVar[float] = SINGULAR_MIN_CELLS
     singular: ClassVar[str] = ("the pressure at a sharp rim is singular, as (a - r)^(-1/2): the grid resolves the "
                                "load, the approach and the pressure a few cells inside the rim, not the rim's "
                                "pressure (a cell average there)")
@@ -425,6 +434,7 @@ class Cone(Shape):
     required: ClassVar[tuple[str, ...]] = ("half_angle",)
     model: ClassVar[str] = "Sneddon cone"
     resolved: ClassVar[str] = "the load at a given approach"
+    min_cells: ClassVar[float] = SINGULAR_MIN_CELLS
     singular: ClassVar[str] = ("the pressure at the tip is singular (logarithmically): the grid resolves the load, "
                                "the approach and the contact radius, not the tip's pressure (a cell average there)")
 

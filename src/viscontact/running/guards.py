@@ -19,7 +19,8 @@ closed-form contact mechanics and from the time scheme applied to one point:
   elastic Hertz case: 3.9 %, 2.6 %, 1.5 %, 0.6 % at a/dx = 2, 3, 4, 6 against 6.5 %, 2.8 %, 1.6 %,
   0.7 % estimated). Other shapes estimate their own error (:meth:`~viscontact.problem.shapes.Shape.resolution_error`:
   a flat punch's and a cone's load at a given approach, the singular pressure at a rim or a tip
-  averaged over its cells), and fewer than :data:`MIN_CONTACT_CELLS` cells are refused.
+  averaged over its cells), and fewer than the shape's ``min_cells`` are refused (a punch's face, a
+  cone's contact: :data:`~viscontact.problem.shapes.SINGULAR_MIN_CELLS`).
 * **domain** -- the largest contact must fit in the domain with :data:`EDGE_CELLS` cells to spare.
 * **small strain** -- the half-space and the paraboloidal gap are small-strain, small-slope
   approximations; the largest strain is about p0/E* = 2a/(pi R) (Hertz; a shape's contact size
@@ -69,9 +70,6 @@ ERROR_LIMIT, WARNING_LIMIT = 0.10, 0.05
 TIME_ERROR_LIMIT, TIME_WARNING_LIMIT = 0.20, 0.07
 #: cells kept between the largest contact (an upper bound: creep under a held load) and the edge
 EDGE_CELLS = 1
-#: cells across the narrowest contact half-width below which a run is refused whatever the shape's
-#: error estimate (a punch's face, a cone's contact of one cell is no contact the grid describes)
-MIN_CONTACT_CELLS = 2.0
 #: contact radius / sphere radius: refused above, warned about above (strain ~ 2a/(pi R))
 RADIUS_RATIO_ERROR, RADIUS_RATIO_WARNING = 0.5, 0.2
 #: largest G(0)/G(inf) [-]: J_inst = J(inf) - sum_m J_m beta_m (viscontact.numerics.schemes) loses
@@ -187,11 +185,12 @@ def _grid_problems(est: ContactEstimate, n: int, half_width: float) -> list[tupl
     found = []
     cells = est.smallest / dx
     error = est.resolution_error(cells)
-    if error > ERROR_LIMIT or cells < MIN_CONTACT_CELLS:
+    min_cells = 0.0 if est.shape is None else est.shape.min_cells
+    if error > ERROR_LIMIT or cells < min_cells:
         singular = f" ({est.shape.singular})" if est.shape is not None and est.shape.singular else ""
         found.append(("grid.n", f"{n} cells of {dx:.3g} m resolve the contact radius {est.smallest:.3g} m "
                       f"with {cells:.2g} cells: {est.resolved} would be off by about {100 * error:.0f} %"
-                      + (f" (at least {MIN_CONTACT_CELLS:g} cells are needed)" if error <= ERROR_LIMIT else "")
+                      + (f" (at least {min_cells:g} cells are needed)" if error <= ERROR_LIMIT else "")
                       + singular))
     if est.largest > half_width - EDGE_CELLS * dx:
         found.append(("grid.half_width", f"the contact radius reaches about {est.largest:.3g} m ({est.model}): "
@@ -209,7 +208,7 @@ def grid_suggestion(est: ContactEstimate, n: int, half_width: float) -> tuple[in
         half_width = math.ceil(1.5 * est.largest / scale) * scale  # 1.5 a, rounded up to two digits
     # cells under the warning, with 5 % margin: the shape's error falls as the cells grow
     cells_needed = 1.05 * max(optimize.brentq(lambda c: est.resolution_error(c) - WARNING_LIMIT, 1e-3, 1e6),
-                              MIN_CONTACT_CELLS)
+                              0.0 if est.shape is None else est.shape.min_cells)
     n_needed = max(n, math.ceil(min(2.0 * half_width * cells_needed / est.smallest, 2.0 * MAX_GRID_N)))
     n = min(2 ** math.ceil(math.log2(n_needed)), MAX_GRID_N) if n_needed > n else n
     while _grid_problems(est, n, half_width) and n < MAX_GRID_N:

@@ -139,7 +139,7 @@ def test_results_carry_the_shape():
 def test_a_cone_too_coarse_is_refused_naming_its_singular_tip():
     """A cone of 70.3 degrees pressed 5 um: a = 2 delta tan(alpha)/pi = 8.9 um, 0.14 cells of 62.5 um."""
     with pytest.raises(ParameterError, match=r"grid\.n: .*0\.14 cells.*the load at a given approach.*tip is "
-                       r"singular.*use grid\.half_width = 0\.002 m and grid\.n = 4096"):
+                       r"singular.*use grid\.half_width = 0\.002 m and grid\.n = 1024"):
         guards.check_problem(_case("cone", "half_angle = 70.3").to_problem())
 
 
