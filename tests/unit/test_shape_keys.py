@@ -71,11 +71,30 @@ def test_refused_keys_name_the_key_in_one_line(shape, keys, key):
     assert refused.value.key == key and "\n" not in str(refused.value), str(refused.value)
 
 
-def test_a_steep_cone_warns_and_roughness_goes_on_any_shape():
-    with pytest.warns(ViscontactWarning, match="small-slope theory"):
-        _case("cone", "half_angle = 30.0")
+def test_a_steep_cone_warns_once_and_roughness_goes_on_any_shape():
+    steep = _case("cone", "half_angle = 30.0").to_problem()  # no warning at load
+    with pytest.warns(ViscontactWarning, match="small-slope theory") as caught:
+        guards.check_problem(replace(steep, normal=replace(steep.normal, history=type(steep.normal.history)
+                                                           .constant(1e-3))))
+    assert sum("small-slope" in str(w.message) for w in caught) == 1
     rough = _case("cone", "half_angle = 70.3\n[indenter.roughness]\nhurst = 0.8\nrms_height = 1e-8").to_problem()
     assert rough.surface_topography and rough.shape == Cone(70.3)
+
+
+@pytest.mark.parametrize(("build", "key"), [(lambda: Sphere(-1.0), "indenter.radius"),
+                                            (lambda: Cone(float("nan")), "indenter.half_angle"),
+                                            (lambda: FlatPunch(1e-3, -1e-4), "indenter.edge_radius"),
+                                            (lambda: Ellipsoid(0.01, "0.01"), "indenter.radius_y")])
+def test_a_shape_built_in_python_checks_its_values(build, key):
+    with pytest.raises(ParameterError) as refused:
+        build()
+    assert refused.value.key == key
+
+
+def test_an_infinite_cylinder_is_refused_on_a_2d_grid():
+    problem = _case("cylinder", KEYS["cylinder"]).to_problem()
+    with pytest.raises(ParameterError, match="indenter.length: required for shape = 'cylinder' on a 2-D grid"):
+        guards.check_problem(replace(problem, shape=Cylinder(0.01)))
 
 
 def test_the_sphere_is_as_before_bit_for_bit_and_mirrors_the_radius():

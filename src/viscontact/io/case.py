@@ -381,7 +381,7 @@ class IndenterSection(_SelfAffineKeys):
                 raise ParameterError(f"indenter.{key}", f"only with shape = {owners}")
         if shape == "self_affine":
             self._check_self_affine("indenter")
-        self.analytic_shape()  # a shape's own checks (a roller's rounded ends within its length, a cone's slope)
+        self.analytic_shape()  # a shape's own checks (a roller's rounded ends within its length, a cone's angle)
         if self.physical_size_m is not None and self.physical_size is not None:
             raise ParameterError("indenter.physical_size", "give indenter.physical_size_m (metres) only: "
                                  "physical_size (in indenter.unit) is its deprecated form")

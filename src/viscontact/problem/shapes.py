@@ -38,7 +38,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from viscontact.errors import ParameterError, warn_caller
+from viscontact.errors import ParameterError
 from viscontact.numerics.grid import Grid
 from viscontact.physics import reference
 
@@ -110,9 +110,33 @@ class Shape:
         """The radius [m] of a sphere (:class:`Sphere`), else None (``Problem.radius``)."""
         return None
 
+    def __post_init__(self) -> None:
+        """Refuse (:class:`~viscontact.errors.ParameterError`, naming the case key) a length or angle
+        that is not a finite number > 0 (``edge_radius``: >= 0), and values no shape of its kind has
+        (:meth:`check`)."""
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if value is None and f.default is None:
+                continue
+            least = 0.0 if f.name == "edge_radius" else None
+            number = isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
+            if not (number and math.isfinite(value) and (value >= least if least is not None else value > 0)):
+                bound = ">= 0" if least is not None else "> 0"
+                raise ParameterError(f"indenter.{f.name}", f"must be a finite number {bound}, got {value!r}")
+        self.check()
+
     def check(self) -> None:
-        """Refuse (:class:`~viscontact.errors.ParameterError`) or warn about values the half-space's
-        small-slope theory cannot take (nothing by default)."""
+        """Refuse values no shape of its kind has (nothing by default)."""
+
+    def caveats(self, grid: Grid) -> list[str]:
+        """What the half-space's theory or ``grid`` cannot take of the shape and a run should be warned
+        about (each a message; none by default); :func:`viscontact.running.guards.check_problem` warns
+        them and refuses what :meth:`check_grid` refuses."""
+        return []
+
+    def check_grid(self, grid: Grid) -> None:
+        """Refuse (:class:`~viscontact.errors.ParameterError`) a grid the shape cannot be posed on
+        (nothing by default)."""
 
     # --- the elastic contact on a half-space of contact modulus E* [Pa] ---------------------
     def load_at_size(self, size: float, contact_modulus: float) -> float:
@@ -167,9 +191,7 @@ def shape_from_keys(name: str, keys: dict[str, Any]) -> Shape:
     """The shape ``name`` built from its case keys (``keys``: key -> value, None for a key not given),
     checked (:meth:`Shape.check`)."""
     cls = SHAPES[name]
-    shape = cls(**{k: keys[k] for k in (*cls.required, *cls.optional) if keys.get(k) is not None})
-    shape.check()
-    return shape
+    return cls(**{k: keys[k] for k in (*cls.required, *cls.optional) if keys.get(k) is not None})
 
 
 def _e_star(shear_modulus: float, poisson_ratio: float) -> float:
@@ -310,6 +332,13 @@ class Cylinder(Shape):
             raise ParameterError("indenter.edge_radius", f"must be <= length / 2 = {self.length / 2:g} m (the "
                                  f"rounded ends of a roller {self.length:g} m long), got {self.edge_radius:g}")
 
+    def check_grid(self, grid: Grid) -> None:
+        """Refuse an infinite cylinder (no length) on a 2-D grid: its contact would cross the domain."""
+        if self.length is None and getattr(grid, "dimension", 2) == 2:
+            raise ParameterError("indenter.length", "required for shape = 'cylinder' on a 2-D grid (a roller of "
+                                 "finite length, m, with rounded ends of edge_radius): an infinite cylinder's "
+                                 "contact crosses the domain")
+
     @property
     def wall(self) -> float:
         """Height [m] of the end walls beyond |y| = L/2."""
@@ -353,9 +382,24 @@ class Cylinder(Shape):
         return b, 2.0 * self._per_length(load) / (np.pi * b)
 
 
+@dataclass(frozen=True)
+class _SingularShape(Shape):
+    """A shape whose pressure is singular somewhere (a sharp rim, a tip): the grid resolves its load at
+    a given approach, whose error is ``load_error_per_cell`` dx/a (measured), and a contact of fewer
+    than :data:`SINGULAR_MIN_CELLS` cells is refused."""
+
+    load_error_per_cell: ClassVar[float]
+    resolved: ClassVar[str] = "the load at a given approach"
+    min_cells: ClassVar[float] = SINGULAR_MIN_CELLS
+
+    def resolution_error(self, cells: float) -> float:
+        """``load_error_per_cell`` dx/a, the measured load error at a given approach."""
+        return self.load_error_per_cell / max(cells, 1e-12)
+
+
 @register
 @dataclass(frozen=True)
-class FlatPunch(Shape):
+class FlatPunch(_SingularShape):
     """A flat circular punch of ``radius`` a [m] (in a line contact a strip of half-width a), its rim
     sharp (``edge_radius`` 0) or rounded (the face meets a rounding of ``edge_radius`` rho [m], the
     parabolic form (r - a)^2/(2 rho), as a sphere's gap is of a sphere), and a wall of
@@ -375,8 +419,7 @@ class FlatPunch(Shape):
     optional: ClassVar[tuple[str, ...]] = ("edge_radius",)
     model: ClassVar[str] = "Boussinesq flat punch"
     grows: ClassVar[bool] = False
-    resolved: ClassVar[str] = "the load at a given approach"
-    min_cells: ClassVar[float] = SINGULAR_MIN_CELLS
+    load_error_per_cell: ClassVar[float] = FLAT_FACE_LOAD_ERROR_PER_CELL
     singular: ClassVar[str] = ("the pressure at a sharp rim is singular, as (a - r)^(-1/2): the grid resolves the "
                                "load, the approach and the pressure a few cells inside the rim, not the rim's "
                                "pressure (a cell average there)")
@@ -407,10 +450,6 @@ class FlatPunch(Shape):
         than rho while delta < rho/2."""
         return self.radius, self.radius + self.edge_radius
 
-    def resolution_error(self, cells: float) -> float:
-        """:data:`FLAT_FACE_LOAD_ERROR_PER_CELL` dx/a, the measured load error at a given approach."""
-        return FLAT_FACE_LOAD_ERROR_PER_CELL / max(cells, 1e-12)
-
     def scale(self, reference_value: float, control: str, shear_modulus: float,
               poisson_ratio: float) -> tuple[float, float]:
         """a0 = a, p0 = W / (2 pi a^2), the pressure at the centre of the face."""
@@ -422,7 +461,7 @@ class FlatPunch(Shape):
 
 @register
 @dataclass(frozen=True)
-class Cone(Shape):
+class Cone(_SingularShape):
     """A cone of semi-apex angle ``half_angle`` alpha [degrees] (between the axis and the flank; 0 < alpha
     < 90; a Berkovich tip's equivalent cone has 70.3): gap r cot(alpha) (in a line contact a wedge).
     Sneddon (:class:`viscontact.physics.reference.Cone`): a = 2 delta tan(alpha) / pi,
@@ -433,8 +472,7 @@ class Cone(Shape):
     name: ClassVar[str] = "cone"
     required: ClassVar[tuple[str, ...]] = ("half_angle",)
     model: ClassVar[str] = "Sneddon cone"
-    resolved: ClassVar[str] = "the load at a given approach"
-    min_cells: ClassVar[float] = SINGULAR_MIN_CELLS
+    load_error_per_cell: ClassVar[float] = CONE_LOAD_ERROR_PER_CELL
     singular: ClassVar[str] = ("the pressure at the tip is singular (logarithmically): the grid resolves the load, "
                                "the approach and the contact radius, not the tip's pressure (a cell average there)")
 
@@ -445,17 +483,25 @@ class Cone(Shape):
 
     def check(self) -> None:
         """Refuse a half-angle outside (0, 90) degrees or a flank steeper than :data:`CONE_MAX_SLOPE`
-        (cot alpha: an angle in radians given for degrees), warn beyond :data:`CONE_WARN_SLOPE`."""
+        (cot alpha: an angle in radians given for degrees)."""
         if not 0.0 < self.half_angle < 90.0:
             raise ParameterError("indenter.half_angle", f"must be in (0, 90) degrees, got {self.half_angle!r}")
-        slope = 1.0 / math.tan(self.angle)
-        if slope > CONE_MAX_SLOPE:
+        if self.slope > CONE_MAX_SLOPE:
             raise ParameterError("indenter.half_angle", f"{self.half_angle:g} degrees gives flanks of slope "
-                                 f"{slope:.3g}, beyond any half-space theory: the semi-apex angle in degrees "
+                                 f"{self.slope:.3g}, beyond any half-space theory: the semi-apex angle in degrees "
                                  f"(> {math.degrees(math.atan(1 / CONE_MAX_SLOPE)):.3g})?")
-        if slope > CONE_WARN_SLOPE:
-            warn_caller(f"indenter.half_angle = {self.half_angle:g} degrees: flanks of slope {slope:.3g}, beyond the "
-                        "small-slope theory of the half-space (a half-angle >= 45 degrees keeps it below 1)")
+
+    @property
+    def slope(self) -> float:
+        """The flanks' slope cot(alpha) [-]."""
+        return 1.0 / math.tan(self.angle)
+
+    def caveats(self, grid: Grid) -> list[str]:
+        """Flanks steeper than :data:`CONE_WARN_SLOPE`: beyond the small-slope theory."""
+        if self.slope <= CONE_WARN_SLOPE:
+            return []
+        return [f"indenter.half_angle = {self.half_angle:g} degrees: flanks of slope {self.slope:.3g}, beyond the "
+                "small-slope theory of the half-space (a half-angle >= 45 degrees keeps it below 1)"]
 
     def gap(self, grid: Grid) -> np.ndarray:
         return _radial(grid) / math.tan(self.angle)
@@ -468,10 +514,6 @@ class Cone(Shape):
 
     def size_at_approach(self, approach: float) -> float:
         return 2.0 * approach * math.tan(self.angle) / math.pi
-
-    def resolution_error(self, cells: float) -> float:
-        """:data:`CONE_LOAD_ERROR_PER_CELL` dx/a, the measured load error at a given approach."""
-        return CONE_LOAD_ERROR_PER_CELL / max(cells, 1e-12)
 
     def scale(self, reference_value: float, control: str, shear_modulus: float,
               poisson_ratio: float) -> tuple[float, float]:

@@ -308,6 +308,10 @@ def _check_device(problem: Problem) -> None:
 
 def _check_space(problem: Problem, transient: bool) -> None:
     grid = problem.grid
+    if problem.shape is not None:
+        problem.shape.check_grid(grid)
+        for caveat in problem.shape.caveats(grid):
+            warn_caller(caveat)
     est = contact_estimate(problem, transient=transient)
     if est is None:
         _check_flat_face(problem)
