@@ -296,6 +296,48 @@ def lee_radok_relaxation(approach: float, sphere_radius: float, material, t: np.
     return ViscoelasticHertz(t, np.full(t.shape, a), np.full(t.shape, float(approach)), w)
 
 
+def lee_radok_cone_load(t: np.ndarray | float, times, depths, half_angle: float, material) -> np.ndarray:
+    """Load W(t) [N] on a rigid cone of semi-apex ``half_angle`` alpha [rad] pushed into ``material``
+    (a :class:`viscontact.physics.materials.Material`, constant nu) along the piecewise-linear depth
+    history through (``times`` [s], ``depths`` [m]), from delta = 0, while the depth never decreases
+    (the contact grows or holds: Lee & Radok 1960).
+
+    Sneddon's W = (2/pi) E* tan(alpha) delta^2 (:class:`Cone`) with E* = 2G/(1 - nu) becomes, by the
+    correspondence principle, the hereditary integral
+
+        W(t) = 4 tan(alpha) / (pi (1 - nu)) int_0^t G(t - s) d(delta^2)(s),
+
+    evaluated exactly: on a segment where delta = d0 + v (s - s0), d(delta^2)/ds = 2 v (d0 + v (s - s0))
+    is linear in s, and each Prony term g exp(-(t - s)/tau) integrates in closed form. The contact
+    radius is Sneddon's, a = 2 delta tan(alpha)/pi, whatever the modulus.
+    """
+    t = _times(t)
+    times, depths = np.asarray(times, dtype=float), np.asarray(depths, dtype=float)
+    if np.any(np.diff(depths) < 0):
+        raise ValueError("the depth must never decrease (Lee & Radok: a growing or held contact)")
+    if depths[0] != 0:
+        times, depths = np.r_[times[0], times], np.r_[0.0, depths]  # pushed in at the first time
+    flat = t.ravel()
+    total = np.zeros_like(flat)
+    for s0, s1, d0, d1 in zip(times[:-1], times[1:], depths[:-1], depths[1:]):
+        v = (d1 - d0) / (s1 - s0)
+        if v == 0:
+            continue
+        hi = np.clip(flat, s0, s1)  # the part of the segment before t
+        # d(delta^2)/ds = A + B (s - s0), A = 2 v d0, B = 2 v^2, integrated against G(t - s)
+        a_, b_ = 2.0 * v * d0, 2.0 * v * v
+        u = hi - s0
+        total += material.g_inf * (a_ * u + 0.5 * b_ * u**2)
+        for g, tau in zip(material.g, material.tau):
+            c = 1.0 / tau
+
+            def primitive(s, c=c):  # of exp(-c (t - s)) (A + B (s - s0)) over s
+                return np.exp(-c * (flat - s)) * ((a_ + b_ * (s - s0)) / c - b_ / c**2)
+
+            total += g * np.where(flat > s0, primitive(hi) - primitive(np.full_like(flat, s0)), 0.0)
+    return (4.0 * np.tan(half_angle) / (np.pi * (1.0 - material.poisson_ratio)) * total).reshape(t.shape)
+
+
 def lee_radok_centre_pressure(load: float, sphere_radius: float, material, t: np.ndarray | float) -> np.ndarray:
     """Pressure p(0, t) [Pa] at the centre of the contact under a held load W [N] (Lee & Radok 1960).
 
