@@ -166,10 +166,10 @@ def test_a_flat_punch_estimates_its_face_and_not_a_sphere():
     """The face of 0.5 mm at any load; its reach with a rounded rim, a + edge_radius; no small-strain
     check (no curvature); a coarse face warns of its load error with the punch's rim named."""
     material = Material.elastic(1e6, 0.3)
-    problem = replace(sphere_problem(material, 64, 2e-3, value=0.01), radius=None, shape=FlatPunch(5e-4, 1e-4),
-                      gap=FlatPunch(5e-4, 1e-4).gap(Grid(64, 2e-3)))
+    problem = replace(sphere_problem(material, 64, 2e-3, value=0.01), radius=None, shape=FlatPunch(5e-4, 2e-4),
+                      gap=FlatPunch(5e-4, 2e-4).gap(Grid(64, 2e-3)))
     est = guards.contact_estimate(problem)
-    assert est.smallest == 5e-4 and est.largest == pytest.approx(6e-4, rel=1e-12) and math.isnan(est.strain_ratio)
+    assert est.smallest == 5e-4 and est.largest == pytest.approx(7e-4, rel=1e-12) and math.isnan(est.strain_ratio)
     coarse = replace(problem, grid=Grid(16, 2e-3), gap=FlatPunch(5e-4).gap(Grid(16, 2e-3)), shape=FlatPunch(5e-4))
     with pytest.warns(ViscontactWarning, match=r"2 cells across the contact radius.*load at a given approach may be "
                       r"off by about 6 %.*rim is singular"):
@@ -177,3 +177,11 @@ def test_a_flat_punch_estimates_its_face_and_not_a_sphere():
     with warnings.catch_warnings():
         warnings.simplefilter("error", ViscontactWarning)
         guards.check_problem(problem)
+
+
+def test_a_rounding_narrower_than_two_cells_is_said_to_act_as_sharp():
+    grid = Grid(64, 2e-3)  # dx = 62.5 um
+    (said,) = FlatPunch(5e-4, 1e-4).caveats(grid)
+    assert "1.6 cells" in said and "punch's rounded rim acts as a sharp one" in said
+    assert FlatPunch(5e-4, 2e-4).caveats(grid) == [] and FlatPunch(5e-4).caveats(grid) == []
+    assert "roller's rounded end" in Cylinder(0.01, 2e-3, 1e-4).caveats(grid)[0]

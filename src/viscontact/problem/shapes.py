@@ -194,6 +194,20 @@ def shape_from_keys(name: str, keys: dict[str, Any]) -> Shape:
     return cls(**{k: keys[k] for k in (*cls.required, *cls.optional) if keys.get(k) is not None})
 
 
+#: cells a rounded rim or end (``edge_radius``) must span to act as rounded on the grid
+ROUNDING_CELLS = 2.0
+
+
+def _rounding_caveats(edge_radius: float, grid: Grid, what: str) -> list[str]:
+    """A caveat where a rounding of ``edge_radius`` [m] > 0 spans fewer than :data:`ROUNDING_CELLS`
+    cells of ``grid``: on it the edge acts as a sharp one (singular pressure, a cell average)."""
+    if not 0.0 < edge_radius < ROUNDING_CELLS * grid.spacing:
+        return []
+    return [f"indenter.edge_radius = {edge_radius:.3g} m spans {edge_radius / grid.spacing:.2g} cells of "
+            f"{grid.spacing:.3g} m: on this grid the {what} acts as a sharp one (its singular pressure a cell "
+            f"average); a grid.n that puts {ROUNDING_CELLS:g} cells or more across it resolves the rounding"]
+
+
 def _e_star(shear_modulus: float, poisson_ratio: float) -> float:
     return reference.contact_modulus(shear_modulus, poisson_ratio)
 
@@ -339,6 +353,10 @@ class Cylinder(Shape):
                                  "finite length, m, with rounded ends of edge_radius): an infinite cylinder's "
                                  "contact crosses the domain")
 
+    def caveats(self, grid: Grid) -> list[str]:
+        """Rounded ends narrower than :data:`ROUNDING_CELLS` cells."""
+        return _rounding_caveats(self.edge_radius, grid, "roller's rounded end")
+
     @property
     def wall(self) -> float:
         """Height [m] of the end walls beyond |y| = L/2."""
@@ -423,6 +441,10 @@ class FlatPunch(_SingularShape):
     singular: ClassVar[str] = ("the pressure at a sharp rim is singular, as (a - r)^(-1/2): the grid resolves the "
                                "load, the approach and the pressure a few cells inside the rim, not the rim's "
                                "pressure (a cell average there)")
+
+    def caveats(self, grid: Grid) -> list[str]:
+        """A rounded rim narrower than :data:`ROUNDING_CELLS` cells."""
+        return _rounding_caveats(self.edge_radius, grid, "punch's rounded rim")
 
     @property
     def wall(self) -> float:
