@@ -338,7 +338,7 @@ class IndenterSection(_SelfAffineKeys):
                                   "curvature in the x-z plane (gap x^2/(2 radius_x) + y^2/(2 radius_y))")
     radius_y: float | None = _num(None, unit="m", gt=0, description="with shape = 'ellipsoid': the radius of "
                                   "curvature in the y-z plane")
-    half_angle: float | None = _num(None, unit="degree", gt=0, lt=90, description="with shape = 'cone': the "
+    half_angle: float | None = _num(None, unit="degrees", gt=0, lt=90, description="with shape = 'cone': the "
                                     "semi-apex angle alpha between the axis and the flank (gap r cot(alpha); "
                                     "a Berkovich tip's equivalent cone: 70.3)")
     file: str | None = Field(None, description="with shape = 'surface': .npy of the undeformed gap h0 [m], "
