@@ -24,7 +24,7 @@ reference displacement u_x(x + dx, t - dt) (the last step's total u_x convected 
 :func:`convected`) in place of the last step's slip, and the step's rigid displacement -xi dx in
 place of delta_x: :class:`Rolling` is that law, iterated over the normal-tangential coupling like
 partial slip. Under a held ``tangential_force`` the step's rigid displacement c is the unknown of a
-1-D root find (Brent) on sum q_x(c) dA = F, monotone in c; the creepage is then -c / dx.
+1-D root find (Illinois) on sum q_x(c) dA = F, monotone in c; the creepage is then -c / dx.
 
 At the first step (t = 0) nothing has rolled yet: the rigid displacement is 0 under a held creepage
 (the contact sticks where it touches), and under a held force it is found as in Cattaneo's problem
@@ -36,15 +36,18 @@ from dataclasses import dataclass, replace
 from typing import ClassVar
 
 import numpy as np
-from scipy.optimize import brentq
 
-from viscontact.errors import ParameterError
+from viscontact.errors import ConvergenceError, ParameterError
 from viscontact.problem.problem import Problem
 from viscontact.solvers.contact_laws import PartialSlip, StepContext, StepSolution, register_contact_law
 
-#: absolute tolerance of the held force's root find on the rigid displacement c, relative to its scale
-#: (the displacement of the held force spread over the contact)
-ROOT_TOLERANCE = 1e-10
+#: the held force's root find: converged when sum q_x dA is within this fraction of mu_f W of the force
+FORCE_TOLERANCE = 1e-9
+#: ... or when its bracket on the rigid displacement c is narrower than this fraction of c's scale
+#: (the displacement of the held force spread over the contact): c at round-off
+ROOT_TOLERANCE = 1e-12
+#: iterations of the root find (Illinois: superlinear, a few from the last step's c)
+MAX_ROOT_ITERATIONS = 100
 #: doublings of the bracket of the rigid displacement before the held force is called unreachable
 MAX_BRACKET_DOUBLINGS = 60
 
@@ -111,7 +114,7 @@ class Rolling(PartialSlip):
         """The rigid displacement c [m] for which the tangential solve carries the held force:
         (c, q_x [Pa], slip [m], CG iterations of every solve). sum q_x(c) dA rises monotonically
         from -mu_f W to mu_f W; the bracket grows from ``ctx.delta_x`` (the last step's c) by
-        doublings of a scale from the contact's tangential compliance, then Brent's method."""
+        doublings of a scale from the contact's tangential compliance, then the Illinois method."""
         area = ctx.problem.grid.cell_area
         force = float(self.tangential_force)
         limit = self.friction * float(pressure.sum()) * area
@@ -151,10 +154,24 @@ class Rolling(PartialSlip):
             step *= 2.0
         else:
             raise ParameterError("tangential.tangential_force", f"{force:g} N was not bracketed (t = {ctx.t:.6g} s)")
-        if 0.0 in (fa, fb):
-            c = a if fa == 0.0 else b
+        # Illinois (modified regula falsi) on the bracket, from the values already found: each evaluation
+        # is a CG solve to a tolerance, so f is not re-evaluated at the ends (Brent's does, and near the
+        # root the solve's tolerance can flip its sign there)
+        tolerance = FORCE_TOLERANCE * limit
+        for _ in range(MAX_ROOT_ITERATIONS):
+            if abs(fa) <= tolerance or abs(fb) <= tolerance or abs(b - a) <= ROOT_TOLERANCE * scale:
+                break
+            c = b - fb * (b - a) / (fb - fa)
+            fc = excess(c)
+            if fc * fb < 0:
+                a, fa = b, fb
+            else:
+                fa *= 0.5
+            b, fb = c, fc
         else:
-            c = brentq(excess, a, b, xtol=ROOT_TOLERANCE * scale, rtol=4 * np.finfo(float).eps, maxiter=200)
+            raise ConvergenceError("rolling under a held tangential force", MAX_ROOT_ITERATIONS,
+                                   min(abs(fa), abs(fb)) / limit, FORCE_TOLERANCE)
+        c = b if abs(fb) <= abs(fa) else a
         if last["c"] != c:
             excess(c)
         return c, last["q"], last["slip"], iterations
