@@ -42,7 +42,8 @@ def main() -> None:
     parser.add_argument("--n", type=int, nargs="+", default=[128, 256])
     args = parser.parse_args()
     warnings.simplefilter("ignore")
-    print(f"{'n':>5} {'one state [s]':>14} {'20-point curve [s]':>19} {'one sliding state [s]':>22} {'F/(mu W) at 0.05':>17}")
+    print(f"{'n':>5} {'one state [s]':>14} {'20-point curve [s]':>19} {'one sliding state [s]':>22} "
+          f"{'F/(mu W) at 0.05':>17}")
     for n in args.n:
         m = measure(n)
         print(f"{n:>5} {m['state']:>14.1f} {m['curve']:>19.1f} {m['sliding']:>22.1f} {m['saturation']:>17.3f}")

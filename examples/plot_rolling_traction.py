@@ -29,7 +29,8 @@ case = vc.load_case(vc.shipped_case("rolling_polymer_roller")).with_overrides({"
 ds = vc.run(case)
 steady = vc.run_steady(case)
 tau, load = float(ds["retardation_time"]), float(ds["load"][-1])
-print(f"traction at the end {float(ds['friction_force'][-1]) / load:.4f} W, steady {float(steady['friction_force'][0]) / load:.4f} W")
+print(f"traction at the end {float(ds['friction_force'][-1]) / load:.4f} W, "
+      f"steady {float(steady['friction_force'][0]) / load:.4f} W")
 print(f"rolling resistance at the end {float(ds['mu_app'][-1]):.4f}, steady {float(steady['mu_app'][0]):.4f}")
 
 fig, ax = plt.subplots(figsize=(6, 3.6))

@@ -147,7 +147,8 @@ def stream_bytes(problem: Problem, records: int, *, first: int = 0, finishing: b
     chunks = -(-(first + records) // SERIES_CHUNK) - (-(-first // SERIES_CHUNK))
     out = problem.output
     subsurface = 6 * len(out.subsurface_depths) * problem.grid.n * 8 * len(out.subsurface_times or (0,))
-    series, fields = len(StepRecord.scalars(problem.adhesion is not None, problem.tangential.rolls)) + 2, len(problem.output.fields)
+    series = len(StepRecord.scalars(problem.adhesion is not None, problem.tangential.rolls)) + 2
+    fields = len(problem.output.fields)
     return records * record_bytes(problem) \
         + chunks * (series * SERIES_CHUNK * 8 + (series + fields) * INDEX_NODE_BYTES) \
         + (FINISH_BYTES + subsurface if finishing else 0)

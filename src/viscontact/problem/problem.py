@@ -268,7 +268,8 @@ class TangentialLoading:
     def _check_rolling(self) -> None:
         """Rolling needs ``rolling_speed`` > 0 m/s and exactly one of ``creepage`` and
         ``tangential_force`` (finite numbers); its frame moves at the rolling speed (``sliding_speed``
-        is set to it; the case refuses a ``sliding_speed`` of its own), one cell per step. The rolling keys are refused in other modes."""
+        is set to it; the case refuses a ``sliding_speed`` of its own), one cell per step. The rolling
+        keys are refused in the other modes."""
         rolling_keys = {"rolling_speed": self.rolling_speed != 0, "creepage": self.creepage is not None,
                         "tangential_force": self.tangential_force is not None}
         if self.mode != "rolling":
@@ -286,8 +287,9 @@ class TangentialLoading:
             if value is not None and not (is_number(value) and np.isfinite(value)):
                 raise ParameterError(f"tangential.{name}", f"must be a finite number, got {value!r}")
         if self.tangential_force is not None and not self.friction_coefficient > 0:
-            raise ParameterError("tangential.friction_coefficient", "must be > 0 with a held tangential.tangential_force "
-                                 f"(frictionless rolling carries none), got {self.friction_coefficient:g}")
+            raise ParameterError("tangential.friction_coefficient", "must be > 0 with a held "
+                                 "tangential.tangential_force (frictionless rolling carries none), got "
+                                 f"{self.friction_coefficient:g}")
         if self.steps_per_cell != 1:
             raise ParameterError("tangential.steps_per_cell", "must be 1 with mode = 'rolling' (the rolling "
                                  f"frame moves by one cell per step), got {self.steps_per_cell!r}")
@@ -335,7 +337,7 @@ class TangentialLoading:
     @property
     def has_shear(self) -> bool:
         """Whether this mode puts a shear traction q_x on the surface (``gross_sliding``,
-        ``partial_slip``); in ``none`` and ``frictionless_sliding`` q_x = 0 by definition."""
+        ``partial_slip``, ``rolling``); in ``none`` and ``frictionless_sliding`` q_x = 0 by definition."""
         return self.mode in ("gross_sliding", "partial_slip", "rolling")
 
     @property

@@ -291,10 +291,14 @@ def step(problem: Problem, compliance: Compliance, state: State,
     # step, when the last one had none); incremental slip: they keep the slip of the last step
     origin = state.delta_x if state.slip_origin is None else state.slip_origin
     incremental = law.solves_shear and state.slip_x is not None
-    rolling = state.displacement_x is not None  # rolling with friction: u_x convected, the rigid creep
-    reference_x, reference_slip = ((rigid_step(problem, k) if tan.creepage is not None else state.rigid_x,
-                                    state.displacement_x) if rolling else
-                                   (state.delta_x, state.slip_x) if incremental else (state.delta_x - origin, None))
+    rolling = state.displacement_x is not None
+    if rolling:  # rolling with friction: the last step's u_x convected, and the step's rigid creep
+        reference_x = rigid_step(problem, k) if tan.creepage is not None else state.rigid_x
+        reference_slip = state.displacement_x
+    elif incremental:
+        reference_x, reference_slip = state.delta_x, state.slip_x
+    else:
+        reference_x, reference_slip = state.delta_x - origin, None
     ctx = StepContext(problem, compliance, k, t, first, device_gap, known_uz, known_ux,
                       problem.normal.history(t), reference_x, reference_slip, state.interaction)
     adhesive = problem.adhesion is not None
