@@ -46,7 +46,7 @@ FORCE_TOLERANCE = 1e-9
 #: ... or when its bracket on the rigid displacement c is narrower than this fraction of c's scale
 #: (the displacement of the held force spread over the contact): c at round-off
 ROOT_TOLERANCE = 1e-12
-#: iterations of the root find (Illinois: superlinear, a few from the last step's c)
+#: the most evaluations of the root find; Illinois' method converges superlinearly, in a few from the last step's c
 MAX_ROOT_ITERATIONS = 100
 #: doublings of the bracket of the rigid displacement before the held force is called unreachable
 MAX_BRACKET_DOUBLINGS = 60
