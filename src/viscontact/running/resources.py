@@ -48,14 +48,16 @@ TIMED_SIDE_LIMIT = 512
 MAX_RUN_SECONDS = 24 * 3600.0
 #: runs estimated (on the CPU) to take longer than this [s] are refused even when forced: a year
 MAX_FORCED_RUN_SECONDS = 365 * 24 * 3600.0
-#: a run's memory before its arrays [bytes]: the interpreter with numpy, scipy, h5py, pydantic and
-#: the solver imported; a run loads no xarray (108 MiB measured for a 32^2 ``viscontact run``,
-#: 2026-11-23, 107 MiB on 2026-11-28; BENCHMARKS.md)
-BASE_MEMORY = 115e6
-#: what importing SurfaceTopography adds to a run [bytes] (scipy.stats, .signal, .interpolate and .io
-#: with it), for a case whose surface it made (``indenter.shape = "self_affine"`` or ``"topography"``):
-#: the shipped rough periodic case's 32^2 ``viscontact run`` peaks 87 MiB above the creep case's (2026-11-28)
-TOPOGRAPHY_IMPORT_MEMORY = 95e6
+#: a run's memory before its arrays [bytes]: the interpreter with numpy, scipy.fft, h5py, pydantic and
+#: the solver imported; a run loads no xarray, and no scipy.optimize, .linalg, .sparse or .spatial
+#: (imported where used: 87 MiB measured for the creep case's 32^2 ``viscontact run`` on 2026-11-28,
+#: 112 MiB before; BENCHMARKS.md)
+BASE_MEMORY = 91e6
+#: what importing SurfaceTopography adds to a run [bytes] (scipy.stats, .signal, .interpolate, .optimize
+#: and .io with it), for a case whose surface it made (``indenter.shape = "self_affine"`` or
+#: ``"topography"``): the shipped rough periodic case's 32^2 ``viscontact run`` peaks 114 MiB above the
+#: creep case's (2026-11-28; 87 MiB while the creep case imported scipy.optimize too)
+TOPOGRAPHY_IMPORT_MEMORY = 120e6
 #: padded (2n)^2 float64 temporaries a step holds at once beside the kept arrays (the zero-block
 #: transforms' half spectra, the CG's products); 2.5 traced (``tracemalloc``) at 512^2 for creep
 #: indentation and sliding, 2026-11-28
