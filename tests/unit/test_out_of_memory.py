@@ -14,17 +14,15 @@ status 2 where it happens mid-run, the steps done kept valid on disk.
 """
 from __future__ import annotations
 
-import dataclasses
-import importlib.util
 import os
 import subprocess
 import sys
 from pathlib import Path
 
-import emulated_device
 import numpy as np
 import pytest
 import xarray as xr
+from test_device_paths import gpu  # noqa: F401 - the fixture: solver.device = "gpu" on the emulated device
 
 from viscontact import cli
 from viscontact.io.case import load_case
@@ -44,17 +42,6 @@ class OutOfMemoryError(MemoryError):
         super().__init__(f"Out of memory allocating {size:,} bytes (allocated so far: 0 bytes).")
 
 
-@pytest.fixture
-def gpu(monkeypatch):
-    """``solver.device = "gpu"`` on the emulated device (tests/emulated_device.py)."""
-    backend = dataclasses.replace(emulated_device.BACKEND, fast_length=arrays.device_fast_length)
-    monkeypatch.setattr(arrays, "cupy_backend", lambda: backend)
-    find_spec = importlib.util.find_spec
-    monkeypatch.setattr(importlib.util, "find_spec",
-                        lambda name, *a, **k: find_spec("numpy") if name == "cupy" else find_spec(name, *a, **k))
-    return backend
-
-
 def _failing_at(monkeypatch, k: int, error: MemoryError) -> None:
     """Step ``k`` (0-based) raises ``error`` from an allocation inside it (its known displacement)."""
     step = transient.step
@@ -67,10 +54,10 @@ def _failing_at(monkeypatch, k: int, error: MemoryError) -> None:
     monkeypatch.setattr(transient, "step", failing)
 
 
+@pytest.mark.usefixtures("gpu")
 @pytest.mark.filterwarnings("ignore::viscontact.errors.ViscontactWarning")
 @pytest.mark.parametrize("device", ["cpu", "gpu"])
-def test_memory_error_mid_run_is_one_line_exit_2_with_the_steps_done_kept(device, gpu, monkeypatch, tmp_path,
-                                                                         capsys):
+def test_memory_error_mid_run_is_one_line_exit_2_with_the_steps_done_kept(device, monkeypatch, tmp_path, capsys):
     sets = [*SMALL, "--set", f'solver.device="{device}"']
     reference = tmp_path / "reference.nc"
     assert cli.main(["run", str(CREEP), "--out", str(reference), *sets]) == 0
@@ -97,7 +84,8 @@ def test_memory_error_mid_run_is_one_line_exit_2_with_the_steps_done_kept(device
         assert np.array_equal(ds["pressure"].values, ref["pressure"].values)
 
 
-def test_device_memory_too_small_is_refused_before_the_first_step(gpu, monkeypatch, tmp_path, capsys):
+@pytest.mark.usefixtures("gpu")
+def test_device_memory_too_small_is_refused_before_the_first_step(monkeypatch, tmp_path, capsys):
     monkeypatch.setattr(arrays, "device_free_memory", lambda: 2**16)
     out = tmp_path / "r.nc"
     sets = [*SMALL, "--set", 'solver.device="gpu"']
