@@ -58,11 +58,10 @@ class AdhesiveNormal(ContactLaw):
             p = np.zeros_like(known)
             return StepSolution(p, np.zeros_like(p), float(known.min()), ctx.known_uz.copy(), 0,
                                 pressure_product=np.zeros_like(p), interaction=np.zeros(p.shape, dtype=bool))
-        sol = adhesive_contact(op.apply, known, control=control, value=ctx.value,
+        sol = adhesive_contact(op, known, control=control, value=ctx.value,
                                cohesive_stress=adhesion.cohesive_stress, work_of_adhesion=adhesion.work_of_adhesion,
                                cell_area=problem.grid.cell_area, initial=pressure, interaction=zone,
-                               tolerance=settings.tolerance, max_iterations=settings.max_iterations,
-                               preconditioner=op.preconditioner)
-        applied = op.apply(sol.pressure)
-        return StepSolution(sol.pressure, np.zeros_like(sol.pressure), float(sol.approach), applied + ctx.known_uz,
-                            sol.iterations, pressure_product=applied, interaction=sol.interaction)
+                               initial_product=product, tolerance=settings.tolerance,
+                               max_iterations=settings.max_iterations, mixed_precision=settings.mixed_precision)
+        return StepSolution(sol.pressure, np.zeros_like(sol.pressure), float(sol.approach), sol.product + ctx.known_uz,
+                            sol.iterations, pressure_product=sol.product, interaction=sol.interaction)
