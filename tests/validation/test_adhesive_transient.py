@@ -272,3 +272,34 @@ def test_the_pull_off_converges_with_the_grid_at_about_first_order():
               / MD_PULL_OFF - 1 for n in (32, 48, 64)]
     assert errors[0] > errors[1] > errors[2] > 0, errors
     assert 0.8 < observed_order([1 / 32, 1 / 48, 1 / 64], errors) < 2.0, errors
+
+
+def test_the_zone_box_gives_the_full_domain_solution_when_the_zone_outgrows_it():
+    """A jump of the approach from -2.4 um to 6 um in one solve: the zone outgrows the box around the
+    start's zone (the solver enlarges it after the full-grid check), and the windowed solver (the
+    step's operator, its windows and single-precision directions) lands on the equilibrium of the
+    full-domain solve in double precision: the same cells in the zone, the same pressure to the
+    solves' tolerance."""
+    from viscontact.bodies.compliance import compliance_of
+    from viscontact.numerics import adhesive
+
+    history = PiecewiseLinear((0.0, 1.0), (0.0, APPROACH))
+    problem = adhesive_problem(Material.elastic(G, NU), 64, 0.6e-3, history, 1.0, tolerance=1e-10)
+    op = compliance_of(problem).elastic_operator("z", False)
+    kwargs = {"control": "displacement", "cohesive_stress": SIGMA, "work_of_adhesion": W,
+              "cell_area": problem.grid.cell_area, "tolerance": 1e-10}
+    start = adhesive_contact(op.apply, problem.gap, value=-2.4e-6, **kwargs)
+    box = adhesive._zone_box(start.interaction, op)
+    assert box is not None  # the start's zone has a box
+    windowed = adhesive_contact(op, problem.gap, value=6e-6, initial=start.pressure, interaction=start.interaction,
+                                initial_product=op.apply(start.pressure), **kwargs)
+    full = adhesive_contact(op.apply, problem.gap, value=6e-6, initial=start.pressure, interaction=start.interaction,
+                            **kwargs)
+    outside = np.ones_like(windowed.interaction)
+    outside[box[1]] = False
+    assert (windowed.interaction & outside).any()  # it outgrew the start's box
+    np.testing.assert_array_equal(windowed.interaction, full.interaction)
+    scale = float(np.abs(full.pressure).max())
+    np.testing.assert_allclose(windowed.pressure, full.pressure, rtol=0, atol=1e-6 * scale)
+    np.testing.assert_allclose(windowed.product, op.apply(windowed.pressure), rtol=0, atol=1e-9 * float(
+        np.abs(windowed.product).max()))
