@@ -19,7 +19,7 @@ from viscontact.errors import ParameterError, RunInterrupted, ViscontactWarning
 from viscontact.io.case import Case
 from viscontact.numerics.adhesive import adhesive_contact
 from viscontact.numerics.grid import Grid
-from viscontact.physics.adhesion import maugis_dugdale_pull_off, maugis_parameter
+from viscontact.physics.adhesion import cohesive_zone_length, maugis_dugdale_pull_off, maugis_parameter
 from viscontact.physics.materials import Material
 from viscontact.problem.adhesion import AdhesionSettings
 from viscontact.problem.problem import (
@@ -197,16 +197,43 @@ def test_steady_refuses_adhesion():
 
 
 def test_the_cohesive_zone_guard_warns_on_a_coarse_grid_naming_the_grid_that_resolves_it():
-    """Between 2 and 4 cells across the cohesive zone (E* = 2 G(0) / (1 - nu)): one warning line;
-    below 2, one error line."""
-    case = Case.from_toml_text(CASE.read_text(), CASE.parent).with_overrides({"adhesion.cohesive_stress": 5.7e4})
-    warned = r"^grid\.n: 64 cells .* cohesive zone .* 2\.5 cells; use grid\.n >= 128 "
+    """Between 2 and 4 cells across the cohesive zone (the smaller of the Dugdale zone with E* = 2 G(0)
+    / (1 - nu) and the width over which the sphere's gap opens to h_0): one warning line; below 2,
+    one error line."""
+    case = Case.from_toml_text(CASE.read_text(), CASE.parent).with_overrides({"adhesion.cohesive_stress": 4.5e4})
+    warned = r"^grid\.n: 64 cells .* cohesive zone sqrt\(a\^2 \+ 2 R h_0\) - a = 4\.94e-05 m .* 2\.5 cells; use grid\.n >= 128 "
     with pytest.warns(ViscontactWarning, match=warned) as caught:
         api.prepare(case)
     assert all("\n" not in str(w.message) for w in caught)
-    refused = r"^grid\.n: 64 cells .* cohesive zone .* 0\.25 cells; use grid\.n >= 1024 "
+    refused = r"^grid\.n: 64 cells .* cohesive zone pi E\* w .* 0\.25 cells; use grid\.n >= 1024 "
     with pytest.raises(ParameterError, match=refused):
         api.prepare(case.with_overrides({"adhesion.cohesive_stress": 1.8e5}))
+
+
+@pytest.mark.parametrize("body, sigma", [({}, 1.9e4), ({}, 5.7e4), ({"layer.thickness": 0.1e-3}, 1.9e4),
+                                         ({"layer.thickness": 0.05e-3}, 1.9e4)])
+def test_the_guard_judges_the_cohesive_zone_the_body_makes(body, sigma):
+    """The zone the guard resolves against the cohesive zone of the solved contact (its width: the
+    area at 0 < g < h_0 over the contact's perimeter) of an elastic sphere (G = 1.05 MPa) pressed 4 um,
+    on the half-space (lambda = 0.48 and 1.4) and on 100 and 50 um layers on a rigid base (whose stiffness
+    makes the zone the gap's opening, not the Dugdale zone of their material: 6 and 10 times too long,
+    as the guard judged them before): within a factor 2.5 of it, never under 0.75 of it. Measured (10 um
+    cells): 128, 30, 73, 48 um; estimated 104, 40, 104, 104 um (a layer's contact radius under an
+    approach is the half-space's estimate, short of its own)."""
+    from viscontact.running.guards import cohesive_zone_estimate, contact_estimate
+
+    case = Case.from_toml_text(CASE.read_text(), CASE.parent).with_overrides(
+        {"grid.n": 128, "material.type": "elastic", "material.shear_modulus": 1.05e6,
+         "material.shear_modulus_instantaneous": None, "material.shear_modulus_long_term": None,
+         "material.retardation_time": None, "adhesion.cohesive_stress": sigma,
+         "normal.history": [[0.0, 0.0], [0.1, 4e-6]], "time.t_end": 0.1, "time.dt": 0.05, **body})
+    problem = case.to_problem()
+    record = list(simulate(problem))[-1]
+    width = record.adhesive_area / (2.0 * np.sqrt(np.pi * record.contact_area))
+    estimate, _ = cohesive_zone_estimate(problem, contact_estimate(problem))
+    assert 0.75 < estimate / width < 2.5, (estimate, width)
+    if body:  # the Dugdale zone of the layer's material alone
+        assert cohesive_zone_length(2.0 * 1.05e6 / (1.0 - NU), W, sigma) / width > 5.0
 
 
 @pytest.mark.parametrize("body", [{"layer.thickness": 0.4e-3},
