@@ -196,7 +196,7 @@ def _check_adhesion(problem: Problem, transient: bool) -> None:
         return
     if not transient:
         raise ParameterError("adhesion", "is not supported by `viscontact steady` yet: adhesive contact is solved by "
-                             "the transient (`viscontact run`, tangential.mode = 'none')")
+                             "the transient (`viscontact run`: indentation, frictionless or gross sliding)")
     grid = problem.grid
     est = contact_estimate(problem)
     length, what = cohesive_zone_estimate(problem, est)

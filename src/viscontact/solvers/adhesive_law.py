@@ -13,8 +13,16 @@ at a jump-in, a jump-off or a pull-off. Under load control a step whose load no 
 raises :class:`~viscontact.numerics.adhesive.NoEquilibriumError` (the pull-off: the run ends there,
 :func:`viscontact.solvers.transient.steps`).
 
-Registered as :data:`~viscontact.solvers.contact_laws.ADHESIVE_LAW`; tangential tractions are not
-modelled with adhesion yet (q_x = 0: indentation only).
+Friction (gross sliding, ``tangential.mode = "gross_sliding"``; frictionless sliding and indentation:
+mu_f = 0): Coulomb's law on the compressive part of the normal traction, q_x = mu_f max(p, 0). Where
+the interface is in tension (the cohesive zone, and the tensile rim of the contact) it carries no
+friction: the Coulomb bound mu_f p has no meaning for p < 0, and the interface's own shear strength
+in tension is not modelled; sliding with adhesion then rubs with mu_f times the compressive load, the
+rest of the resistance being the viscoelastic hysteresis of the adhesive contact (Carbone, Mandriota &
+Menga 2022, Extreme Mech. Lett. 56, 101877, "Theory of viscoelastic adhesion and friction", whose
+sliding interface carries no shear: the friction is the hysteresis alone, enhanced by adhesion;
+``tangential.mode = "frictionless_sliding"`` here). Registered as
+:data:`~viscontact.solvers.contact_laws.ADHESIVE_LAW`; partial slip with adhesion is not modelled yet.
 """
 from __future__ import annotations
 
@@ -39,7 +47,10 @@ def contact_cells(pressure: np.ndarray, interaction: np.ndarray | None, cohesive
 @register_contact_law
 @dataclass(frozen=True)
 class AdhesiveNormal(ContactLaw):
-    """Adhesive indentation: the normal problem of a Maugis-Dugdale surface (module docstring), q_x = 0.
+    """Adhesive indentation and sliding: the normal problem of a Maugis-Dugdale surface (module
+    docstring), q_x = mu_f max(p, 0) (gross sliding; 0 otherwise); with the normal-tangential coupling
+    (IC_zx ~ (1 - 2 nu)) its displacement J_inst K_zx q_x enters the known one, iterated as a fixed
+    point by :func:`~viscontact.solvers.coupling.solve_coupled` (as :class:`NormalContact` does).
 
     Under load control, a step before the first positive load with no interaction zone yet (the
     indenter not pressed on yet) holds the indenter just touching, without traction."""
@@ -51,17 +62,22 @@ class AdhesiveNormal(ContactLaw):
         problem, settings = ctx.problem, ctx.problem.solver
         adhesion = problem.adhesion
         op = ctx.compliance.elastic_operator("z", ctx.first)
-        known = ctx.gap + ctx.known_uz
+        known_uz = ctx.known_uz
+        if self.coupled:
+            known_uz = known_uz + ctx.compliance.cross_displacement("z", "x", np.maximum(pressure, 0.0), ctx.first,
+                                                                    self.friction)
+        known = ctx.gap + known_uz
         zone = ctx.interaction
         control = problem.normal.control
         if control == "load" and ctx.value <= 0 and (zone is None or not zone.any()):
             p = np.zeros_like(known)
-            return StepSolution(p, np.zeros_like(p), float(known.min()), ctx.known_uz.copy(), 0,
+            return StepSolution(p, np.zeros_like(p), float(known.min()), known_uz.copy(), 0,
                                 pressure_product=np.zeros_like(p), interaction=np.zeros(p.shape, dtype=bool))
         sol = adhesive_contact(op, known, control=control, value=ctx.value,
                                cohesive_stress=adhesion.cohesive_stress, work_of_adhesion=adhesion.work_of_adhesion,
                                cell_area=problem.grid.cell_area, initial=pressure, interaction=zone,
                                initial_product=product, tolerance=settings.tolerance,
                                max_iterations=settings.max_iterations, mixed_precision=settings.mixed_precision)
-        return StepSolution(sol.pressure, np.zeros_like(sol.pressure), float(sol.approach), sol.product + ctx.known_uz,
+        shear_x = self.friction * np.maximum(sol.pressure, 0.0) if self.friction else np.zeros_like(sol.pressure)
+        return StepSolution(sol.pressure, shear_x, float(sol.approach), sol.product + known_uz,
                             sol.iterations, pressure_product=sol.product, interaction=sol.interaction)

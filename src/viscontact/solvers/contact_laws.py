@@ -208,7 +208,7 @@ def get_contact_law(name: str) -> type[ContactLaw]:
         raise ParameterError("contact law", f"must be one of {sorted(CONTACT_LAWS)}, got {name!r}") from None
 
 
-#: the law of every step of a problem with ``adhesion`` (indentation only:
+#: the law of every step of a problem with ``adhesion`` (indentation and sliding, no partial slip:
 #: :func:`~viscontact.problem.problem.check_adhesion_supported`; :mod:`viscontact.solvers.adhesive_law`)
 ADHESIVE_LAW = "adhesive_normal"
 
