@@ -458,14 +458,9 @@ def check_subsurface_body(depths, kind: Body | type) -> None:
 
 
 def check_adhesion_supported(problem: "Problem") -> None:
-    """Refuse, in one line naming the key, what adhesion does not work with yet: partial slip (the
-    stick zone's bound in tension is not modelled; indentation and sliding are), a periodic grid, a
+    """Refuse, in one line naming the key, what adhesion does not work with yet: a periodic grid, a
     load history that pulls before it first presses (no equilibrium carries a tension without
     contact), and ``solver.device = "gpu"``."""
-    mode = problem.tangential.mode
-    if mode not in ("none", "frictionless_sliding", "gross_sliding"):
-        raise ParameterError("tangential.mode", f"'{mode}' is not supported with [adhesion] yet: adhesive contact is "
-                             "solved in indentation and sliding ('none', 'frictionless_sliding', 'gross_sliding')")
     if problem.grid.periodic:
         raise ParameterError("grid.periodic", "true is not supported with [adhesion] yet: adhesive contact is solved "
                              "on a DC-FFT (non-periodic) domain only")
