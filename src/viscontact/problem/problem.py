@@ -16,6 +16,7 @@ from viscontact.errors import ParameterError
 from viscontact.numerics.grid import Grid
 from viscontact.physics.materials import Material
 from viscontact.problem.adhesion import AdhesionSettings
+from viscontact.problem.shapes import Shape, Sphere
 
 if TYPE_CHECKING:
     from viscontact.bodies.base import Body
@@ -458,17 +459,9 @@ def check_subsurface_body(depths, kind: Body | type) -> None:
 
 
 def check_adhesion_supported(problem: "Problem") -> None:
-    """Refuse, in one line naming the key, what adhesion does not work with yet: a tangential mode
-    other than ``"none"`` (friction in tension is not modelled; ``viscontact steady`` needs one),
-    a periodic grid, a load history that pulls before it first presses (no equilibrium carries a
-    tension without contact), and ``solver.device = "gpu"``."""
-    mode = problem.tangential.mode
-    if mode != "none":
-        raise ParameterError("tangential.mode", f"'{mode}' is not supported with [adhesion] yet (nor is `viscontact "
-                             "steady`): adhesive contact is solved in indentation only (tangential.mode = 'none')")
-    if problem.grid.periodic:
-        raise ParameterError("grid.periodic", "true is not supported with [adhesion] yet: adhesive contact is solved "
-                             "on a DC-FFT (non-periodic) domain only")
+    """Refuse, in one line naming the key, what adhesion does not work with: a load history that pulls
+    before it first presses (no equilibrium carries a tension without contact), and (not yet)
+    ``solver.device = "gpu"``."""
     values = problem.normal.history.values
     pressed = next(i for i, v in enumerate(values) if v > 0)
     if problem.normal.control == "load" and min(values[:pressed + 1]) < 0:
@@ -485,7 +478,11 @@ class Problem:
 
     ``gap`` is the undeformed gap h0(x, y) [m] on the grid, in the frame of the indenter
     (origin under its centre). ``radius`` [m] is the sphere radius when the indenter is a sphere
-    (used for Hertz normalisation and sub-cell shifts), else ``None``.
+    (used for Hertz normalisation and sub-cell shifts), else ``None``. ``shape`` is the analytic
+    shape the gap was built from (:mod:`viscontact.problem.shapes`: its contact estimates, scales and
+    resolution; None for a gap from a file or a generated surface): a sphere's mirrors ``radius``
+    (given either way; ``radius = None`` makes the gap a plain gap), and ``radius`` is refused with
+    any other shape.
     """
 
     material: Material
@@ -512,9 +509,12 @@ class Problem:
     #: ``bulk_modulus`` and ``layer`` (:func:`viscontact.bodies.registry.body_of`, the one place);
     #: given, it sets ``bulk_modulus`` or ``layer`` when it is described by one, and takes ``material``
     body: Body | None = field(default=None, compare=False, repr=False)
+    #: the analytic shape of the indenter (None: a gap from a file or a generated surface)
+    shape: Shape | None = None
 
     def __post_init__(self) -> None:
         n = self.grid.n
+        self._mirror_sphere()
         if self.adhesion is None and self.normal.tensile and min(self.normal.history.values) < 0:
             raise ParameterError("normal.history", f"values must be >= 0 (N or m) without [adhesion], got "
                                  f"{self.normal.history.values!r}")
@@ -534,6 +534,19 @@ class Problem:
             if key in ("bulk_modulus", "layer"):
                 object.__setattr__(self, key, value)
         check_subsurface_body(self.output.subsurface_depths, body)
+
+    def _mirror_sphere(self) -> None:
+        """Keep ``radius`` and a :class:`~viscontact.problem.shapes.Sphere` ``shape`` one description
+        (``dataclasses.replace(problem, radius=None)`` turns a sphere's gap into a plain gap, as it
+        always did); refuse a ``radius`` with another shape."""
+        if self.shape is not None and not isinstance(self.shape, Shape):
+            raise ParameterError("indenter.shape", f"must be a viscontact.problem.shapes.Shape, got {self.shape!r}")
+        if self.shape is None or isinstance(self.shape, Sphere):
+            sphere = None if self.radius is None else Sphere(self.radius)
+            object.__setattr__(self, "shape", sphere)
+        elif self.radius is not None:
+            raise ParameterError("indenter.radius", f"is a sphere's radius; the indenter is a {self.shape.name} "
+                                 f"({self.shape!r}): give radius = None")
 
     @cached_property
     def _gap_is_sphere(self) -> bool:
