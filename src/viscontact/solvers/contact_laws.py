@@ -214,9 +214,11 @@ def get_contact_law(name: str) -> type[ContactLaw]:
         raise ParameterError("contact law", f"must be one of {sorted(CONTACT_LAWS)}, got {name!r}") from None
 
 
-#: the law of every step of a problem with ``adhesion`` (indentation only:
-#: :func:`~viscontact.problem.problem.check_adhesion_supported`; :mod:`viscontact.solvers.adhesive_law`)
+#: the law of every step of a problem with ``adhesion`` but those of partial slip with friction
+#: (:mod:`viscontact.solvers.adhesive_law`)
 ADHESIVE_LAW = "adhesive_normal"
+#: the law of a partial-slip step with ``adhesion`` and friction (:mod:`viscontact.solvers.adhesive_law`)
+ADHESIVE_PARTIAL_SLIP_LAW = "adhesive_partial_slip"
 
 #: the law of each phase, by phase code (:data:`~viscontact.problem.problem.PHASE_NAMES`); the
 #: tangential mode gives the first phase (:func:`first_phase`)
@@ -234,9 +236,11 @@ def first_phase(tangential: TangentialLoading) -> int:
 def law_name(problem: Problem, phase: int) -> str:
     """The name of the contact law of a step of ``phase`` of ``problem`` (:data:`PHASE_LAWS`; partial
     slip and rolling without friction are the normal contact: frictionless rolling is frictionless
-    sliding; with ``problem.adhesion``, :data:`ADHESIVE_LAW`)."""
+    sliding; with ``problem.adhesion``, :data:`ADHESIVE_LAW`, or :data:`ADHESIVE_PARTIAL_SLIP_LAW` in
+    partial slip with friction)."""
     if problem.adhesion is not None:
-        return ADHESIVE_LAW
+        friction = problem.tangential.effective_friction > 0
+        return ADHESIVE_PARTIAL_SLIP_LAW if phase == PHASE_PARTIAL_SLIP and friction else ADHESIVE_LAW
     if phase in (PHASE_PARTIAL_SLIP, PHASE_ROLLING) and not problem.tangential.effective_friction > 0:
         return PHASE_LAWS[PHASE_INDENTATION]
     return PHASE_LAWS[phase]
@@ -354,17 +358,29 @@ class PartialSlip(ContactLaw):
         law = super().for_problem(problem, compliance, phase)
         return replace(law, free_mean=compliance.free_mean("x"))
 
+    def normal(self, ctx: StepContext, known_uz: np.ndarray, pressure: np.ndarray, product: np.ndarray | None
+               ) -> tuple[np.ndarray, float, int, np.ndarray, np.ndarray | None, np.ndarray | None]:
+        """The pass's normal problem with the known displacement ``known_uz`` [m] (:func:`solve_normal`;
+        a law with another normal problem overrides it): (p [Pa], delta_z [m], iterations, u_z [m], the
+        operator applied to p [m] or None, an adhesive interaction zone or None)."""
+        return *solve_normal(ctx, known_uz, pressure, product), None
+
+    def bound(self, pressure: np.ndarray) -> np.ndarray:
+        """The friction bound |q_x| <= mu_f p [Pa] (p >= 0 here)."""
+        return self.friction * pressure
+
     def solve(self, ctx, pressure, shear, product):
-        p, delta_z, it_n, u_z, product = self.solve_normal(ctx, pressure, shear, product)
+        p, delta_z, it_n, u_z, product, interaction = self.solve_normal(ctx, pressure, shear, product)
         q, slip, it_t = self.solve_tangential(ctx, p, shear, ctx.delta_x)
-        return StepSolution(p, q, float(delta_z), u_z, it_n + it_t, pressure_product=product, slip=slip)
+        return StepSolution(p, q, float(delta_z), u_z, it_n + it_t, pressure_product=product, slip=slip,
+                            interaction=interaction)
 
     def solve_normal(self, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray, product: np.ndarray | None
-                     ) -> tuple[np.ndarray, float, int, np.ndarray, np.ndarray | None]:
+                     ) -> tuple[np.ndarray, float, int, np.ndarray, np.ndarray | None, np.ndarray | None]:
         """The pass's normal solve with the iterate's shear ``shear`` [Pa] in the coupling term
-        (:func:`solve_normal`'s tuple)."""
+        (:meth:`normal`'s tuple)."""
         cross_z = ctx.compliance.cross_displacement("z", "x", shear, ctx.first) if self.coupled else None
-        solved = solve_normal(ctx, _plus(ctx.known_uz, cross_z), pressure, product)
+        solved = self.normal(ctx, _plus(ctx.known_uz, cross_z), pressure, product)
         if self.free_mean:
             check_not_full_contact(solved[0], ctx.t)
         return solved
@@ -375,7 +391,7 @@ class PartialSlip(ContactLaw):
         stuck points at u_x = ``delta_x`` [m] (+ ``ctx.slip_x``): (q_x [Pa], the slip, CG iterations)."""
         sub, s = ctx.compliance, ctx.problem.solver
         cross_x = sub.cross_displacement("x", "z", pressure, ctx.first) if self.coupled else None
-        bound = self.friction * pressure
+        bound = self.bound(pressure)
         op = sub.elastic_operator("x", ctx.first)
         target = delta_x - _plus(ctx.known_ux, cross_x)
         if ctx.slip_x is not None:

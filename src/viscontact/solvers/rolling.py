@@ -105,9 +105,10 @@ class Rolling(PartialSlip):
     def solve(self, ctx, pressure, shear, product):
         if self.tangential_force is None:
             return super().solve(ctx, pressure, shear, product)
-        p, delta_z, it_n, u_z, product = self.solve_normal(ctx, pressure, shear, product)
+        p, delta_z, it_n, u_z, product, interaction = self.solve_normal(ctx, pressure, shear, product)
         c, q, slip, it_t = self.held_force(ctx, p, shear)
-        return StepSolution(p, q, float(delta_z), u_z, it_n + it_t, pressure_product=product, slip=slip, delta_x=c)
+        return StepSolution(p, q, float(delta_z), u_z, it_n + it_t, pressure_product=product, slip=slip,
+                            interaction=interaction, delta_x=c)
 
     def held_force(self, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray
                    ) -> tuple[float, np.ndarray, np.ndarray, int]:
