@@ -96,3 +96,10 @@ def test_the_rolling_keys_enter_the_checkpoint_fingerprint():
     for change in ("creepage = -2e-3", "rolling_speed = 0.1"):
         other = ROLLING.replace(change, change.replace("2e-3", "3e-3").replace("0.1", "0.2"))
         assert problem_fingerprint(_case(other).to_problem()) != base
+
+
+def test_rolling_with_adhesion_is_refused_in_one_line():
+    text = BASE + ROLLING + "[adhesion]\nwork_of_adhesion = 0.05\ncohesive_stress = 1.0e6\n"
+    with pytest.raises(ParameterError) as info:
+        Case.from_toml_text(text).to_problem()
+    assert info.value.key == "tangential.mode" and "adhesion" in str(info.value)

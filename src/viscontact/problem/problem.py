@@ -513,7 +513,10 @@ def check_subsurface_body(depths, kind: Body | type) -> None:
 def check_adhesion_supported(problem: "Problem") -> None:
     """Refuse, in one line naming the key, what adhesion does not work with: a load history that pulls
     before it first presses (no equilibrium carries a tension without contact), and (not yet)
-    ``solver.device = "gpu"``."""
+    ``solver.device = "gpu"`` and rolling."""
+    if problem.tangential.rolls:
+        raise ParameterError("tangential.mode", "'rolling' is not supported with [adhesion] yet: an adhesive "
+                             "rolling law is missing; roll without [adhesion], or slide (gross_sliding, partial_slip)")
     values = problem.normal.history.values
     pressed = next(i for i, v in enumerate(values) if v > 0)
     if problem.normal.control == "load" and min(values[:pressed + 1]) < 0:
