@@ -457,6 +457,25 @@ def check_subsurface_body(depths, kind: Body | type) -> None:
                              "current tractions only there")
 
 
+def check_line_contact_supported(problem: "Problem") -> None:
+    """Refuse, in one line naming the key, what a line contact (``grid.dimension = 1``, plane strain)
+    does not work with yet: a periodic grid, a layer on a base (its kernels are those of a 3-D
+    layer), subsurface stresses (those of a 3-D half-space) and adhesion."""
+    if problem.grid.dimension != 1:
+        return
+    if problem.grid.periodic:
+        raise ParameterError("grid.periodic", "true is not supported in line contact (grid.dimension = 1) yet: "
+                             "periodic plane-strain kernels are missing; use grid.periodic = false")
+    if problem.layer is not None:
+        raise ParameterError("layer", "a layer on a base is not supported in line contact (grid.dimension = 1) yet: "
+                             "its plane-strain kernels are missing")
+    if problem.output.subsurface_depths:
+        raise ParameterError("output.subsurface_depths", "subsurface stresses are not supported in line contact "
+                             "(grid.dimension = 1) yet: those computed are a 3-D half-space's")
+    if problem.adhesion is not None:
+        raise ParameterError("adhesion", "is not supported in line contact (grid.dimension = 1) yet")
+
+
 def check_adhesion_supported(problem: "Problem") -> None:
     """Refuse, in one line naming the key, what adhesion does not work with yet: a tangential mode
     other than ``"none"`` (friction in tension is not modelled; ``viscontact steady`` needs one),
@@ -514,14 +533,14 @@ class Problem:
     body: Body | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
-        n = self.grid.n
+        shape = self.grid.shape
         if self.adhesion is None and self.normal.tensile and min(self.normal.history.values) < 0:
             raise ParameterError("normal.history", f"values must be >= 0 (N or m) without [adhesion], got "
                                  f"{self.normal.history.values!r}")
         if self.adhesion is not None:
             check_adhesion_supported(self)
-        if np.shape(self.gap) != (n, n):
-            raise ParameterError("gap", f"must be an array of the grid's shape ({n}, {n}), got shape {np.shape(self.gap)}")
+        if np.shape(self.gap) != shape:
+            raise ParameterError("gap", f"must be an array of the grid's shape {shape}, got shape {np.shape(self.gap)}")
         if not (np.isfinite(np.min(self.gap)) and np.isfinite(np.max(self.gap))):  # no n x n temporary
             raise ParameterError("gap", "must hold finite heights [m] only (NaN or Inf found)")
         if self.radius is not None:
@@ -534,6 +553,7 @@ class Problem:
             if key in ("bulk_modulus", "layer"):
                 object.__setattr__(self, key, value)
         check_subsurface_body(self.output.subsurface_depths, body)
+        check_line_contact_supported(self)
 
     @cached_property
     def _gap_is_sphere(self) -> bool:

@@ -6,8 +6,28 @@ from __future__ import annotations
 import numpy as np
 from scipy import ndimage
 
-from viscontact.physics.reference import hertz_from_approach, hertz_from_load
+from functools import partial
+from typing import Callable
+
+from viscontact.physics.reference import (
+    Hertz,
+    hertz_from_approach,
+    hertz_from_load,
+    hertz_line_from_approach,
+    hertz_line_from_load,
+)
 from viscontact.problem.problem import Problem
+
+
+def hertz_solution(problem: Problem) -> Callable[[float, float, float, float], Hertz]:
+    """Hertz's solution for the problem's control and grid: (load W [N] or approach [m], radius R [m],
+    G [Pa], nu) -> :class:`~viscontact.physics.reference.Hertz`; a sphere's on the surface grid, a
+    cylinder's line contact (W [N/m], the approach relative to the grid's datum) on a line grid."""
+    load = problem.normal.control == "load"
+    if problem.grid.dimension == 1:
+        build = hertz_line_from_load if load else hertz_line_from_approach
+        return partial(build, datum=problem.grid.datum_distance)
+    return hertz_from_load if load else hertz_from_approach
 
 
 def hertz_scale(problem: Problem) -> tuple[float, float]:
@@ -25,8 +45,7 @@ def hertz_scale(problem: Problem) -> tuple[float, float]:
         return float("nan"), float("nan")
     mat = problem.material
     ref = problem.normal.history.reference
-    build = hertz_from_load if problem.normal.control == "load" else hertz_from_approach
-    h = build(ref, radius, mat.shear_modulus_instantaneous, mat.poisson_ratio)
+    h = hertz_solution(problem)(ref, radius, mat.shear_modulus_instantaneous, mat.poisson_ratio)
     return float(h.radius), float(h.peak_pressure)
 
 
@@ -130,7 +149,7 @@ def equivalent_radius(problem: Problem) -> float:
     smallest = CURVATURE_FIT_CELLS * grid.spacing
     reach = max(CURVATURE_FIT_FRACTION * grid.half_width, smallest)
     mat, reference = problem.material, problem.normal.history.reference
-    build = hertz_from_load if problem.normal.control == "load" else hertz_from_approach
+    build = hertz_solution(problem)
     radius, ratio, depth, contact = float("nan"), float("nan"), 0.0, 0.0
     for _ in range(CURVATURE_FIT_ROUNDS):
         radius, ratio = _fitted_paraboloid(h, dx, dy, reach)

@@ -119,17 +119,35 @@ def contact_estimate(problem: Problem, *, transient: bool = True) -> ContactEsti
     if not (np.isfinite(radius) and radius > 0 and reference > 0):
         return None
     mat, body = problem.material, problem.body
+    contact_radius, model = body.contact_radius, body.contact_model
+    if problem.grid.dimension == 1:  # a line contact: Hertz's strip (a half-space, the line grid's body)
+        contact_radius, model = _line_contact_radius(problem), "Hertz line contact"
     if problem.normal.control == "displacement":
-        a = body.contact_radius_at_approach(reference, radius)
-        return ContactEstimate(a, a, radius, body.contact_model)
-    smallest = body.contact_radius(reference, radius)
+        a = contact_radius(reference, radius) if problem.grid.dimension == 1 else \
+            body.contact_radius_at_approach(reference, radius)
+        return ContactEstimate(a, a, radius, model)
+    smallest = contact_radius(reference, radius)
     tan = problem.tangential
     duration = problem.time.t_end if transient else math.inf
     if tan.mode in ("frictionless_sliding", "gross_sliding") or (not transient and tan.sliding_speed > 0):
-        long_term = body.contact_radius(reference, radius, mat.shear_modulus_instantaneous / mat.shear_modulus_long_term)
+        long_term = contact_radius(reference, radius, mat.shear_modulus_instantaneous / mat.shear_modulus_long_term)
         duration = min(duration, 2.0 * long_term / tan.sliding_speed)
-    largest = body.contact_radius(reference, radius, _creep_ratio(problem, duration))
-    return ContactEstimate(smallest, largest, radius, body.contact_model)
+    largest = contact_radius(reference, radius, _creep_ratio(problem, duration))
+    return ContactEstimate(smallest, largest, radius, model)
+
+
+def _line_contact_radius(problem: Problem):
+    """(value, R, compliance factor c) -> the Hertz line contact's half-width a [m] with G(0) / c
+    (:func:`viscontact.problem.scales.hertz_solution`; a load [N/m] or an approach [m]): creep widens it
+    as c^(1/2) under a held load."""
+    from viscontact.problem.scales import hertz_solution
+
+    build, mat = hertz_solution(problem), problem.material
+
+    def radius(value: float, cylinder_radius: float, compliance_factor: float = 1.0) -> float:
+        return float(build(value, cylinder_radius, mat.shear_modulus_instantaneous / compliance_factor,
+                           mat.poisson_ratio).radius)
+    return radius
 
 
 def _creep_ratio(problem: Problem, duration: float) -> float:
