@@ -101,6 +101,12 @@ class Grid:
         rows = 2 if self.dimension == 2 else 1
         return field.reshape(coarse.rows, rows, coarse.n, 2).mean(axis=(1, 3))
 
+    def spread_blocks(self, coarse_field: np.ndarray) -> np.ndarray:
+        """A field on :meth:`coarsened` spread on this grid: each coarse cell's value on its 2 x 2 fine
+        cells (its 2 cells along x on a line grid)."""
+        rows = 2 if self.dimension == 2 else 1
+        return np.repeat(np.repeat(coarse_field, rows, axis=0), 2, axis=1)
+
     def offsets(self) -> np.ndarray:
         """Offsets between cell centres used by the DC-FFT kernel, shape (2n,) [m].
 

@@ -3,11 +3,11 @@ radius of the sphere that a gap's curvature stands for (a sphere's own, a rough 
 lowest point's), on which the guards and the results' ``a0``, ``p0`` rest."""
 from __future__ import annotations
 
+from collections.abc import Callable
+from functools import partial
+
 import numpy as np
 from scipy import ndimage
-
-from functools import partial
-from typing import Callable
 
 from viscontact.physics.reference import (
     Hertz,

@@ -126,7 +126,7 @@ def coarse_start(problem: Problem, speed: float) -> np.ndarray:
     rounds instead of the ~10 it needs from the symmetric guess; a coarse solve costs a quarter of
     a fine one per iteration (kernel build included)."""
     coarse = solve_steady(coarse_problem(problem), speed)
-    return np.repeat(np.repeat(coarse.pressure, 2, axis=0), 2, axis=1)
+    return problem.grid.spread_blocks(coarse.pressure)
 
 
 #: the case keys a steady state never reads -> why (:func:`ignored_keys`: with those it ignores only
