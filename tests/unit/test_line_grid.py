@@ -121,3 +121,18 @@ def test_line_result_layout_and_units():
     pb2 = Case.from_dict(data).to_problem()
     ds2 = to_dataset(list(simulate(pb2)), pb2)
     assert ds2["load"].attrs["units"] == "N" and "grid_dimension" not in ds2.attrs
+
+
+def test_line_summary_says_per_unit_length(tmp_path):
+    """The headline numbers of a line result: the load in N/m, the half-width A/2 (not sqrt(A/pi))."""
+    from viscontact.io.results import to_dataset
+    from viscontact.running.loop import simulate
+    from viscontact.running.summary import format_summary, summary
+
+    pb = Case.from_dict(_line_case()).to_problem()
+    ds = to_dataset(list(simulate(pb)), pb)
+    s = summary(ds)
+    assert s["units"]["load"] == "N/m"
+    assert s["values"]["contact_radius"] == pytest.approx(float(ds["contact_area"][-1]) / 2)
+    text = format_summary(s)
+    assert "contact half-width A/2" in text and "10 N/m" in text
