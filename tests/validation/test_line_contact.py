@@ -21,7 +21,7 @@ import scipy.integrate
 import scipy.special
 
 from viscontact.io.case import Case
-from viscontact.physics.reference import hertz_line_from_load, line_approach, line_cattaneo
+from viscontact.physics.reference import hertz_line_from_approach, hertz_line_from_load, line_approach, line_cattaneo
 from viscontact.running.loop import simulate
 from viscontact.solvers.steady import solve_steady
 
@@ -79,6 +79,23 @@ def test_hertz_line_contact(nu):
     assert rec.delta_z == pytest.approx(hz.approach, rel=5e-5)
     inner = np.abs(x) < 0.9 * hz.radius
     np.testing.assert_allclose(rec.pressure[0][inner], hz.pressure(x)[inner], atol=7e-4 * hz.peak_pressure)
+
+
+@pytest.mark.parametrize("nu", [0.3, 0.5])
+def test_hertz_line_contact_under_displacement_control(nu):
+    """The approach relative to the datum prescribed: the load per unit length that Hertz's line contact
+    gives for it (:func:`~viscontact.physics.reference.hertz_line_from_approach`). Measured at n = 512:
+    W within 8e-6, a within a cell."""
+    half_width = 1e-3
+    approach = hertz_line_from_load(LOAD, R, G0, nu, half_width).approach
+    case = _case(512, half_width, material={"type": "elastic", "shear_modulus": G0, "poisson_ratio": nu},
+                 mode="none", t_end=1e-3, value=approach, time__dt=1e-3, normal__control="displacement")
+    pb = case.to_problem()
+    rec = list(simulate(pb))[-1]
+    hz = hertz_line_from_approach(approach, R, G0, nu, half_width)
+    assert hz.load == pytest.approx(LOAD, rel=1e-12)
+    assert rec.load == pytest.approx(hz.load, rel=5e-5)
+    assert rec.contact_area / 2 == pytest.approx(hz.radius, abs=pb.grid.spacing)
 
 
 # --- the independent steady solver --------------------------------------------------------------------
