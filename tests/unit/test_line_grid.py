@@ -136,3 +136,20 @@ def test_line_summary_says_per_unit_length(tmp_path):
     assert s["values"]["contact_radius"] == pytest.approx(float(ds["contact_area"][-1]) / 2)
     text = format_summary(s)
     assert "contact half-width A/2" in text and "10 N/m" in text
+
+
+def test_the_guards_estimate_a_line_by_hertz_line_contact():
+    """The contact-size guard of a line uses Hertz's line contact, a = sqrt(4 W R / (pi E*)) (here
+    0.391 mm at 40 N/m): a domain of +-0.3 mm is refused in one line naming grid.half_width."""
+    from viscontact.running.guards import check_problem, contact_estimate
+
+    data = _line_case(half_width=0.3e-3)
+    data["normal"]["value"] = 40.0
+    pb = Case.from_dict(data).to_problem()
+    est = contact_estimate(pb)
+    e_star = 2 * 1e6 / (1 - 0.4)
+    assert est.smallest == pytest.approx(math.sqrt(4 * 40.0 * 0.01 / (math.pi * e_star)), rel=1e-12)
+    assert est.model == "Hertz line contact"
+    with pytest.raises(ParameterError) as err:
+        check_problem(pb)
+    assert err.value.key == "grid.half_width" and "Hertz line contact" in str(err.value)

@@ -119,12 +119,12 @@ def contact_estimate(problem: Problem, *, transient: bool = True) -> ContactEsti
     if not (np.isfinite(radius) and radius > 0 and reference > 0):
         return None
     mat, body = problem.material, problem.body
-    contact_radius, model = body.contact_radius, body.contact_model
+    contact_radius, at_approach, model = body.contact_radius, body.contact_radius_at_approach, body.contact_model
     if problem.grid.dimension == 1:  # a line contact: Hertz's strip (a half-space, the line grid's body)
-        contact_radius, model = _line_contact_radius(problem), "Hertz line contact"
+        contact_radius = at_approach = _line_contact_radius(problem)
+        model = "Hertz line contact"
     if problem.normal.control == "displacement":
-        a = contact_radius(reference, radius) if problem.grid.dimension == 1 else \
-            body.contact_radius_at_approach(reference, radius)
+        a = at_approach(reference, radius)
         return ContactEstimate(a, a, radius, model)
     smallest = contact_radius(reference, radius)
     tan = problem.tangential
