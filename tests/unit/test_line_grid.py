@@ -153,3 +153,23 @@ def test_the_guards_estimate_a_line_by_hertz_line_contact():
     with pytest.raises(ParameterError) as err:
         check_problem(pb)
     assert err.value.key == "grid.half_width" and "Hertz line contact" in str(err.value)
+
+
+def test_a_line_with_a_bulk_modulus_is_the_constant_nu_line_when_incompressible():
+    """nu(t) on a line (the bulk-elastic body's kernels split at nu = 0 and 1, affine in nu in plane
+    strain as in 3-D): with K = 1e6 G(0) nu stays 0.5 to 1e-6, and the run is the constant-nu one to
+    that order (creep under a held load, 3 steps)."""
+    from viscontact.running.loop import simulate
+
+    zener = {"type": "zener", "shear_modulus_instantaneous": 1e6, "shear_modulus_long_term": 1e5,
+             "retardation_time": 1e-3}
+    data = _line_case(half_width=2e-3)
+    data["material"] = {**zener, "poisson_ratio": 0.5}
+    data["time"] = {"t_end": 3e-3, "dt": 1e-3}
+    constant = list(simulate(Case.from_dict(data).to_problem()))
+    data["material"] = {**zener, "bulk_modulus": 1e12}
+    bulk = list(simulate(Case.from_dict(data).to_problem()))
+    for a, b in zip(constant, bulk):
+        assert b.delta_z == pytest.approx(a.delta_z, rel=1e-5)
+        np.testing.assert_allclose(b.pressure, a.pressure, atol=1e-5 * a.pressure.max())
+    assert bulk[-1].delta_z > 2 * bulk[0].delta_z  # it crept
