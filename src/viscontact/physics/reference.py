@@ -59,7 +59,7 @@ def line_approach(contact_half_width: float, cylinder_radius: float, datum: floa
         delta = (a^2 / 2R) (ln(2b/a) + 1/2) = (2W / (pi E*)) (ln(2b/a) + 1/2).
 
     From u_z(0) = -(2/(pi E*)) int p(s) ln(|s|/b) ds with p = p0 sqrt(1 - s^2/a^2) and
-    int_-1^1 sqrt(1 - t^2) ln|t| dt = -(pi/2)(ln 2 + 1/2) (Gradshteyn & Ryzhik 4.241). The approach of
+    the integral of sqrt(1 - t^2) ln|t| over [-1, 1], -(pi/2)(ln 2 + 1/2) (Gradshteyn & Ryzhik 4.241). The approach of
     a line contact is defined only relative to a datum (Johnson, *Contact Mechanics*, 1985, §2.2 after
     Eq. 2.19 and §4.3: it depends on where it is measured from).
     """
