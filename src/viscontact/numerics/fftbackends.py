@@ -200,7 +200,7 @@ class FFTWTransforms:
         return self._inverse_in_place()
 
 
-#: backend name -> constructor(n, workers, rows)
+#: backend name -> constructor(n, workers[, rows]) (rows only for a grid that is not square: a line's 1)
 BACKENDS = {
     "scipy": lambda n, workers, rows=None: ZeroBlockTransforms(n, workers, rows=rows),
     "pyfftw": lambda n, workers, rows=None: FFTWTransforms(n, threads=max(workers, 1), rows=rows),
@@ -220,7 +220,7 @@ def dcfft_transforms(name: str, n: int, workers: int = -1, rows: int | None = No
     """
     if name not in BACKENDS:
         raise ValueError(f"unknown FFT backend {name!r}; expected one of {sorted(BACKENDS)}")
-    return BACKENDS[name](n, workers, rows)
+    return BACKENDS[name](n, workers) if rows in (None, n) else BACKENDS[name](n, workers, rows)
 
 
 def check_fft_backend(name: str) -> None:
