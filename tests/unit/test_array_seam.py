@@ -31,6 +31,7 @@ from viscontact.physics.kernels import influence_coefficients
 from viscontact.io.case import load_case
 from viscontact.io.checkpoint import load_checkpoint, save_checkpoint
 from viscontact.problem.problem import LayerSettings, SolverSettings
+from viscontact.problem.shapes import Cylinder
 from viscontact.io.shipped import shipped_case
 from viscontact.bodies.compliance import compliance_of
 from viscontact.solvers import contact_laws
@@ -292,7 +293,8 @@ def _line(problem, load: float = 30.0):
         normal = dataclasses.replace(normal, history=type(normal.history).constant(load))
     dt = problem.time.dt / 4 if problem.tangential.frame_moves else problem.time.dt
     return dataclasses.replace(problem, grid=grid, gap=x**2 / (2 * SEED_RADIUS), normal=normal,
-                               time=dataclasses.replace(problem.time, dt=dt))
+                               time=dataclasses.replace(problem.time, dt=dt), radius=None,
+                               shape=Cylinder(SEED_RADIUS))
 
 
 def _transient(mode: str):

@@ -81,17 +81,19 @@ def test_the_layers_contact_estimate_has_the_limits_of_its_docstring():
 
     from viscontact.bodies.half_space import hertz_radius
     from viscontact.physics.reference import winkler_sphere
+    from viscontact.problem.shapes import Sphere
 
     g, nu, load, radius = 1.93e6, 0.3, 0.679, 0.01
+    sphere = Sphere(radius)
     material = seed_material()
-    thick = LayerOnBase(material, LayerSettings(1.0)).contact_radius(load, radius)
+    thick = LayerOnBase(material, LayerSettings(1.0)).contact_radius(load, sphere)
     assert thick == pytest.approx(hertz_radius(load, radius, g, nu), rel=1e-9)
-    thin = LayerOnBase(material, LayerSettings(2e-5)).contact_radius(load, radius)
+    thin = LayerOnBase(material, LayerSettings(2e-5)).contact_radius(load, sphere)
     assert thin == pytest.approx(winkler_sphere(load, radius, 2e-5, g, nu).radius, rel=1e-3)
     soft = LayerSettings(2e-6, "elastic", "bonded", g / 100, 0.4)
-    on_soft = LayerOnBase(material, soft).contact_radius(load, radius)
+    on_soft = LayerOnBase(material, soft).contact_radius(load, sphere)
     assert on_soft == pytest.approx(hertz_radius(load, radius, g / 100, 0.4), rel=2e-2)
-    assert LayerOnBase(material, soft).contact_radius(load, radius, 10.0) == pytest.approx(on_soft, rel=2e-2)
-    crept = LayerOnBase(material, LayerSettings(2e-5)).contact_radius(load, radius, 10.0)
+    assert LayerOnBase(material, soft).contact_radius(load, sphere, 10.0) == pytest.approx(on_soft, rel=2e-2)
+    crept = LayerOnBase(material, LayerSettings(2e-5)).contact_radius(load, sphere, 10.0)
     assert crept == pytest.approx(thin * 10.0**0.25, rel=2e-3)  # Winkler: a^4 ~ W/M
-    assert math.isinf(LayerOnBase(material, LayerSettings(2e-5)).contact_radius(load, radius, math.inf))
+    assert math.isinf(LayerOnBase(material, LayerSettings(2e-5)).contact_radius(load, sphere, math.inf))

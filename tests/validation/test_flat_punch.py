@@ -1,5 +1,6 @@
 """A rigid flat circular punch on an elastic half-space (Boussinesq; Johnson, *Contact Mechanics*, §3.8)
-given as a gap on the grid (``indenter.shape = "surface"``), as the guards and the solver see it.
+given as a gap on the grid (``indenter.shape = "surface"``) and as the analytic shape
+(``indenter.shape = "flat_punch"``, the same cells), as the guards and the solver see it.
 
 Truth: a punch of radius a pressed by delta carries W = 2 a E* delta = 4 a G delta / (1 - nu), with
 p(r) = E* delta / (pi sqrt(a^2 - r^2)) on its face (singular at the rim), whatever the height of the
@@ -39,30 +40,40 @@ from viscontact.errors import ViscontactWarning
 from viscontact.running.guards import WARNING_LIMIT, flat_face_cells
 from viscontact.physics.materials import Material
 from viscontact.problem.problem import SolverSettings
+from viscontact.problem.shapes import FlatPunch
 
 G, NU, A, HALF_WIDTH, DELTA = 1e6, 0.3, 0.5e-3, 2e-3, 3.5e-6
 E_STAR = 2 * G / (1 - NU)
 LOAD = 2 * A * E_STAR * DELTA  # Boussinesq: 10.0 mN
 
 
-def _run(n: int, control: str, wall: float = 1e-3):
-    """The punch at its Boussinesq load or approach: (dataset, a_eff [m], dx/a, r [m] of the cells)."""
+def _run(n: int, control: str, wall: float = 1e-3, shape: bool = False):
+    """The punch at its Boussinesq load or approach: (dataset, a_eff [m], dx/a, r [m] of the cells); as a
+    gap of walls ``wall`` [m], or (``shape``) as the analytic shape ``flat_punch`` (walls of A: its own)."""
     value = DELTA if control == "displacement" else LOAD
     pb = sphere_problem(Material.elastic(G, NU), n, HALF_WIDTH, control=control, value=value, t_end=1e-3,
                         dt=1e-3, solver=SolverSettings(tolerance=1e-12))
     x, y = pb.grid.mesh()
     r = np.hypot(x, y)
-    pb = replace(pb, gap=np.where(r <= A, 0.0, wall), radius=None)
+    if shape:
+        pb = replace(pb, gap=FlatPunch(A).gap(pb.grid), radius=None, shape=FlatPunch(A))
+        assert np.array_equal(pb.gap, np.where(r <= A, 0.0, A))  # the gap this file's punch always had, walls of A
+    else:
+        pb = replace(pb, gap=np.where(r <= A, 0.0, wall), radius=None)
     ds = vc.run(pb)  # with the guards' checks, as a case is run
     a_eff = math.sqrt(np.count_nonzero(r <= A) * pb.grid.cell_area / math.pi)
     return ds, a_eff, pb.grid.spacing / A, r
 
 
+@pytest.mark.parametrize("shape", [False, True], ids=["gap", "shape"])
 @pytest.mark.parametrize("control", ["displacement", "load"])
-def test_flat_punch_carries_boussinesq_load(control):
+def test_flat_punch_carries_boussinesq_load(control, shape):
+    """As a gap and as the analytic shape (indenter.shape = "flat_punch": the same cells, its own
+    estimate in the guards), the stiffness W / delta = 2 a E* within the tolerances of this file's
+    docstring."""
     errors = []
     for n in (64, 128):
-        ds, a_eff, cell, r = _run(n, control)
+        ds, a_eff, cell, r = _run(n, control, shape=shape)
         load, approach = float(ds["load"][-1]), float(ds["delta_z"][-1])
         err = load / (2 * a_eff * E_STAR * approach) - 1
         assert abs(err) <= 0.15 * cell, (n, err)
@@ -70,7 +81,12 @@ def test_flat_punch_carries_boussinesq_load(control):
         core = r <= A / 2
         truth = E_STAR * approach / (math.pi * np.sqrt(a_eff**2 - r[core] ** 2))
         assert np.max(np.abs(ds["pressure"].values[-1][core] / truth - 1)) <= 0.2 * cell, n
-        assert math.isnan(ds.attrs["a0"]) and math.isnan(ds.attrs["p0"])
+        if shape:  # the punch's own scale: its radius and the pressure at its centre, W / (2 pi a^2)
+            assert ds.attrs["a0"] == A and ds.attrs["indenter_shape"] == "flat_punch"
+            assert ds.attrs["p0"] == pytest.approx((DELTA * 2 * A * E_STAR if control == "displacement" else LOAD)
+                                                   / (2 * math.pi * A**2), rel=1e-12)
+        else:
+            assert math.isnan(ds.attrs["a0"]) and math.isnan(ds.attrs["p0"])
         errors.append(abs(err))
     assert errors[0] >= 1.8 * errors[1], errors
 

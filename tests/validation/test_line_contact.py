@@ -33,7 +33,7 @@ def _case(n: int, half_width: float, *, material=None, mode="frictionless_slidin
           value=LOAD, nu=NU, **more) -> Case:
     material = material or {"type": "zener", "shear_modulus_instantaneous": G0, "shear_modulus_long_term": G_INF,
                             "retardation_time": TAU, "poisson_ratio": nu}
-    data = {"title": "line", "material": material, "indenter": {"shape": "sphere", "radius": R},
+    data = {"title": "line", "material": material, "indenter": {"shape": "cylinder", "radius": R},
             "grid": {"n": n, "half_width": half_width, "dimension": 1},
             "normal": {"control": "load", "value": value},
             "tangential": {"mode": mode, **({"sliding_speed": speed} if mode != "none" else {})},

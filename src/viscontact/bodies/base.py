@@ -19,6 +19,7 @@ body is one module with such a class and one entry in :data:`viscontact.bodies.r
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from typing import Any, Protocol, runtime_checkable
 
@@ -94,15 +95,55 @@ class Body(Protocol):
         """How ``viscontact material`` names the body's Poisson ratio (one phrase)."""
         ...
 
-    def contact_radius(self, load: float, sphere_radius: float, compliance_factor: float = 1.0) -> float:
-        """Estimated contact radius [m] of a rigid sphere of ``sphere_radius`` [m] pressed with ``load``
-        [N] when the material's compliance is ``compliance_factor`` times its instantaneous value
-        (creep: the Lee & Radok ratio int J dW / (J(0) W) >= 1)."""
+    def contact_radius(self, load: float, shape: ContactShape, compliance_factor: float = 1.0) -> float:
+        """Estimated contact size [m] (:meth:`ContactShape.size_at_load`: a radius, a roller's
+        half-width) of the rigid ``shape`` pressed with ``load`` [N] when the material's compliance is
+        ``compliance_factor`` times its instantaneous value (creep: the Lee & Radok ratio
+        int J dW / (J(0) W) >= 1; inf: a fluid's unbounded creep, an infinite contact)."""
         ...
 
-    def contact_radius_at_approach(self, approach: float, sphere_radius: float) -> float:
-        """Estimated contact radius [m] of a rigid sphere pressed to the approach ``approach`` [m]."""
+    def contact_radius_at_approach(self, approach: float, shape: ContactShape) -> float:
+        """Estimated contact size [m] of the rigid ``shape`` pressed to the approach ``approach`` [m]."""
         ...
+
+
+@runtime_checkable
+class ContactShape(Protocol):
+    """What a body's contact estimate asks of an indenter's shape (the shapes of
+    :mod:`viscontact.problem.shapes`): its elastic contact on a half-space of contact modulus E* [Pa].
+
+    Attributes
+    ----------
+    grows
+        Whether the contact grows with the load (False: a flat punch's face, its size at any load).
+    """
+
+    grows: bool
+
+    def load_at_size(self, size: float, contact_modulus: float) -> float:
+        """The load [N] whose contact has the size ``size`` [m] on a half-space of E* [Pa]."""
+        ...
+
+    def size_at_load(self, load: float, contact_modulus: float) -> float:
+        """The contact size [m] under ``load`` [N] on a half-space of E* [Pa]."""
+        ...
+
+    def size_at_approach(self, approach: float) -> float:
+        """The contact size [m] at the approach ``approach`` [m] on a half-space."""
+        ...
+
+
+def half_space_contact_radius(load: float, shape: ContactShape, contact_modulus: float,
+                              compliance_factor: float = 1.0) -> float:
+    """The contact size [m] of ``shape`` under ``load`` [N] on a half-space of instantaneous contact
+    modulus E* [Pa] whose compliance is ``compliance_factor`` times its instantaneous one (creep, Lee &
+    Radok 1960: the elastic relation with E*/c): ``shape.size_at_load(load, E*/c)``; inf for an
+    unbounded creep (c = inf) of a growing contact, NaN for no estimate (c NaN)."""
+    if not math.isfinite(compliance_factor):
+        if not shape.grows and compliance_factor > 0:
+            return shape.size_at_load(load, contact_modulus)
+        return math.inf if compliance_factor > 0 else math.nan
+    return shape.size_at_load(load, contact_modulus / compliance_factor)
 
 
 def described_fingerprint(description: Mapping[str, Any]) -> bytes:

@@ -50,9 +50,8 @@ from typing import Any
 
 import numpy as np
 
-from viscontact.bodies.base import TermBody
+from viscontact.bodies.base import ContactShape, TermBody, half_space_contact_radius
 from viscontact.bodies.compliance import ComplianceTerm
-from viscontact.bodies.half_space import hertz_radius
 from viscontact.errors import ParameterError
 from viscontact.numerics.exponentials import CreepSpectrum, linear_combination
 from viscontact.numerics.grid import Grid
@@ -60,6 +59,7 @@ from viscontact.physics.kernels import influence_coefficients
 from viscontact.physics.materials import Material
 from viscontact.physics.periodic import periodic_influence_coefficients
 from viscontact.physics.prony import prony_creep_spectra, prony_creep_spectrum  # noqa: F401 (bodies.layer)
+from viscontact.physics.reference import contact_modulus
 from viscontact.physics.steady_kernels import SteadyKernelBuilder, SteadyShape
 
 #: the factor names of :meth:`BulkElasticMaterial.factor`
@@ -215,7 +215,7 @@ class BulkElasticHalfSpace(TermBody):
     bulk_modulus: float
 
     subsurface_stresses = False
-    contact_model = "Hertz with nu(0), Lee & Radok creep"
+    contact_model = "with nu(0), Lee & Radok creep"
 
     @cached_property
     def elastic_bulk(self) -> BulkElasticMaterial:
@@ -252,14 +252,15 @@ class BulkElasticHalfSpace(TermBody):
         return (f"bulk_modulus K = {self.bulk_modulus:.6g} Pa: poisson ratio nu(t) from "
                 f"{bulk.poisson_ratio_instantaneous:.6g} (t = 0) to {bulk.poisson_ratio_long_term:.6g} (t = inf)")
 
-    def contact_radius(self, load: float, sphere_radius: float, compliance_factor: float = 1.0) -> float:
-        """Hertz with G(0) and nu(0) (the material's ``poisson_ratio``), grown as ``compliance_factor`` to the power 1/3
-        (:func:`~viscontact.bodies.half_space.hertz_radius`): as nu rises the normal compliance
-        (1 - nu)/G creeps less than J(t), so this bounds the crept radius from above."""
+    def contact_radius(self, load: float, shape: ContactShape, compliance_factor: float = 1.0) -> float:
+        """The shape's elastic contact with G(0) and nu(0) (the material's ``poisson_ratio``), crept as
+        E*/``compliance_factor`` (:func:`~viscontact.bodies.base.half_space_contact_radius`): as nu
+        rises the normal compliance (1 - nu)/G creeps less than J(t), so this bounds the crept size
+        from above."""
         mat = self.material
-        return hertz_radius(load, sphere_radius, mat.shear_modulus_instantaneous, mat.poisson_ratio,
-                            compliance_factor)
+        return half_space_contact_radius(load, shape, contact_modulus(mat.shear_modulus_instantaneous,
+                                                                       mat.poisson_ratio), compliance_factor)
 
-    def contact_radius_at_approach(self, approach: float, sphere_radius: float) -> float:
-        """Hertz: a = sqrt(R delta) [m] whatever the moduli."""
-        return float(np.sqrt(sphere_radius * approach))
+    def contact_radius_at_approach(self, approach: float, shape: ContactShape) -> float:
+        """The shape's elastic relation, whatever the moduli (Hertz: a = sqrt(R delta) [m])."""
+        return shape.size_at_approach(approach)

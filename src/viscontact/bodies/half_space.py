@@ -6,13 +6,13 @@ its compliance (a :class:`~viscontact.bodies.compliance.Compliance`).
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any, Sequence
 
 import numpy as np
 
+from viscontact.bodies.base import ContactShape, half_space_contact_radius
 from viscontact.bodies.compliance import COMPONENT_ORDER, Term, Compliance, grid_transforms, ordered_components
 from viscontact.numerics.arrays import CPU, ArrayBackend
 from viscontact.numerics.convolution import Convolver, FourierPreconditioner
@@ -22,6 +22,7 @@ from viscontact.numerics.schemes import TimeScheme
 from viscontact.physics.kernels import influence_coefficients
 from viscontact.physics.materials import Material
 from viscontact.physics.periodic import PeriodicConvolver
+from viscontact.physics.reference import contact_modulus
 from viscontact.physics.steady_kernels import SteadyKernelBuilder
 
 Array = np.ndarray
@@ -134,7 +135,7 @@ class HomogeneousHalfSpace:
     #: the case adds no key for it
     description = MappingProxyType({})
     subsurface_stresses = True
-    contact_model = "Hertz, Lee & Radok creep"
+    contact_model = "Lee & Radok creep"
 
     def compliance(self, grid: Grid, components: Sequence[str], scheme: str | TimeScheme, dt: float, *,
                    workers: int = -1, direct: bool = False, fft: str = "scipy",
@@ -162,13 +163,14 @@ class HomogeneousHalfSpace:
     def material_summary(self) -> str:
         return f"poisson_ratio = {self.material.poisson_ratio:g}"
 
-    def contact_radius(self, load: float, sphere_radius: float, compliance_factor: float = 1.0) -> float:
-        """Hertz with G(0) and nu (:func:`hertz_radius`), grown by creep as ``compliance_factor`` to the power 1/3
-        (Lee & Radok 1960)."""
+    def contact_radius(self, load: float, shape: ContactShape, compliance_factor: float = 1.0) -> float:
+        """The shape's elastic contact with E* = 2 G(0)/(1 - nu) (:func:`~viscontact.bodies.base.half_space_contact_radius`:
+        Hertz for a sphere), crept as E*/``compliance_factor`` (Lee & Radok 1960)."""
         mat = self.material
-        return hertz_radius(load, sphere_radius, mat.shear_modulus_instantaneous, mat.poisson_ratio,
-                            compliance_factor)
+        return half_space_contact_radius(load, shape, contact_modulus(mat.shear_modulus_instantaneous,
+                                                                       mat.poisson_ratio), compliance_factor)
 
-    def contact_radius_at_approach(self, approach: float, sphere_radius: float) -> float:
-        """Hertz: a = sqrt(R delta) [m] whatever the modulus (Johnson 1985, Sec. 4.2)."""
-        return math.sqrt(sphere_radius * approach)
+    def contact_radius_at_approach(self, approach: float, shape: ContactShape) -> float:
+        """The shape's elastic relation, whatever the modulus (Hertz: a = sqrt(R delta) [m]; Johnson
+        1985, Sec. 4.2)."""
+        return shape.size_at_approach(approach)

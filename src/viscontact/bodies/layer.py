@@ -103,7 +103,7 @@ import scipy.fft
 import scipy.linalg
 import scipy.optimize
 
-from viscontact.bodies.base import TermBody
+from viscontact.bodies.base import ContactShape, TermBody
 from viscontact.bodies.bulk_elastic import prony_creep_spectra, prony_creep_spectrum
 from viscontact.bodies.compliance import ComplianceTerm
 from viscontact.errors import ParameterError
@@ -112,6 +112,7 @@ from viscontact.numerics.grid import Grid
 from viscontact.physics.kernels import rectangle_influence
 from viscontact.physics.materials import Material
 from viscontact.physics.periodic import periodic_influence_coefficients
+from viscontact.physics.reference import contact_modulus
 from viscontact.physics.steady_kernels import SteadyKernelBuilder, SteadyShape, lagrange_basis, lobatto_nodes
 
 if TYPE_CHECKING:  # the case's [layer], as the problem holds it (a layer above: for the reader only)
@@ -1041,7 +1042,7 @@ class LayerOnBase(TermBody):
     settings: LayerSettings
 
     subsurface_stresses = False
-    contact_model = "layer compliance at k = 32/(3 pi a): Winkler when thin, Hertz when thick; Lee & Radok creep"
+    contact_model = "layer compliance at k = 32/(3 pi a): Winkler when thin, the half-space when thick; Lee & Radok creep"
 
     @property
     def layer(self) -> Layer:
@@ -1098,17 +1099,21 @@ class LayerOnBase(TermBody):
     def material_summary(self) -> str:
         return f"poisson_ratio = {self.material.poisson_ratio:g}"
 
-    def contact_radius(self, load: float, sphere_radius: float, compliance_factor: float = 1.0) -> float:
-        """Contact radius a [m] of a sphere (radius R [m], load W [N]) on the layer with G(0)/c
+    def contact_radius(self, load: float, shape: ContactShape, compliance_factor: float = 1.0) -> float:
+        """Contact size a [m] of the rigid ``shape`` (load W [N]) on the layer with G(0)/c
         (c = ``compliance_factor``; the base does not creep).
 
-        Hertz in terms of the compliance: a half-space has A_zz(k) = (1 - nu)/(G k) = 2/(E* k), so
-        Hertz's a^3 = 3 W R/(4 E*) reads a^3 = 3 W R k A_zz(k)/8 for any k. Here A_zz is the layer's
-        (:func:`in_plane_compliance`) at the wavenumber k = kappa/a of the contact, and a solves
+        The shape's elastic relation W = W(a, E*) (:meth:`~viscontact.bodies.base.ContactShape.load_at_size`)
+        in terms of the compliance: a half-space has A_zz(k) = (1 - nu)/(G k) = 2/(E* k), so its E* is
+        2/(k A_zz(k)) for any k. Here A_zz is the layer's (:func:`in_plane_compliance`) at the
+        wavenumber k = kappa/a of the contact, and a solves
 
-            a^3 = 3 W R (kappa/a) A_zz(kappa/a) / 8,   kappa = 32/(3 pi) (:data:`CONTACT_WAVENUMBER`).
+            W = W(a, 2 / (k A_zz(k))),   k = kappa/a,   kappa = 32/(3 pi) (:data:`CONTACT_WAVENUMBER`).
 
-        Limits: a thick layer (k h >> 1) is the half-space, Hertz for any kappa. A thin bonded
+        For a sphere (Hertz, W = 4 E* a^3/(3 R)) that is a^3 = 3 W R (kappa/a) A_zz(kappa/a) / 8. A
+        shape whose contact does not grow (a flat punch's face) keeps its size.
+
+        Limits (a sphere): a thick layer (k h >> 1) is the half-space, Hertz for any kappa. A thin bonded
         compressible layer on a rigid base has A_zz -> h/M (oedometric M = 2 G (1 - nu)/(1 - 2 nu)),
         a Winkler foundation of stiffness M/h: p(r) = (M/h)(delta - r^2/2R), zero at r = a, so
         delta = a^2/2R and W = pi M a^4/(4 R h) (:func:`viscontact.physics.reference.winkler_sphere`);
@@ -1120,6 +1125,8 @@ class LayerOnBase(TermBody):
         judged together, by the one compliance, rather than by the smaller or larger of two Hertz
         radii. Below k h = :data:`THIN_KH` the compliance at that k h is used.
         """
+        if not shape.grows:
+            return shape.size_at_load(load, math.nan)
         if not math.isfinite(compliance_factor):  # a fluid's unbounded creep (inf), no estimate (NaN)
             return math.inf if compliance_factor > 0 else math.nan
         layer = self.layer_at(self.material.shear_modulus_instantaneous / compliance_factor)
@@ -1128,17 +1135,19 @@ class LayerOnBase(TermBody):
         def excess(log_a: float) -> float:
             a = math.exp(log_a)
             k = max(CONTACT_WAVENUMBER / a, k_floor)
-            ka = k * float(in_plane_compliance(layer, np.array([k]))["zz"][0].real)
-            return math.log(3.0 * load * sphere_radius * ka / 8.0) - 3.0 * log_a
+            modulus = 2.0 / (k * float(in_plane_compliance(layer, np.array([k]))["zz"][0].real))
+            return math.log(load) - math.log(shape.load_at_size(a, modulus))
 
-        # the half-space of the layer or of the base brackets the radius within a few decades
-        low, high = math.log(1e-3 * min(h, sphere_radius)), math.log(10.0 * sphere_radius)
+        # the size on the half-space of the layer's material brackets it within a few decades (a thin
+        # layer on a rigid base is stiffer, on a softer base softer)
+        scale = shape.size_at_load(load, contact_modulus(layer.shear_modulus, layer.poisson_ratio))
+        low, high = math.log(1e-3 * min(h, scale)), math.log(1e3 * max(h, scale))
         if excess(low) <= 0.0 or excess(high) >= 0.0:
             return math.exp(low if excess(low) <= 0.0 else high)
         return math.exp(scipy.optimize.brentq(excess, low, high, xtol=1e-12))
 
-    def contact_radius_at_approach(self, approach: float, sphere_radius: float) -> float:
-        """a = sqrt(R delta) [m], the half-space's (Hertz) relation: a thin compressible layer on a
-        rigid base reaches sqrt(2 R delta) (Winkler), a thin incompressible one 2 sqrt(R delta); this
-        estimate takes the half-space's (a known shortfall for thin layers under an approach)."""
-        return math.sqrt(sphere_radius * approach)
+    def contact_radius_at_approach(self, approach: float, shape: ContactShape) -> float:
+        """The half-space's relation of the shape (Hertz: a = sqrt(R delta) [m]): a thin compressible
+        layer on a rigid base reaches sqrt(2 R delta) (Winkler), a thin incompressible one 2 sqrt(R
+        delta); this estimate takes the half-space's (a known shortfall for thin layers under an approach)."""
+        return shape.size_at_approach(approach)

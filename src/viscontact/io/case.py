@@ -58,6 +58,7 @@ from viscontact.problem.problem import (
     check_subsurface_output,
 )
 from viscontact.problem.records import StepRecord
+from viscontact.problem.shapes import SHAPES, Shape, shape_from_keys
 
 __all__ = ["FILE_KEYS", "MATERIALS", "MAX_GRID_N", "MAX_INPUT_BYTES", "MIN_GRID_N", "Case", "case_keys", "closest",
            "load_case", "read_input_file", "required_first"]
@@ -256,6 +257,8 @@ MaterialSection = Annotated[ZenerMaterial | PronyMaterial | ElasticMaterial, Fie
 
 # --- the other sections --------------------------------------------------------------------------
 _SELF_AFFINE_KEYS = ("hurst", "rms_height", "rms_slope", "long_cutoff", "short_cutoff", "seed")
+#: the keys of the analytic shapes besides radius (:mod:`viscontact.problem.shapes`)
+_SHAPE_KEYS = ("length", "edge_radius", "radius_x", "radius_y", "half_angle")
 
 
 class _SelfAffineKeys(_Section):
@@ -302,6 +305,10 @@ class IndenterSection(_SelfAffineKeys):
     """The rigid surface:
 
     * ``shape = "sphere"`` with ``radius`` [m] (and optionally ``[indenter.roughness]``);
+    * the other analytic shapes (:mod:`viscontact.problem.shapes`, each with optional
+      ``[indenter.roughness]``): ``"cylinder"`` (``radius``, ``length``, ``edge_radius`` [m]; its axis
+      along y), ``"ellipsoid"`` (``radius_x``, ``radius_y`` [m]), ``"flat_punch"`` (``radius``,
+      ``edge_radius`` [m]), ``"cone"`` (``half_angle`` [degrees]);
     * ``shape = "surface"`` with ``file``: a .npy of the undeformed gap h0 [m] on the grid (n x n, indexed
       [y, x]; its lowest point touches first: not heights z up, which ``topography`` takes);
     * ``shape = "self_affine"`` with ``hurst``, ``rms_height`` or ``rms_slope``, ``long_cutoff``,
@@ -314,10 +321,26 @@ class IndenterSection(_SelfAffineKeys):
     Files are relative to the case file's folder.
     """
 
-    shape: Literal["sphere", "surface", "self_affine", "topography"] = Field(
-        "sphere", description="a sphere (paraboloid gap (x^2 + y^2)/(2 radius)), a gap read from a .npy file, "
-        "a generated self-affine surface, or a measured topography file")
-    radius: float | None = _num(None, unit="m", gt=0, description="sphere radius R; required with shape = 'sphere'")
+    shape: Literal[(*SHAPES, "surface", "self_affine", "topography")] = Field(
+        "sphere", description="a sphere (paraboloid gap (x^2 + y^2)/(2 radius)); a cylinder (gap x^2/(2 radius), "
+        "its axis along y, over length with rounded ends of edge_radius and end walls); an ellipsoid (gap "
+        "x^2/(2 radius_x) + y^2/(2 radius_y)); a flat circular punch of radius (its rim sharp or rounded by "
+        "edge_radius, a wall about it); a cone of semi-apex angle half_angle (gap r cot(half_angle)); a gap "
+        "read from a .npy file; a generated self-affine surface; or a measured topography file")
+    radius: float | None = _num(None, unit="m", gt=0, description="radius R of the sphere, of the cylinder "
+                                "(its cross-section) or of the flat punch (its face); required with those shapes")
+    length: float | None = _num(None, unit="m", gt=0, description="with shape = 'cylinder': its length L along y, "
+                                "ends included (required on a 2-D grid)")
+    edge_radius: float | None = _num(None, unit="m", ge=0, description="with shape = 'cylinder' or 'flat_punch': "
+                                     "the radius of the rounded ends or rim (parabolic rounding "
+                                     "(distance)^2/(2 edge_radius)); default 0, a sharp edge (a singular pressure)")
+    radius_x: float | None = _num(None, unit="m", gt=0, description="with shape = 'ellipsoid': the radius of "
+                                  "curvature in the x-z plane (gap x^2/(2 radius_x) + y^2/(2 radius_y))")
+    radius_y: float | None = _num(None, unit="m", gt=0, description="with shape = 'ellipsoid': the radius of "
+                                  "curvature in the y-z plane")
+    half_angle: float | None = _num(None, unit="degrees", gt=0, lt=90, description="with shape = 'cone': the "
+                                    "semi-apex angle alpha between the axis and the flank (gap r cot(alpha); "
+                                    "a Berkovich tip's equivalent cone: 70.3)")
     file: str | None = Field(None, description="with shape = 'surface': .npy of the undeformed gap h0 [m], "
                              "(grid.n, grid.n), indexed [y, x], its lowest point touching first, h0[j, i] the gap "
                              "at the cell centre (x_i, y_j), x_i = y_i = -half_width + (i + 1/2) dx, dx = "
@@ -349,15 +372,16 @@ class IndenterSection(_SelfAffineKeys):
         shape = self.shape
         for key in _REQUIRED[shape]:
             if getattr(self, key) is None:
-                what = "> 0 m" if key == "radius" else "a file name"
+                what = {"file": "a file name", "half_angle": "in (0, 90) degrees"}.get(key, "> 0 m")
                 raise ParameterError(f"indenter.{key}", f"required for shape = '{shape}' ({what})")
-        for key in ("radius", "file", "resample", "physical_size", "physical_size_m", "unit", "roughness",
-                    *_SELF_AFFINE_KEYS):
+        for key in ("radius", *_SHAPE_KEYS, "file", "resample", "physical_size", "physical_size_m", "unit",
+                    "roughness", *_SELF_AFFINE_KEYS):
             if getattr(self, key) is not None and key not in _ALLOWED[shape]:
                 owners = " or ".join(repr(s) for s, keys in _ALLOWED.items() if key in keys)
                 raise ParameterError(f"indenter.{key}", f"only with shape = {owners}")
         if shape == "self_affine":
             self._check_self_affine("indenter")
+        self.analytic_shape()  # a shape's own checks (a roller's rounded ends within its length, a cone's angle)
         if self.physical_size_m is not None and self.physical_size is not None:
             raise ParameterError("indenter.physical_size", "give indenter.physical_size_m (metres) only: "
                                  "physical_size (in indenter.unit) is its deprecated form")
@@ -365,6 +389,13 @@ class IndenterSection(_SelfAffineKeys):
             raise ParameterError("indenter.unit", "required with indenter.physical_size_m: the length unit of the "
                                  "file's heights (\"m\", \"mm\", \"um\" or \"nm\")")
         return self
+
+    def analytic_shape(self) -> Shape | None:
+        """The analytic shape of :data:`~viscontact.problem.shapes.SHAPES` these keys describe, None for
+        a surface, a self-affine surface or a topography."""
+        if self.shape not in SHAPES:
+            return None
+        return shape_from_keys(self.shape, {key: getattr(self, key) for key in ("radius", *_SHAPE_KEYS)})
 
     def warn_deprecated(self) -> None:
         """Warn (:class:`~viscontact.errors.ViscontactWarning`) where the deprecated ``physical_size``
@@ -388,9 +419,12 @@ class IndenterSection(_SelfAffineKeys):
 _LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "nm": 1e-9}
 
 
-#: keys each indenter shape requires, and all the keys it accepts
-_REQUIRED = {"sphere": ("radius",), "surface": ("file",), "self_affine": (), "topography": ("file",)}
-_ALLOWED = {"sphere": {"radius", "roughness"}, "surface": {"file"}, "self_affine": set(_SELF_AFFINE_KEYS),
+#: keys each indenter shape requires, and all the keys it accepts: an analytic shape's its class's
+#: (:mod:`viscontact.problem.shapes`), with roughness added
+_REQUIRED = {**{name: cls.required for name, cls in SHAPES.items()},
+             "surface": ("file",), "self_affine": (), "topography": ("file",)}
+_ALLOWED = {**{name: {*cls.required, *cls.optional, "roughness"} for name, cls in SHAPES.items()},
+            "surface": {"file"}, "self_affine": set(_SELF_AFFINE_KEYS),
             "topography": {"file", "resample", "physical_size", "physical_size_m", "unit"}}
 
 
@@ -826,23 +860,24 @@ class Case(_Section):
         return files
 
     def gap(self, grid: Grid) -> np.ndarray:
-        """Undeformed gap h0(x, y) [m] on ``grid``: (x^2 + y^2)/(2R) for a smooth sphere, else the
-        heights (z up) shifted so that the highest point touches first at delta_z = 0; a .npy
-        ``surface`` file holds the gap itself, shifted so that its lowest point is 0."""
-        from viscontact.problem.topography import check_surface, gap_from_heights, read_heights, sphere_heights
+        """Undeformed gap h0(x, y) [m] on ``grid``: an analytic shape's (:meth:`~viscontact.problem.shapes.Shape.gap`:
+        (x^2 + y^2)/(2R) for a smooth sphere), else the heights (z up; a shape's with roughness)
+        shifted so that the highest point touches first at delta_z = 0; a .npy ``surface`` file holds
+        the gap itself, shifted so that its lowest point is 0."""
+        from viscontact.problem.topography import check_surface, gap_from_heights, read_heights
 
         ind = self.indenter
         if grid.dimension == 1 and (ind.shape in ("self_affine", "topography") or ind.roughness is not None):
             raise ParameterError("indenter.shape" if ind.roughness is None else "indenter.roughness",
                                  "a rough surface is not supported in line contact (grid.dimension = 1) yet: "
                                  "give a smooth indenter or a .npy 'surface' of shape (1, grid.n)")
-        if ind.shape == "sphere":
+        shape = ind.analytic_shape()
+        if shape is not None:  # its heights are in m by construction: no slope check (walls: problem.shapes)
             if ind.roughness is None:
-                x, y = grid.mesh()
-                return (x**2 + y**2) / (2.0 * ind.radius)
+                return shape.gap(grid)
             rough = ind.roughness.self_affine_heights(grid, "indenter.roughness")
             check_surface(rough, grid, ind.roughness.amplitude_key("indenter.roughness"))
-            return gap_from_heights(sphere_heights(grid, ind.radius) + rough)
+            return gap_from_heights(shape.heights(grid) + rough)
         if ind.shape == "self_affine":
             gap, key = gap_from_heights(ind.self_affine_heights(grid, "indenter")), ind.amplitude_key("indenter")
         elif ind.shape == "topography":
@@ -873,6 +908,7 @@ class Case(_Section):
     def _problem(self, gap: Callable[[Grid], np.ndarray]) -> Problem:
         grid = Grid(self.grid.n, self.grid.half_width, self.grid.periodic, self.grid.dimension)
         fields = tuple(f for f in StepRecord.FIELDS if f in self.output.fields)
+        shape = self.indenter.analytic_shape()
         return Problem(
             material=self.material.build(self._base_dir),
             grid=grid,
@@ -883,12 +919,13 @@ class Case(_Section):
             solver=SolverSettings(**self.solver.model_dump()),
             output=OutputSettings(self.output.every, fields, tuple(self.output.subsurface_depths),
                                   None if self.output.subsurface_times is None else tuple(self.output.subsurface_times)),
-            radius=self.indenter.radius,
             title=self.title,
             bulk_modulus=self.material.bulk_modulus,
             layer=None if self.layer is None else self.layer.build(),
             surface_topography=self.indenter.uses_surface_topography,
             adhesion=None if self.adhesion is None else self.adhesion.build(),
+            radius=None if shape is None else shape.sphere_radius,
+            shape=shape,
         )
 
 

@@ -173,6 +173,7 @@ def global_attrs(problem: Problem, case_text: str = "") -> dict[str, Any]:
         "a_T": mat.shift_factor,
         **_prony_attrs(mat),
         "radius": float("nan") if problem.radius is None else float(problem.radius),
+        **({} if problem.shape is None else problem.shape.result_attributes()),
         **problem.body.result_attributes(),
         "dt": problem.time.dt,
         "time_scheme": problem.time.scheme,

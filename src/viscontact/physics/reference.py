@@ -1,8 +1,9 @@
-"""Analytic reference solutions (Hertz, Lee & Radok, Cattaneo-Mindlin; Hertz's and Cattaneo's line
-contacts) used to validate and normalise.
+"""Analytic reference solutions (Hertz, Lee & Radok, Cattaneo-Mindlin, elliptical Hertz, Sneddon's
+flat punch and cone; Hertz's and Cattaneo's line contacts) used to validate and normalise.
 
 All functions take SI inputs and return SI outputs. ``shear_modulus`` is G, ``poisson_ratio`` nu; the
-contact modulus of a rigid sphere on the half-space is E* = 2G/(1-nu).
+contact modulus of a rigid indenter on the half-space is E* = 2G/(1-nu) (``contact_modulus`` where a
+function takes E* itself).
 """
 from __future__ import annotations
 
@@ -49,6 +50,154 @@ def hertz_from_approach(approach: float, sphere_radius: float, shear_modulus: fl
     return Hertz(a, 3.0 * load / (2.0 * np.pi * a**2), approach, load)
 
 
+# --- the other indenters of an indentation test --------------------------------------------------
+
+@dataclass(frozen=True)
+class EllipticalHertz:
+    """Hertz contact of a rigid ellipsoid, gap x^2/(2 R_x) + y^2/(2 R_y), on an elastic half-space
+    (:func:`elliptical_hertz`). Attributes: semi-axes ``semi_axis_x`` a_x and ``semi_axis_y`` a_y [m]
+    of the elliptical contact, ``peak_pressure`` p0 [Pa], ``approach`` delta [m], ``load`` W [N],
+    ``eccentricity`` e [-] (e^2 = 1 - (minor/major)^2)."""
+
+    semi_axis_x: float
+    semi_axis_y: float
+    peak_pressure: float
+    approach: float
+    load: float
+    eccentricity: float
+
+    def pressure(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        """p = p0 sqrt(1 - x^2/a_x^2 - y^2/a_y^2) inside the ellipse, 0 outside [Pa]."""
+        inside = 1.0 - (np.asarray(x) / self.semi_axis_x) ** 2 - (np.asarray(y) / self.semi_axis_y) ** 2
+        return self.peak_pressure * np.sqrt(np.clip(inside, 0.0, None))
+
+
+#: |R_x/R_y - 1| below which :func:`elliptical_hertz` is the sphere's Hertz contact (e -> 0: K - E loses
+#: its digits to cancellation there)
+ELLIPSE_ROUND = 1e-9
+
+
+def _curvature_ratio(m: float) -> float:
+    """B/A = ((a/b)^2 E(e) - K(e)) / (K(e) - E(e)) [-] of the elliptical contact with e^2 = ``m``."""
+    from scipy import special  # not at import: the command line's parser loads this module
+
+    k, e = special.ellipk(m), special.ellipe(m)
+    return (e / (1.0 - m) - k) / (k - e)
+
+
+def elliptical_hertz(load: float, radius_x: float, radius_y: float, contact_modulus: float) -> EllipticalHertz:
+    """Hertz's elliptical contact (Johnson, *Contact Mechanics*, 1985, Sec. 4.2, Eqs. 4.31-4.43) of a
+    rigid ellipsoid with principal radii ``radius_x``, ``radius_y`` [m] (gap A x^2 + B y^2 with
+    A = 1/(2 R_x), B = 1/(2 R_y)) pressed by ``load`` W [N] on a half-space of E* [Pa].
+
+    With the major semi-axis a along the larger radius, the minor b = a sqrt(1 - e^2) and K(e), E(e) the
+    complete elliptic integrals of the first and second kind (modulus e; ``scipy.special.ellipk`` and
+    ``ellipe`` take m = e^2), the pressure p0 sqrt(1 - (x/a)^2 - (y/b)^2) displaces the surface by
+    delta - A' x'^2 - B' y'^2 inside the ellipse with
+
+        A' = p0 b (K - E) / (E* e^2 a^2),   B' = p0 b ((a/b)^2 E - K) / (E* e^2 a^2),   delta = p0 b K / E*
+
+    (primes: along the major and the minor axis). Matching the gap: e solves B'/A' = R_major/R_minor
+    (``scipy.optimize.brentq``), then with W = (2/3) pi a b p0
+
+        a^3 = 3 W (K - E) / (2 pi A' E* e^2),   p0 = 3 W / (2 pi a b),   delta = p0 b K / E*.
+
+    R_x = R_y is the sphere (:func:`hertz_from_load`; e = 0)."""
+    from scipy import optimize, special  # not at import: the command line's parser loads this module
+
+    major, minor = max(radius_x, radius_y), min(radius_x, radius_y)
+    if abs(major / minor - 1.0) < ELLIPSE_ROUND:
+        h = hertz_from_load(load, minor, contact_modulus * 0.5, 0.0)
+        return EllipticalHertz(h.radius, h.radius, h.peak_pressure, h.approach, load, 0.0)
+    ratio = major / minor
+    m = optimize.brentq(lambda m: _curvature_ratio(m) - ratio, 1e-12, 1.0 - 1e-15, xtol=1e-16, rtol=1e-15)
+    k, e = special.ellipk(m), special.ellipe(m)
+    a = (3.0 * load * (k - e) * 2.0 * major / (2.0 * np.pi * contact_modulus * m)) ** (1.0 / 3.0)
+    b = a * np.sqrt(1.0 - m)
+    p0 = 3.0 * load / (2.0 * np.pi * a * b)
+    semi_x, semi_y = (a, b) if radius_x >= radius_y else (b, a)
+    return EllipticalHertz(float(semi_x), float(semi_y), float(p0), float(p0 * b * k / contact_modulus),
+                           float(load), float(np.sqrt(m)))
+
+
+@dataclass(frozen=True)
+class FlatPunch:
+    """Boussinesq's rigid flat circular punch (Sneddon 1965; Johnson, *Contact Mechanics*, 1985,
+    Sec. 3.8) of radius a [m] pressed by delta [m] on a half-space of E* [Pa]:
+
+        W = 2 a E* delta (the stiffness dW/d delta = 2 a E*),   p(r) = W / (2 pi a sqrt(a^2 - r^2)),
+
+    singular (integrably, as (a - r)^(-1/2)) at the rim; the centre's pressure is W / (2 pi a^2).
+    Attributes: ``radius`` a [m], ``approach`` delta [m], ``load`` W [N]."""
+
+    radius: float
+    approach: float
+    load: float
+
+    @classmethod
+    def from_approach(cls, approach: float, radius: float, contact_modulus: float) -> "FlatPunch":
+        return cls(radius, approach, 2.0 * radius * contact_modulus * approach)
+
+    @classmethod
+    def from_load(cls, load: float, radius: float, contact_modulus: float) -> "FlatPunch":
+        return cls(radius, load / (2.0 * radius * contact_modulus), load)
+
+    def pressure(self, r: np.ndarray) -> np.ndarray:
+        """p(r) [Pa] on the face (r < a), 0 outside (inf on the rim itself)."""
+        r = np.asarray(r, dtype=float)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            p = self.load / (2.0 * np.pi * self.radius * np.sqrt(self.radius**2 - r**2))
+        return np.where(r < self.radius, p, np.where(r == self.radius, np.inf, 0.0))
+
+
+@dataclass(frozen=True)
+class Cone:
+    """Sneddon's (1948, 1965) rigid cone on a half-space of E* [Pa]; its semi-apex angle alpha (the
+    angle between the axis and the flank), gap h(r) = r cot(alpha). From Sneddon's integrals for a
+    profile f(r), delta = a int_0^1 f'(a x) / sqrt(1 - x^2) dx and W = 2 E* int_0^a (delta - g(t)) dt,
+    g(t) = t int_0^t f'(r) / sqrt(t^2 - r^2) dr, with f' = cot(alpha):
+
+        delta = (pi / 2) a cot(alpha),   W = (pi / 2) E* a^2 cot(alpha) = (2 / pi) E* tan(alpha) delta^2,
+        p(r) = (E* cot(alpha) / 2) arccosh(a / r)   (r < a),
+
+    the mean pressure W / (pi a^2) = E* cot(alpha) / 2 at every depth (geometric similarity) and a
+    logarithmic singularity at the tip (Johnson, *Contact Mechanics*, 1985, Sec. 5.6; the
+    same relations with beta = 90 deg - alpha, the inclination of the flank, and cot(alpha) = tan(beta)).
+    Attributes: ``radius`` a [m], ``approach`` delta [m], ``load`` W [N], ``half_angle`` alpha [rad]."""
+
+    radius: float
+    approach: float
+    load: float
+    half_angle: float
+
+    @classmethod
+    def from_approach(cls, approach: float, half_angle: float, contact_modulus: float) -> "Cone":
+        """The cone of semi-apex ``half_angle`` alpha [rad] pressed by ``approach`` delta [m]."""
+        a = 2.0 * approach * np.tan(half_angle) / np.pi
+        return cls(float(a), approach, float(0.5 * np.pi * contact_modulus * a**2 / np.tan(half_angle)), half_angle)
+
+    @classmethod
+    def from_load(cls, load: float, half_angle: float, contact_modulus: float) -> "Cone":
+        """The cone of semi-apex ``half_angle`` alpha [rad] pressed by ``load`` W [N]."""
+        a = np.sqrt(2.0 * load * np.tan(half_angle) / (np.pi * contact_modulus))
+        return cls(float(a), float(0.5 * np.pi * a / np.tan(half_angle)), load, half_angle)
+
+    def pressure(self, r: np.ndarray) -> np.ndarray:
+        """p(r) [Pa] inside the contact (inf at the tip), 0 outside."""
+        r = np.asarray(r, dtype=float)
+        mean = 0.5 * self.load / (0.5 * np.pi * self.radius**2)
+        with np.errstate(divide="ignore"):
+            ratio = self.radius / np.clip(r, 0.0, self.radius)
+        return np.where(r < self.radius, mean * np.arccosh(np.maximum(ratio, 1.0)), 0.0)
+
+
+def hertz_line_half_width(load_per_length: float, radius: float, contact_modulus: float) -> float:
+    """Half-width b [m] of Hertz's line contact of a rigid cylinder of ``radius`` R [m] pressed by
+    ``load_per_length`` W' [N/m] on a half-space of E* [Pa] (plane strain; Johnson, *Contact Mechanics*,
+    1985, Sec. 4.3, Eq. 4.45): b = sqrt(4 W' R / (pi E*)), its peak pressure 2 W' / (pi b)."""
+    return float(np.sqrt(4.0 * load_per_length * radius / (np.pi * contact_modulus)))
+
+
 # --- line contact (plane strain) -------------------------------------------------------------------
 
 def line_approach(contact_half_width: float, cylinder_radius: float, datum: float) -> float:
@@ -71,11 +220,11 @@ def hertz_line_from_load(load: float, cylinder_radius: float, shear_modulus: flo
                          datum: float) -> Hertz:
     """Hertz line contact of a rigid cylinder (radius R [m], axis along y) on an elastic half-space in
     plane strain under a load W per unit length [N/m] (Johnson, *Contact Mechanics*, 1985, §4.3,
-    Eqs. 4.43-4.45 with a rigid cylinder): half-width a = sqrt(4 W R / (pi E*)) [m], peak pressure
+    Eqs. 4.43-4.45 with a rigid cylinder): half-width a = sqrt(4 W R / (pi E*)) [m]
+    (:func:`hertz_line_half_width`), peak pressure
     p0 = 2 W / (pi a) [Pa], p(x) = p0 sqrt(1 - x^2/a^2); the approach relative to the datum b [m]
     (:func:`line_approach`). The :class:`Hertz` returned holds a in ``radius`` and W [N/m] in ``load``."""
-    e_star = contact_modulus(shear_modulus, poisson_ratio)
-    a = np.sqrt(4.0 * load * cylinder_radius / (np.pi * e_star))
+    a = hertz_line_half_width(load, cylinder_radius, contact_modulus(shear_modulus, poisson_ratio))
     return Hertz(a, 2.0 * load / (np.pi * a), line_approach(a, cylinder_radius, datum), load)
 
 
@@ -246,6 +395,48 @@ def lee_radok_relaxation(approach: float, sphere_radius: float, material, t: np.
     w = 8.0 * material.relaxation_modulus(t) * np.sqrt(sphere_radius) * approach**1.5 / (3.0 * (1.0 - nu))
     a = np.sqrt(sphere_radius * approach)
     return ViscoelasticHertz(t, np.full(t.shape, a), np.full(t.shape, float(approach)), w)
+
+
+def lee_radok_cone_load(t: np.ndarray | float, times, depths, half_angle: float, material) -> np.ndarray:
+    """Load W(t) [N] on a rigid cone of semi-apex ``half_angle`` alpha [rad] pushed into ``material``
+    (a :class:`viscontact.physics.materials.Material`, constant nu) along the piecewise-linear depth
+    history through (``times`` [s], ``depths`` [m]), from delta = 0, while the depth never decreases
+    (the contact grows or holds: Lee & Radok 1960).
+
+    Sneddon's W = (2/pi) E* tan(alpha) delta^2 (:class:`Cone`) with E* = 2G/(1 - nu) becomes, by the
+    correspondence principle, the hereditary integral
+
+        W(t) = 4 tan(alpha) / (pi (1 - nu)) int_0^t G(t - s) d(delta^2)(s),
+
+    evaluated exactly: on a segment where delta = d0 + v (s - s0), d(delta^2)/ds = 2 v (d0 + v (s - s0))
+    is linear in s, and each Prony term g exp(-(t - s)/tau) integrates in closed form. The contact
+    radius is Sneddon's, a = 2 delta tan(alpha)/pi, whatever the modulus.
+    """
+    t = _times(t)
+    times, depths = np.asarray(times, dtype=float), np.asarray(depths, dtype=float)
+    if np.any(np.diff(depths) < 0):
+        raise ValueError("the depth must never decrease (Lee & Radok: a growing or held contact)")
+    if depths[0] != 0:
+        times, depths = np.r_[times[0], times], np.r_[0.0, depths]  # pushed in at the first time
+    flat = t.ravel()
+    total = np.zeros_like(flat)
+    for s0, s1, d0, d1 in zip(times[:-1], times[1:], depths[:-1], depths[1:]):
+        v = (d1 - d0) / (s1 - s0)
+        if v == 0:
+            continue
+        hi = np.clip(flat, s0, s1)  # the part of the segment before t
+        # d(delta^2)/ds = A + B (s - s0), A = 2 v d0, B = 2 v^2, integrated against G(t - s)
+        a_, b_ = 2.0 * v * d0, 2.0 * v * v
+        u = hi - s0
+        total += material.g_inf * (a_ * u + 0.5 * b_ * u**2)
+        for g, tau in zip(material.g, material.tau):
+            c = 1.0 / tau
+
+            def primitive(s, c=c):  # of exp(-c (t - s)) (A + B (s - s0)) over s
+                return np.exp(-c * (flat - s)) * ((a_ + b_ * (s - s0)) / c - b_ / c**2)
+
+            total += g * np.where(flat > s0, primitive(hi) - primitive(np.full_like(flat, s0)), 0.0)
+    return (4.0 * np.tan(half_angle) / (np.pi * (1.0 - material.poisson_ratio)) * total).reshape(t.shape)
 
 
 def lee_radok_centre_pressure(load: float, sphere_radius: float, material, t: np.ndarray | float) -> np.ndarray:

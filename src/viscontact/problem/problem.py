@@ -16,6 +16,7 @@ from viscontact.errors import ParameterError
 from viscontact.numerics.grid import Grid
 from viscontact.physics.materials import Material
 from viscontact.problem.adhesion import AdhesionSettings
+from viscontact.problem.shapes import Shape, Sphere
 
 if TYPE_CHECKING:
     from viscontact.bodies.base import Body
@@ -460,7 +461,9 @@ def check_subsurface_body(depths, kind: Body | type) -> None:
 def check_line_contact_supported(problem: "Problem") -> None:
     """Refuse, in one line naming the key, what a line contact (``grid.dimension = 1``, plane strain)
     does not work with yet: a periodic grid, a layer on a base (its kernels are those of a 3-D
-    layer), subsurface stresses (those of a 3-D half-space) and adhesion."""
+    layer), subsurface stresses (those of a 3-D half-space), adhesion, and an analytic shape other
+    than the infinite cylinder (:meth:`~viscontact.problem.shapes.Shape.line_profile`; a gap without
+    a shape, e.g. a ``surface`` file of one row, is taken as it is)."""
     if problem.grid.dimension != 1:
         return
     if problem.grid.periodic:
@@ -474,6 +477,10 @@ def check_line_contact_supported(problem: "Problem") -> None:
                              "(grid.dimension = 1) yet: those computed are a 3-D half-space's")
     if problem.adhesion is not None:
         raise ParameterError("adhesion", "is not supported in line contact (grid.dimension = 1) yet")
+    if problem.shape is not None and not problem.shape.line_profile():
+        raise ParameterError("indenter.shape", f"'{problem.shape.name}' is not a line contact's indenter "
+                             "(grid.dimension = 1): use shape = 'cylinder' without a length (an infinite "
+                             "cylinder, its gap x^2/(2R))")
 
 
 def check_adhesion_supported(problem: "Problem") -> None:
@@ -504,7 +511,11 @@ class Problem:
 
     ``gap`` is the undeformed gap h0(x, y) [m] on the grid, in the frame of the indenter
     (origin under its centre). ``radius`` [m] is the sphere radius when the indenter is a sphere
-    (used for Hertz normalisation and sub-cell shifts), else ``None``.
+    (used for Hertz normalisation and sub-cell shifts), else ``None``. ``shape`` is the analytic
+    shape the gap was built from (:mod:`viscontact.problem.shapes`: its contact estimates, scales and
+    resolution; None for a gap from a file or a generated surface): a sphere's mirrors ``radius``
+    (given either way; ``radius = None`` makes the gap a plain gap), and ``radius`` is refused with
+    any other shape.
     """
 
     material: Material
@@ -531,16 +542,20 @@ class Problem:
     #: ``bulk_modulus`` and ``layer`` (:func:`viscontact.bodies.registry.body_of`, the one place);
     #: given, it sets ``bulk_modulus`` or ``layer`` when it is described by one, and takes ``material``
     body: Body | None = field(default=None, compare=False, repr=False)
+    #: the analytic shape of the indenter (None: a gap from a file or a generated surface)
+    shape: Shape | None = None
 
     def __post_init__(self) -> None:
-        shape = self.grid.shape
+        grid_shape = self.grid.shape
+        self._mirror_sphere()
         if self.adhesion is None and self.normal.tensile and min(self.normal.history.values) < 0:
             raise ParameterError("normal.history", f"values must be >= 0 (N or m) without [adhesion], got "
                                  f"{self.normal.history.values!r}")
         if self.adhesion is not None:
             check_adhesion_supported(self)
-        if np.shape(self.gap) != shape:
-            raise ParameterError("gap", f"must be an array of the grid's shape {shape}, got shape {np.shape(self.gap)}")
+        if np.shape(self.gap) != grid_shape:
+            raise ParameterError("gap", f"must be an array of the grid's shape {grid_shape}, got shape "
+                                 f"{np.shape(self.gap)}")
         if not (np.isfinite(np.min(self.gap)) and np.isfinite(np.max(self.gap))):  # no n x n temporary
             raise ParameterError("gap", "must hold finite heights [m] only (NaN or Inf found)")
         if self.radius is not None:
@@ -554,6 +569,19 @@ class Problem:
                 object.__setattr__(self, key, value)
         check_subsurface_body(self.output.subsurface_depths, body)
         check_line_contact_supported(self)
+
+    def _mirror_sphere(self) -> None:
+        """Keep ``radius`` and a :class:`~viscontact.problem.shapes.Sphere` ``shape`` one description
+        (``dataclasses.replace(problem, radius=None)`` turns a sphere's gap into a plain gap, as it
+        always did); refuse a ``radius`` with another shape."""
+        if self.shape is not None and not isinstance(self.shape, Shape):
+            raise ParameterError("indenter.shape", f"must be a viscontact.problem.shapes.Shape, got {self.shape!r}")
+        if self.shape is None or isinstance(self.shape, Sphere):
+            sphere = None if self.radius is None else Sphere(self.radius)
+            object.__setattr__(self, "shape", sphere)
+        elif self.radius is not None:
+            raise ParameterError("indenter.radius", f"is a sphere's radius; the indenter is a {self.shape.name} "
+                                 f"({self.shape!r}): give radius = None")
 
     @cached_property
     def _gap_is_sphere(self) -> bool:

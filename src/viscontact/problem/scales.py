@@ -1,6 +1,7 @@
-"""The scales of a problem: the Hertz radius and peak pressure that normalise its results, and the
-radius of the sphere that a gap's curvature stands for (a sphere's own, a rough or measured surface's
-lowest point's), on which the guards and the results' ``a0``, ``p0`` rest."""
+"""The scales of a problem: the contact radius and pressure that normalise its results (an analytic
+shape's own, :mod:`viscontact.problem.shapes`), and the radius of the sphere that a gap's curvature
+stands for (a rough or measured surface's lowest point's), on which the guards and the results'
+``a0``, ``p0`` rest."""
 from __future__ import annotations
 
 from collections.abc import Callable
@@ -31,20 +32,28 @@ def hertz_solution(problem: Problem) -> Callable[[float, float, float, float], H
 
 
 def hertz_scale(problem: Problem) -> tuple[float, float]:
-    """Hertz radius a0 [m] and peak pressure p0 [Pa] with G(0) at the reference (largest) normal value.
+    """The results' scales a0 [m] and p0 [Pa] with G(0) at the reference (largest) normal value.
 
-    Load control: Hertz for the load. Displacement control: a0 = sqrt(R delta), p0 from the Hertz
-    load of that approach. Without a sphere radius, R is the gap's :func:`equivalent_radius` (NaN where
-    no curvature defines its lowest point: a plane, a cylinder, a flat punch, whose contact is its
-    face at any load); NaN on a periodic domain without a sphere.
+    An analytic shape's own (:meth:`viscontact.problem.shapes.Shape.scale`): a sphere's Hertz radius
+    and peak pressure (load control: Hertz for the load; displacement control: a0 = sqrt(R delta),
+    p0 from the Hertz load of that approach), an ellipsoid's, a roller's, a punch's, a cone's; on a line
+    grid the infinite cylinder's Hertz line contact, its approach relative to the grid's datum
+    (:func:`hertz_solution`). A gap without a shape: Hertz for the sphere of the gap's :func:`equivalent_radius` (NaN where no
+    curvature defines its lowest point: a plane, a cylinder, a flat punch, whose contact is its face
+    at any load); NaN on a periodic domain.
     """
-    if problem.grid.periodic and problem.radius is None:
-        return float("nan"), float("nan")  # a periodic surface of many asperities has no Hertz scale
-    radius = problem.radius if problem.radius is not None else equivalent_radius(problem)
-    if not np.isfinite(radius):
-        return float("nan"), float("nan")
     mat = problem.material
     ref = problem.normal.history.reference
+    if problem.shape is not None and problem.grid.dimension == 1:  # the infinite cylinder, the line's shape:
+        radius = problem.shape.radius                               # its approach relative to the datum
+    elif problem.shape is not None:
+        return problem.shape.scale(ref, problem.normal.control, mat.shear_modulus_instantaneous, mat.poisson_ratio)
+    elif problem.grid.periodic:
+        return float("nan"), float("nan")  # a periodic surface of many asperities has no Hertz scale
+    else:
+        radius = equivalent_radius(problem)
+    if not np.isfinite(radius):
+        return float("nan"), float("nan")
     h = hertz_solution(problem)(ref, radius, mat.shear_modulus_instantaneous, mat.poisson_ratio)
     return float(h.radius), float(h.peak_pressure)
 

@@ -3,8 +3,10 @@
 Every check compares the discretisation with an estimate of the solution it must resolve, from
 closed-form contact mechanics and from the time scheme applied to one point:
 
-* **contact size** -- Hertz (Johnson, *Contact Mechanics*, Sec. 4.2) with the instantaneous and the
-  long-term shear modulus: under load control the contact radius of a viscoelastic sphere creeps
+* **contact size** -- the indenter's shape (:mod:`viscontact.problem.shapes`: Hertz for a sphere, an
+  ellipsoid, a roller; Boussinesq's punch; Sneddon's cone) on the body (its own estimate,
+  :meth:`~viscontact.bodies.base.Body.contact_radius`) with the instantaneous and the
+  long-term shear modulus; for a sphere (Johnson, *Contact Mechanics*, Sec. 4.2): under load control the contact radius of a viscoelastic sphere creeps
   from a(G(0)) towards a(G(inf)) = a(G(0)) (G(0)/G(inf))^(1/3) as a^3 ~ int J(t - s) dW(s) (Lee &
   Radok 1960), for as long as the run lasts or, when sliding, a material point stays under the
   contact; under displacement control it is a = sqrt(R delta) whatever the modulus (a coarse grid
@@ -15,10 +17,14 @@ closed-form contact mechanics and from the time scheme applied to one point:
   nearest the centre of the contact may lie dx/sqrt(2) from it, where the Hertz pressure is
   sqrt(1 - dx^2/(2 a^2)) of its peak (:func:`peak_pressure_error`; measured peak errors of the
   elastic Hertz case: 3.9 %, 2.6 %, 1.5 %, 0.6 % at a/dx = 2, 3, 4, 6 against 6.5 %, 2.8 %, 1.6 %,
-  0.7 % estimated).
+  0.7 % estimated). Other shapes estimate their own error (:meth:`~viscontact.problem.shapes.Shape.resolution_error`:
+  a flat punch's and a cone's load at a given approach, the singular pressure at a rim or a tip
+  averaged over its cells), and fewer than the shape's ``min_cells`` are refused (a punch's face, a
+  cone's contact: :data:`~viscontact.problem.shapes.SINGULAR_MIN_CELLS`).
 * **domain** -- the largest contact must fit in the domain with :data:`EDGE_CELLS` cells to spare.
 * **small strain** -- the half-space and the paraboloidal gap are small-strain, small-slope
-  approximations; the largest strain is about p0/E* = 2a/(pi R) (Hertz), so a/R above
+  approximations; the largest strain is about p0/E* = 2a/(pi R) (Hertz; a shape's contact size
+  over its radius of curvature across it, :meth:`~viscontact.problem.shapes.Shape.strain_ratio`), so a/R above
   :data:`RADIUS_RATIO_ERROR` cannot be trusted and above :data:`RADIUS_RATIO_WARNING` is marginal.
 * **time step** -- the time scheme (:mod:`viscontact.numerics.schemes`, :mod:`viscontact.numerics.history`) is run on
   one point of a contact whose area does not change: under displacement control the traction
@@ -38,6 +44,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import optimize
 
 from viscontact.errors import ParameterError, warn_caller
 from viscontact.numerics.hereditary import hereditary_integral
@@ -45,6 +52,7 @@ from viscontact.numerics.schemes import stable_step_limit
 from viscontact.physics.adhesion import cohesive_zone_length
 from viscontact.physics.materials import Material
 from viscontact.problem.problem import PiecewiseLinear, Problem
+from viscontact.problem.shapes import FLAT_FACE_LOAD_ERROR_PER_CELL, Shape, Sphere, peak_pressure_error
 from viscontact.solvers.time_step_error import time_step_error
 
 __all__ = ["ContactEstimate", "check_material", "check_problem", "check_sliding_step", "contact_estimate",
@@ -84,70 +92,75 @@ GPU_SMALL_GRID = 512
 
 @dataclass(frozen=True)
 class ContactEstimate:
-    """Contact radii of a problem [m], the body's own estimates
-    (:meth:`~viscontact.bodies.base.Body.contact_radius`): ``smallest`` (load control: with G(0)),
-    ``largest`` (after creeping, at most with G(inf)); ``sphere_radius`` R [m] of the (equivalent)
-    sphere; ``model``: the closed form the body estimates it by (in messages)."""
+    """Contact extents of a problem [m], from the body's own estimates of the shape's contact size
+    (:meth:`~viscontact.bodies.base.Body.contact_radius`) and the shape's extents
+    (:meth:`~viscontact.problem.shapes.Shape.extents`): ``smallest`` (the narrowest half-width to
+    resolve; load control: with G(0)), ``largest`` (the farthest reach, after creeping, at most with
+    G(inf)); ``sphere_radius`` R [m], the radius of curvature across the contact (a sphere's, an equivalent
+    sphere's; NaN for a shape without one: a punch, a cone) and ``strain_ratio`` the largest contact
+    size over it (Hertz strains ~ 2 a/(pi R)); ``model``: the closed forms of the estimate (in
+    messages); ``shape``: what was estimated (its resolution error, :meth:`~viscontact.problem.shapes.Shape.resolution_error`)."""
 
     smallest: float
     largest: float
     sphere_radius: float
-    model: str = "Hertz, Lee & Radok creep"
+    model: str = "Lee & Radok creep; shape: Hertz"
+    shape: Shape | None = None
+    strain_ratio: float = float("nan")
+
+    def resolution_error(self, cells: float) -> float:
+        """The shape's estimated error [-] with ``cells`` across the narrowest half-width (a sphere's
+        peak pressure, :func:`peak_pressure_error`, when no shape is known)."""
+        return peak_pressure_error(cells) if self.shape is None else self.shape.resolution_error(cells)
+
+    @property
+    def resolved(self) -> str:
+        """What :meth:`resolution_error` is the error of."""
+        return "the peak pressure" if self.shape is None else self.shape.resolved
 
 
 def contact_estimate(problem: Problem, *, transient: bool = True) -> ContactEstimate | None:
-    """The body's estimate of the contact radius at the largest load (or approach) of the run
-    (:meth:`~viscontact.bodies.base.Body.contact_radius`: Hertz for a half-space, the layer's own for
-    a layer, thin or not); None when
-    the indenter has no curvature to estimate it from (a flat punch, whose contact is its face at any
-    load; a cylinder; :func:`viscontact.problem.scales.equivalent_radius`), and for a surface other
-    than a sphere on a periodic grid (a rough period): its load spreads over many asperities, so
-    the one at the lowest point carrying it all is no estimate of the contact, and a period has no
-    edge for a contact to reach.
+    """The body's estimate of the contact at the largest load (or approach) of the run for the
+    problem's shape (:meth:`~viscontact.bodies.base.Body.contact_radius`: the shape's elastic contact
+    on a half-space, a layer's own, thin or not), in the shape's extents. A gap without an analytic
+    shape (a file) is estimated as the sphere of its :func:`viscontact.problem.scales.equivalent_radius`;
+    None where it has no curvature to estimate it from (a flat punch, whose contact is its face at any
+    load; a cylinder) and for such a gap on a periodic grid (a rough period): its load spreads over many
+    asperities, so the one at the lowest point carrying it all is no estimate of the contact, and a
+    period has no edge for a contact to reach.
 
-    Under load control the radius creeps (Lee & Radok: a^3 ~ int J(t - s) dW(s)) for as long as a
-    material point stays loaded: the run's duration, or when sliding at most 2 a(G(inf)) / v (the
-    time to cross the widest contact; the steady state: that time). ``largest`` is the radius after
-    that time, at most the radius with G(inf).
+    Under load control the contact creeps (Lee & Radok: a^3 ~ int J(t - s) dW(s) for a sphere; each
+    shape's relation with E* / c) for as long as a material point stays loaded: the run's duration, or
+    when sliding at most 2 a(G(inf)) / v (the time to cross the widest contact; the steady state:
+    that time). ``largest`` is the reach after that time, at most the reach with G(inf).
     """
     from viscontact.problem.scales import equivalent_radius
 
-    if problem.grid.periodic and problem.radius is None:
-        return None
-    radius = problem.radius if problem.radius is not None else equivalent_radius(problem)
+    shape = problem.shape
+    if shape is None:
+        if problem.grid.periodic:
+            return None
+        radius = equivalent_radius(problem)
+        if not (np.isfinite(radius) and radius > 0):
+            return None
+        shape = Sphere(radius)
     reference = problem.normal.history.reference
-    if not (np.isfinite(radius) and radius > 0 and reference > 0):
+    if not reference > 0:
         return None
     mat, body = problem.material, problem.body
-    contact_radius, at_approach, model = body.contact_radius, body.contact_radius_at_approach, body.contact_model
-    if problem.grid.dimension == 1:  # a line contact: Hertz's strip (a half-space, the line grid's body)
-        contact_radius = at_approach = _line_contact_radius(problem)
-        model = "Hertz line contact"
+    model = f"{body.contact_model}; shape: {shape.model}"
     if problem.normal.control == "displacement":
-        a = at_approach(reference, radius)
-        return ContactEstimate(a, a, radius, model)
-    smallest = contact_radius(reference, radius)
-    tan = problem.tangential
-    duration = problem.time.t_end if transient else math.inf
-    if tan.mode in ("frictionless_sliding", "gross_sliding") or (not transient and tan.sliding_speed > 0):
-        long_term = contact_radius(reference, radius, mat.shear_modulus_instantaneous / mat.shear_modulus_long_term)
-        duration = min(duration, 2.0 * long_term / tan.sliding_speed)
-    largest = contact_radius(reference, radius, _creep_ratio(problem, duration))
-    return ContactEstimate(smallest, largest, radius, model)
-
-
-def _line_contact_radius(problem: Problem):
-    """(value, R, compliance factor c) -> the Hertz line contact's half-width a [m] with G(0) / c
-    (:func:`viscontact.problem.scales.hertz_solution`; a load [N/m] or an approach [m]): creep widens it
-    as c^(1/2) under a held load."""
-    from viscontact.problem.scales import hertz_solution
-
-    build, mat = hertz_solution(problem), problem.material
-
-    def radius(value: float, cylinder_radius: float, compliance_factor: float = 1.0) -> float:
-        return float(build(value, cylinder_radius, mat.shear_modulus_instantaneous / compliance_factor,
-                           mat.poisson_ratio).radius)
-    return radius
+        smallest = largest = body.contact_radius_at_approach(reference, shape)
+    else:
+        smallest = body.contact_radius(reference, shape)
+        tan = problem.tangential
+        duration = problem.time.t_end if transient else math.inf
+        if tan.mode in ("frictionless_sliding", "gross_sliding") or (not transient and tan.sliding_speed > 0):
+            long_term = body.contact_radius(reference, shape, mat.shear_modulus_instantaneous / mat.shear_modulus_long_term)
+            duration = min(duration, 2.0 * long_term / tan.sliding_speed)
+        largest = body.contact_radius(reference, shape, _creep_ratio(problem, duration))
+    ratio, curvature = shape.strain_ratio(largest)
+    return ContactEstimate(shape.extents(smallest)[0], shape.extents(largest)[1], curvature, model, shape, ratio)
 
 
 def _creep_ratio(problem: Problem, duration: float) -> float:
@@ -166,21 +179,19 @@ def _creep_ratio(problem: Problem, duration: float) -> float:
     return float(np.max(compliance) / (creep.instantaneous * problem.normal.history.reference))
 
 
-def peak_pressure_error(cells_per_radius: float) -> float:
-    """Estimated relative error [-] of the peak pressure with ``a / dx`` cells across the contact
-    radius: 1 - sqrt(1 - 1/(2 (a/dx)^2)), the Hertz pressure dx/sqrt(2) from the centre."""
-    return 1.0 - math.sqrt(max(1.0 - 0.5 / max(cells_per_radius, 1e-12) ** 2, 0.0))
-
-
 def _grid_problems(est: ContactEstimate, n: int, half_width: float) -> list[tuple[str, str]]:
     """(key, message) for every way an n x n grid on +-half_width fails to resolve or hold ``est``."""
     dx = 2.0 * half_width / n
     found = []
     cells = est.smallest / dx
-    if peak_pressure_error(cells) > ERROR_LIMIT:
+    error = est.resolution_error(cells)
+    min_cells = 0.0 if est.shape is None else est.shape.min_cells
+    if error > ERROR_LIMIT or cells < min_cells:
+        singular = f" ({est.shape.singular})" if est.shape is not None and est.shape.singular else ""
         found.append(("grid.n", f"{n} cells of {dx:.3g} m resolve the contact radius {est.smallest:.3g} m "
-                      f"with {cells:.2g} cells: the peak pressure would be off by about "
-                      f"{100 * peak_pressure_error(cells):.0f} %"))
+                      f"with {cells:.2g} cells: {est.resolved} would be off by about {100 * error:.0f} %"
+                      + (f" (at least {min_cells:g} cells are needed)" if error <= ERROR_LIMIT else "")
+                      + singular))
     if est.largest > half_width - EDGE_CELLS * dx:
         found.append(("grid.half_width", f"the contact radius reaches about {est.largest:.3g} m ({est.model}): "
                       f"half_width = {half_width:.4g} m does not hold it with "
@@ -195,7 +206,9 @@ def grid_suggestion(est: ContactEstimate, n: int, half_width: float) -> tuple[in
     if est.largest > half_width - EDGE_CELLS * 2.0 * half_width / n and 1.5 * est.largest > half_width:
         scale = 10.0 ** (math.floor(math.log10(1.5 * est.largest)) - 1)
         half_width = math.ceil(1.5 * est.largest / scale) * scale  # 1.5 a, rounded up to two digits
-    cells_needed = 1.05 * math.sqrt(0.5 / (1.0 - (1.0 - WARNING_LIMIT) ** 2))  # 5 % margin under the warning
+    # cells under the warning, with 5 % margin: the shape's error falls as the cells grow
+    cells_needed = 1.05 * max(optimize.brentq(lambda c: est.resolution_error(c) - WARNING_LIMIT, 1e-3, 1e6),
+                              0.0 if est.shape is None else est.shape.min_cells)
     n_needed = max(n, math.ceil(min(2.0 * half_width * cells_needed / est.smallest, 2.0 * MAX_GRID_N)))
     n = min(2 ** math.ceil(math.log2(n_needed)), MAX_GRID_N) if n_needed > n else n
     while _grid_problems(est, n, half_width) and n < MAX_GRID_N:
@@ -241,10 +254,6 @@ def _normal_key(problem: Problem) -> str:
     return "normal.value" if len(problem.normal.history.times) == 1 else "normal.history"
 
 
-#: measured load error of a flat circular punch per cell of dx/a: W / (2 a E* delta) - 1 = -0.12 dx/a
-#: (tests/validation/test_flat_punch.py: -1.54 %, -0.75 %, -0.36 % at a/dx = 8, 16, 32), the rim's
-#: singular pressure averaged over its cells
-FLAT_FACE_LOAD_ERROR_PER_CELL = 0.12
 
 
 def flat_face_cells(gap: np.ndarray) -> float | None:
@@ -267,7 +276,7 @@ def _check_flat_face(problem: Problem) -> None:
     too coarse for its load: a flat punch carries its load on its face at any load, and the rim's
     singular pressure, a cell average on the grid, costs about
     :data:`FLAT_FACE_LOAD_ERROR_PER_CELL` dx/a of the load at a given approach (Boussinesq)."""
-    if problem.grid.periodic or problem.radius is not None:
+    if problem.grid.periodic or problem.shape is not None:
         return
     cells = flat_face_cells(problem.gap)
     if cells is None:
@@ -299,11 +308,15 @@ def _check_device(problem: Problem) -> None:
 
 def _check_space(problem: Problem, transient: bool) -> None:
     grid = problem.grid
+    if problem.shape is not None:
+        problem.shape.check_grid(grid)
+        for caveat in problem.shape.caveats(grid):
+            warn_caller(caveat)
     est = contact_estimate(problem, transient=transient)
     if est is None:
         _check_flat_face(problem)
     else:
-        ratio = est.largest / est.sphere_radius
+        ratio = est.strain_ratio  # NaN (no check) for a shape without curvature: a punch, a cone
         if ratio > RADIUS_RATIO_ERROR:
             raise ParameterError(_normal_key(problem), f"the contact radius reaches about {ratio:.2g} x the "
                                  "indenter radius "
@@ -322,7 +335,7 @@ def _check_space(problem: Problem, transient: bool) -> None:
             key, message = found[0]
             # a gap of no given radius whose lowest cells are tied in a face of a few cells (a coarse
             # flat punch, or a sphere's bottom on a grid node) was taken for the sphere of its curvature
-            face = None if problem.radius is not None else flat_face_cells(problem.gap)
+            face = None if problem.shape is not None else flat_face_cells(problem.gap)
             punch = ""
             if face is not None:
                 message = (f"the indenter's lowest cells are a flat face {2 * face:.0f} cells across, too few to "
@@ -336,11 +349,12 @@ def _check_space(problem: Problem, transient: bool) -> None:
                                      f"units of the moduli (Pa), the load (N) and indenter.radius (m){punch}")
             raise ParameterError(key, f"{message}; use grid.half_width = {half_width:.2g} m and grid.n = {n}{punch}")
         cells = est.smallest / grid.spacing
-        if peak_pressure_error(cells) > WARNING_LIMIT:
+        if est.resolution_error(cells) > WARNING_LIMIT:
             n, _ = grid_suggestion(est, grid.n, grid.half_width)
+            singular = f"; {est.shape.singular}" if est.shape is not None and est.shape.singular else ""
             warn_caller(f"grid.n = {grid.n}: {cells:.2g} cells across the contact radius {est.smallest:.3g} m, "
-                        f"the peak pressure may be off by about {100 * peak_pressure_error(cells):.0f} % "
-                        f"(grid.n = {n} would give less than {100 * WARNING_LIMIT:.0f} %)")
+                        f"{est.resolved} may be off by about {100 * est.resolution_error(cells):.0f} % "
+                        f"(grid.n = {n} would give less than {100 * WARNING_LIMIT:.0f} %{singular})")
 
 
 # --- the time step -------------------------------------------------------------------------------

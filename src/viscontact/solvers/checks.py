@@ -48,7 +48,7 @@ def check_solution(problem: Problem, pressure: np.ndarray, load: float, value: f
         x, y = grid.mesh()
         reach = float(np.sqrt(x**2 + y**2)[loaded > LOADED_FRACTION * peak].max())
         advice = (f"enlarge grid.half_width to more than {1.5 * reach:.4g} m (now {grid.half_width:.4g} m; the edge "
-                  "cuts the contact off, so it may need more)" if problem.radius is not None else
+                  "cuts the contact off, so it may need more)" if problem.shape is not None else
                   "a rough or measured surface touches all over, at any width: make the domain one period of it "
                   "(grid.periodic = true), or enlarge grid.half_width if its contact is compact")
         raise NumericalGuardError(
