@@ -67,8 +67,9 @@ def test_strip_kernels_integrate_the_line_load_solution():
     d = np.array([0.0, 0.3e-3, 1.0e-3, 2.5e-3, -4e-3])
     strip = strip_influence(d, h, nu, b)
     for k, dk in enumerate(d):
-        log = scipy.integrate.quad(lambda s: math.log(abs(dk - s) / b), -h, h, points=[dk] if abs(dk) < h else None)[0]
-        sgn = scipy.integrate.quad(lambda s: math.copysign(1.0, dk - s), -h, h, points=[dk] if abs(dk) < h else None)[0]
+        at = [dk] if abs(dk) < h else None
+        log = scipy.integrate.quad(lambda s, dk=dk: math.log(abs(dk - s) / b), -h, h, points=at)[0]
+        sgn = scipy.integrate.quad(lambda s, dk=dk: math.copysign(1.0, dk - s), -h, h, points=at)[0]
         assert strip["zz"][k] == pytest.approx(-(1 - nu) / math.pi * log, rel=1e-10)
         assert strip["xx"][k] == pytest.approx(strip["zz"][k], rel=1e-14)
         assert strip["xz"][k] == pytest.approx(-(1 - 2 * nu) / 4 * sgn, abs=1e-15)

@@ -129,7 +129,9 @@ def _independent_steady(n: int, half_width: float, speed: float, load: float):
     coef = -(1 - NU) / np.pi
 
     def column(offset: float) -> float:
-        f = lambda s: j0 * math.log(abs(offset - s)) + (j_inf - j0) * float(_memory_log(np.array([offset - s]), length)[0])  # noqa: E731
+        def f(s: float) -> float:
+            return j0 * math.log(abs(offset - s)) + (j_inf - j0) * float(_memory_log(np.array([offset - s]), length)[0])
+
         lo, hi = -dx / 2, dx / 2
         pts = [p for p in (offset,) if lo < p < hi]
         return coef * scipy.integrate.quad(f, lo, hi, points=pts or None, limit=200, epsabs=0, epsrel=1e-12)[0]
