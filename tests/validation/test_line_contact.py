@@ -188,6 +188,23 @@ def test_steady_cylinder_on_zener_against_independent_solver(deborah):
     assert _edges(p, x, dx) == pytest.approx(_edges(p_ref, x, dx), abs=1e-12)
 
 
+@pytest.mark.parametrize("deborah", [0.1, 1.0, 10.0, 100.0])
+def test_steady_line_contact_is_converged_at_a_modest_grid(deborah):
+    """mu_app and the contact edges at n = 512 (a0 = 36 cells) against n = 4096 on the same domain,
+    v tau / a0 from 0.1 to 100: measured mu_app within 5.8e-4 (relative), the edges within 0.017 a0
+    (under a cell of the coarse grid, 0.027 a0)."""
+    a0 = hertz_line_from_load(LOAD, R, G0, NU, 1.0).radius
+    half_width = 2.2 * a0 * math.sqrt(G0 / G_INF)
+    out = []
+    for n in (512, 4096):
+        pb = _case(n, half_width, speed=deborah * a0 / TAU).to_problem()
+        rec = solve_steady(pb)
+        out.append((rec.mu_app, _edges(rec.pressure[0], pb.grid.x, pb.grid.spacing)))
+    (mu, edges), (mu_fine, edges_fine) = out
+    assert mu == pytest.approx(mu_fine, rel=1e-3)
+    assert edges == pytest.approx(edges_fine, abs=0.03 * a0)
+
+
 def test_steady_line_contact_converges_and_has_the_elastic_limits():
     """mu_app converges with the grid (differences shrinking by at least 1.8 per halving of dx), and
     the slow and fast limits are Hertz's with G(inf) and G(0): the contact half-widths within 1.5 cells,
