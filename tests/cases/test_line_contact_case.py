@@ -28,3 +28,23 @@ def test_polymer_roller_reaches_the_steady_state():
     assert float(ds["mu_app"][-1]) == pytest.approx(float(steady["mu_app"].values.ravel()[0]), rel=2e-3)
     assert float(ds["contact_area"][-1]) == pytest.approx(float(steady["contact_area"].values.ravel()[0]),
                                                           abs=2 * 16e-3 / 512)
+
+
+def test_the_command_line_runs_steadies_and_plots_a_line(tmp_path, capsys):
+    """`viscontact run`, `steady` and `plot` on the shipped line case (n = 256): exit 0, the summary
+    per unit length, a result with y of size 1, the line's figures (profiles, no maps)."""
+    import xarray as xr
+
+    from viscontact import cli
+
+    case = str(shipped_case("polymer_roller_line_contact"))
+    small = ["--set", "grid.n=256", "--set", "time.t_end=0.004"]
+    assert cli.main(["run", case, "--out", str(tmp_path / "r.nc"), "--force", *small]) == 0
+    said = capsys.readouterr()
+    assert "2000 N/m" in said.out and "contact half-width A/2" in said.out
+    with xr.open_dataset(tmp_path / "r.nc") as ds:
+        assert ds.sizes["y"] == 1 and ds.sizes["x"] == 256 and ds.attrs["grid_dimension"] == 1
+    assert cli.main(["steady", case, "--out", str(tmp_path / "s.nc"), "--force", *small]) == 0
+    assert cli.main(["plot", str(tmp_path / "r.nc"), "--out", str(tmp_path / "figs")]) == 0
+    names = {p.name for p in (tmp_path / "figs").iterdir()}
+    assert "pressure_profiles.png" in names and not any("map" in name or name.endswith(".gif") for name in names)
