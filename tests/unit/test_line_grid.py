@@ -95,12 +95,13 @@ def _line_case(**grid) -> dict:
     ({"indenter": {"shape": "self_affine", "hurst": 0.8, "rms_height": 1e-6}}, "indenter.shape"),
     ({"indenter": {"shape": "sphere"}}, "indenter.shape"),
     ({"indenter": {"shape": "cylinder", "length": 0.02}}, "indenter.shape"),
+    ({"indenter": {"shape": "cone", "half_angle": 70.3}}, "indenter.shape"),
 ])
 def test_line_contact_refuses_in_one_line(change, key):
     data = _line_case()
     for section, values in change.items():
         data[section] = {**data.get(section, {}), **values}
-    if data["indenter"]["shape"] == "self_affine":
+    if data["indenter"]["shape"] in ("self_affine", "cone"):
         del data["indenter"]["radius"]
     with pytest.raises(ParameterError) as err:
         Case.from_dict(data).to_problem()

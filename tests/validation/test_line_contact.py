@@ -21,7 +21,13 @@ import scipy.integrate
 import scipy.special
 
 from viscontact.io.case import Case
-from viscontact.physics.reference import hertz_line_from_approach, hertz_line_from_load, line_approach, line_cattaneo
+from viscontact.physics.reference import (
+    StripPunch,
+    hertz_line_from_approach,
+    hertz_line_from_load,
+    line_approach,
+    line_cattaneo,
+)
 from viscontact.running.loop import simulate
 from viscontact.solvers.steady import solve_steady
 
@@ -96,6 +102,58 @@ def test_hertz_line_contact_under_displacement_control(nu):
     assert hz.load == pytest.approx(LOAD, rel=1e-12)
     assert rec.load == pytest.approx(hz.load, rel=5e-5)
     assert rec.contact_area / 2 == pytest.approx(hz.radius, abs=pb.grid.spacing)
+
+
+# --- the strip punch (a flat punch in line contact) --------------------------------------------------
+
+def _strip(n: int, material: dict, control: str, value: float, t_end: float = 1e-3, dt: float = 1e-3):
+    return Case.from_dict({"title": "strip", "material": material, "indenter": {"shape": "flat_punch", "radius": 0.5e-3},
+                           "grid": {"n": n, "half_width": 2e-3, "dimension": 1},
+                           "normal": {"control": control, "value": value}, "tangential": {"mode": "none"},
+                           "time": {"t_end": t_end, "dt": dt}}).to_problem()
+
+
+def test_strip_punch_reference_is_consistent():
+    """The strip's pressure integrates to W (quadrature), and its approach and load invert each other."""
+    ref = StripPunch.from_load(30.0, 0.5e-3, 3e6, 2e-3)
+    total = scipy.integrate.quad(lambda x: float(ref.pressure(x)), -0.5e-3, 0.5e-3, limit=400)[0]
+    assert total == pytest.approx(30.0, rel=1e-6)
+    assert StripPunch.from_approach(ref.approach, 0.5e-3, 3e6, 2e-3).load == pytest.approx(30.0, rel=1e-14)
+
+
+def test_strip_punch_load_and_pressure_converge():
+    """An elastic half-space under a rigid strip pushed to 10 um (relative to the datum at half_width):
+    the load against delta = (2 W / (pi E*)) ln(2b/a) (Johnson §2.8) and the pressure inside 0.8 a against
+    W / (pi sqrt(a^2 - x^2)), both converging at first order (the edges' singular pressure). Measured:
+    load -0.26 %, -0.13 % at a/dx = 32, 64; pressure 1.9 %, 0.93 % of the centre's; the face the contact."""
+    errors = []
+    for n in (256, 512):
+        pb = _strip(n, {"type": "elastic", "shear_modulus": G0, "poisson_ratio": 0.3}, "displacement", 10e-6)
+        rec = list(simulate(pb))[-1]
+        ref = StripPunch.from_approach(10e-6, 0.5e-3, 2 * G0 / 0.7, 2e-3)
+        x = pb.grid.x
+        inner = np.abs(x) < 0.8 * ref.half_width
+        assert rec.contact_area == pytest.approx(2 * ref.half_width, abs=1e-12)
+        errors.append((abs(rec.load / ref.load - 1),
+                       np.abs(rec.pressure[0] - ref.pressure(x))[inner].max() / float(ref.pressure(0.0))))
+    assert errors[0][0] < 4e-3 and errors[0][1] < 0.025
+    assert errors[1][0] < 0.6 * errors[0][0] and errors[1][1] < 0.6 * errors[0][1]
+
+
+def test_strip_punch_creeps_as_the_creep_compliance():
+    """A strip under a held load on a Zener body: its face stays the contact, so delta(t)/delta(0) =
+    J(t)/J(0) (measured 3e-9); the result's a0, p0 are the strip's half-width and centre pressure W/(pi a)."""
+    from viscontact.problem.scales import hertz_scale
+
+    material = {"type": "zener", "shear_modulus_instantaneous": G0, "shear_modulus_long_term": G_INF,
+                "retardation_time": 1e-3, "poisson_ratio": 0.5}
+    pb = _strip(512, material, "load", 20.0, t_end=5e-3, dt=2.5e-4)
+    records = list(simulate(pb))
+    t = np.array([r.t for r in records])
+    creep = pb.material.creep_compliance(t)
+    approach = np.array([r.delta_z for r in records])
+    np.testing.assert_allclose(approach / approach[0], creep / creep[0], rtol=1e-7)
+    assert hertz_scale(pb) == pytest.approx((0.5e-3, 20.0 / (np.pi * 0.5e-3)), rel=1e-14)
 
 
 # --- the independent steady solver --------------------------------------------------------------------

@@ -247,6 +247,43 @@ def hertz_line_from_approach(approach: float, cylinder_radius: float, shear_modu
 
 
 @dataclass(frozen=True)
+class StripPunch:
+    """A rigid flat strip punch of half-width a [m] (a flat punch in line contact, plane strain) pressed
+    on a half-space of E* [Pa] by a load W per unit length [N/m] (Johnson, *Contact Mechanics*, 1985,
+    §2.8, Eq. 2.64):
+
+        p(x) = W / (pi sqrt(a^2 - x^2)),   delta = (2 W / (pi E*)) ln(2b / a),
+
+    the pressure singular (integrably) at the edges, its value at the centre W / (pi a); the approach
+    relative to the datum b [m] (:func:`line_approach`'s convention), from
+    int_-a^a ln|x - s| / (pi sqrt(a^2 - s^2)) ds = ln(a/2) for |x| <= a (the displacement is uniform
+    over the face). Attributes: ``half_width`` a [m], ``approach`` delta [m], ``load`` W [N/m],
+    ``datum`` b [m]."""
+
+    half_width: float
+    approach: float
+    load: float
+    datum: float
+
+    @classmethod
+    def from_load(cls, load: float, half_width: float, contact_modulus: float, datum: float) -> "StripPunch":
+        return cls(half_width, 2.0 * load / (np.pi * contact_modulus) * np.log(2.0 * datum / half_width), load, datum)
+
+    @classmethod
+    def from_approach(cls, approach: float, half_width: float, contact_modulus: float, datum: float) -> "StripPunch":
+        return cls(half_width, approach, np.pi * contact_modulus * approach / (2.0 * np.log(2.0 * datum / half_width)),
+                   datum)
+
+    def pressure(self, x: np.ndarray) -> np.ndarray:
+        """p(x) [Pa] on the face (|x| < a), 0 outside (inf at the edges themselves)."""
+        x = np.asarray(x, dtype=float)
+        a = self.half_width
+        with np.errstate(divide="ignore", invalid="ignore"):
+            p = self.load / (np.pi * np.sqrt(a**2 - x**2))
+        return np.where(np.abs(x) < a, p, np.where(np.abs(x) == a, np.inf, 0.0))
+
+
+@dataclass(frozen=True)
 class LineCattaneo:
     """Partial slip of a rigid cylinder in line contact (plane strain) under a load W [N/m] and a growing
     tangential force Q [N/m] (Cattaneo 1938; Johnson, *Contact Mechanics*, 1985, §7.1, Eqs. 7.4-7.8):

@@ -462,8 +462,8 @@ def check_line_contact_supported(problem: "Problem") -> None:
     """Refuse, in one line naming the key, what a line contact (``grid.dimension = 1``, plane strain)
     does not work with yet: a periodic grid, a layer on a base (its kernels are those of a 3-D
     layer), subsurface stresses (those of a 3-D half-space), adhesion, and an analytic shape other
-    than the infinite cylinder (:meth:`~viscontact.problem.shapes.Shape.line_profile`; a gap without
-    a shape, e.g. a ``surface`` file of one row, is taken as it is)."""
+    than the infinite cylinder and the strip punch (:meth:`~viscontact.problem.shapes.Shape.line_profile`;
+    a gap without a shape, e.g. a ``surface`` file of one row, is taken as it is)."""
     if problem.grid.dimension != 1:
         return
     if problem.grid.periodic:
@@ -480,7 +480,7 @@ def check_line_contact_supported(problem: "Problem") -> None:
     if problem.shape is not None and not problem.shape.line_profile():
         raise ParameterError("indenter.shape", f"'{problem.shape.name}' is not a line contact's indenter "
                              "(grid.dimension = 1): use shape = 'cylinder' without a length (an infinite "
-                             "cylinder, its gap x^2/(2R))")
+                             "cylinder, its gap x^2/(2R)) or 'flat_punch' (a strip)")
 
 
 def check_adhesion_supported(problem: "Problem") -> None:

@@ -4,31 +4,11 @@ stands for (a rough or measured surface's lowest point's), on which the guards a
 ``a0``, ``p0`` rest."""
 from __future__ import annotations
 
-from collections.abc import Callable
-from functools import partial
-
 import numpy as np
 from scipy import ndimage
 
-from viscontact.physics.reference import (
-    Hertz,
-    hertz_from_approach,
-    hertz_from_load,
-    hertz_line_from_approach,
-    hertz_line_from_load,
-)
+from viscontact.physics.reference import hertz_from_approach, hertz_from_load
 from viscontact.problem.problem import Problem
-
-
-def hertz_solution(problem: Problem) -> Callable[[float, float, float, float], Hertz]:
-    """Hertz's solution for the problem's control and grid: (load W [N] or approach [m], radius R [m],
-    G [Pa], nu) -> :class:`~viscontact.physics.reference.Hertz`; a sphere's on the surface grid, a
-    cylinder's line contact (W [N/m], the approach relative to the grid's datum) on a line grid."""
-    load = problem.normal.control == "load"
-    if problem.grid.dimension == 1:
-        build = hertz_line_from_load if load else hertz_line_from_approach
-        return partial(build, datum=problem.grid.datum_distance)
-    return hertz_from_load if load else hertz_from_approach
 
 
 def hertz_scale(problem: Problem) -> tuple[float, float]:
@@ -37,24 +17,26 @@ def hertz_scale(problem: Problem) -> tuple[float, float]:
     An analytic shape's own (:meth:`viscontact.problem.shapes.Shape.scale`): a sphere's Hertz radius
     and peak pressure (load control: Hertz for the load; displacement control: a0 = sqrt(R delta),
     p0 from the Hertz load of that approach), an ellipsoid's, a roller's, a punch's, a cone's; on a line
-    grid the infinite cylinder's Hertz line contact, its approach relative to the grid's datum
-    (:func:`hertz_solution`). A gap without a shape: Hertz for the sphere of the gap's :func:`equivalent_radius` (NaN where no
+    grid the shape's :meth:`~viscontact.problem.shapes.Shape.line_scale` (the infinite cylinder's Hertz
+    line contact, a strip punch's), approaches relative to the grid's datum. A gap without a shape:
+    Hertz for the sphere of the gap's :func:`equivalent_radius` (NaN where no
     curvature defines its lowest point: a plane, a cylinder, a flat punch, whose contact is its face
     at any load); NaN on a periodic domain.
     """
     mat = problem.material
     ref = problem.normal.history.reference
-    if problem.shape is not None and problem.grid.dimension == 1:  # the infinite cylinder, the line's shape:
-        radius = problem.shape.radius                               # its approach relative to the datum
-    elif problem.shape is not None:
+    if problem.shape is not None and problem.grid.dimension == 1:  # a line's shape: per unit length, datum
+        return problem.shape.line_scale(ref, problem.normal.control, mat.shear_modulus_instantaneous,
+                                        mat.poisson_ratio, problem.grid.datum_distance)
+    if problem.shape is not None:
         return problem.shape.scale(ref, problem.normal.control, mat.shear_modulus_instantaneous, mat.poisson_ratio)
-    elif problem.grid.periodic:
+    if problem.grid.periodic:
         return float("nan"), float("nan")  # a periodic surface of many asperities has no Hertz scale
-    else:
-        radius = equivalent_radius(problem)
+    radius = equivalent_radius(problem)
     if not np.isfinite(radius):
         return float("nan"), float("nan")
-    h = hertz_solution(problem)(ref, radius, mat.shear_modulus_instantaneous, mat.poisson_ratio)
+    build = hertz_from_load if problem.normal.control == "load" else hertz_from_approach
+    h = build(ref, radius, mat.shear_modulus_instantaneous, mat.poisson_ratio)
     return float(h.radius), float(h.peak_pressure)
 
 
@@ -158,7 +140,7 @@ def equivalent_radius(problem: Problem) -> float:
     smallest = CURVATURE_FIT_CELLS * grid.spacing
     reach = max(CURVATURE_FIT_FRACTION * grid.half_width, smallest)
     mat, reference = problem.material, problem.normal.history.reference
-    build = hertz_solution(problem)
+    build = hertz_from_load if problem.normal.control == "load" else hertz_from_approach
     radius, ratio, depth, contact = float("nan"), float("nan"), 0.0, 0.0
     for _ in range(CURVATURE_FIT_ROUNDS):
         radius, ratio = _fitted_paraboloid(h, dx, dy, reach)
