@@ -255,9 +255,9 @@ class StripPunch:
         p(x) = W / (pi sqrt(a^2 - x^2)),   delta = (2 W / (pi E*)) ln(2b / a),
 
     the pressure singular (integrably) at the edges, its value at the centre W / (pi a); the approach
-    relative to the datum b [m] (:func:`line_approach`'s convention), from
-    int_-a^a ln|x - s| / (pi sqrt(a^2 - s^2)) ds = ln(a/2) for |x| <= a (the displacement is uniform
-    over the face). Attributes: ``half_width`` a [m], ``approach`` delta [m], ``load`` W [N/m],
+    relative to the datum b [m] (:func:`line_approach`'s convention), from the integral of
+    ln|x - s| / (pi sqrt(a^2 - s^2)) over s in [-a, a], ln(a/2) for |x| <= a (the displacement is
+    uniform over the face). Attributes: ``half_width`` a [m], ``approach`` delta [m], ``load`` W [N/m],
     ``datum`` b [m]."""
 
     half_width: float
