@@ -661,7 +661,10 @@ def speed_curve_figure(ds: xr.Dataset) -> Any:
     tau, a0 = positive_attr(ds, "retardation_time"), positive_attr(ds, "a0")
     k = tau / a0 if tau and a0 else None
     x = speed * k if k else speed
-    area_scale, area_label = (np.pi * a0**2, "contact area A / (π a0²)") if a0 else (1e-6, "contact area [mm²]")
+    if is_line(ds):  # a line contact: its width per unit length against 2 a0
+        area_scale, area_label = (2 * a0, "contact width A / (2 a0)") if a0 else (1e-3, "contact width [mm]")
+    else:
+        area_scale, area_label = (np.pi * a0**2, "contact area A / (π a0²)") if a0 else (1e-6, "contact area [mm²]")
     panels = (("mu_app", 1.0, "μ_app = F_T / W [-]"), ("peak_pressure", sc.pressure[0], f"peak {sc.pressure[1]}"),
               ("contact_area", area_scale, area_label),
               ("contact_shift", sc.length[0], f"contact shift {sc.length[1].replace('x', 'x_c')}"))
