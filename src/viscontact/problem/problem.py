@@ -484,17 +484,9 @@ def check_line_contact_supported(problem: "Problem") -> None:
 
 
 def check_adhesion_supported(problem: "Problem") -> None:
-    """Refuse, in one line naming the key, what adhesion does not work with yet: a tangential mode
-    other than ``"none"`` (friction in tension is not modelled; ``viscontact steady`` needs one),
-    a periodic grid, a load history that pulls before it first presses (no equilibrium carries a
-    tension without contact), and ``solver.device = "gpu"``."""
-    mode = problem.tangential.mode
-    if mode != "none":
-        raise ParameterError("tangential.mode", f"'{mode}' is not supported with [adhesion] yet (nor is `viscontact "
-                             "steady`): adhesive contact is solved in indentation only (tangential.mode = 'none')")
-    if problem.grid.periodic:
-        raise ParameterError("grid.periodic", "true is not supported with [adhesion] yet: adhesive contact is solved "
-                             "on a DC-FFT (non-periodic) domain only")
+    """Refuse, in one line naming the key, what adhesion does not work with: a load history that pulls
+    before it first presses (no equilibrium carries a tension without contact), and (not yet)
+    ``solver.device = "gpu"``."""
     values = problem.normal.history.values
     pressed = next(i for i, v in enumerate(values) if v > 0)
     if problem.normal.control == "load" and min(values[:pressed + 1]) < 0:

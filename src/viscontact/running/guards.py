@@ -218,23 +218,19 @@ def grid_suggestion(est: ContactEstimate, n: int, half_width: float) -> tuple[in
 
 def _check_adhesion(problem: Problem, transient: bool) -> None:
     """With ``[adhesion]``: refuse the steady solver (not supported yet), and a grid whose cells are
-    too coarse for the cohesive zone, pi E* w / (4 sigma_0^2) with the body's instantaneous E* = 2 G(0)
-    / (1 - nu) (:func:`~viscontact.physics.adhesion.cohesive_zone_length`; its length at a large
-    Maugis parameter, longer below), or for the contact radius (:func:`contact_estimate`) where that is
-    smaller: fewer than :data:`ADHESION_MIN_CELLS` across is refused, fewer than
-    :data:`ADHESION_WARN_CELLS` warned about, each with the grid.n that gives
+    too coarse for the cohesive zone (:func:`cohesive_zone_estimate`) or for the contact radius
+    (:func:`contact_estimate`) where that is smaller: fewer than :data:`ADHESION_MIN_CELLS` across is
+    refused, fewer than :data:`ADHESION_WARN_CELLS` warned about, each with the grid.n that gives
     :data:`ADHESION_WARN_CELLS`."""
     adhesion = problem.adhesion
     if adhesion is None:
         return
     if not transient:
         raise ParameterError("adhesion", "is not supported by `viscontact steady` yet: adhesive contact is solved by "
-                             "the transient (`viscontact run`, tangential.mode = 'none')")
-    mat, grid = problem.material, problem.grid
-    e_star = 2.0 * mat.shear_modulus_instantaneous / (1.0 - mat.poisson_ratio)
-    length = cohesive_zone_length(e_star, adhesion.work_of_adhesion, adhesion.cohesive_stress)
-    what = f"cohesive zone pi E* w / (4 sigma_0^2) = {length:.3g} m (E* = {e_star:.3g} Pa)"
+                             "the transient (`viscontact run`: indentation, frictionless or gross sliding)")
+    grid = problem.grid
     est = contact_estimate(problem)
+    length, what = cohesive_zone_estimate(problem, est)
     if est is not None and est.smallest < length:
         length, what = est.smallest, f"contact radius {est.smallest:.3g} m"
     cells = length / grid.spacing
@@ -248,6 +244,51 @@ def _check_adhesion(problem: Problem, transient: bool) -> None:
     if cells < ADHESION_MIN_CELLS:
         raise ParameterError("grid.n", message)
     warn_caller(f"grid.n: {message}")
+
+
+def body_contact_modulus(problem: Problem, length: float) -> float:
+    """The body's own contact modulus E* [Pa] at t = 0 at the scale ``length`` [m]: the Hertz modulus
+    3 W R / (4 a^3) of the contact radius a = ``problem.body.contact_radius(W, Sphere(R))`` that the body
+    gives for the load W at which a half-space of its material (E*_0 = 2 G(0) / (1 - nu)) would reach
+    a = ``length`` (R = ``length``). The half-space's (and nu(t)'s, with nu(0)) is E*_0; a layer's is
+    its compliance at that wavelength (stiffer than E*_0 beyond its thickness on a stiffer base)."""
+    mat = problem.material
+    e_star = 2.0 * mat.shear_modulus_instantaneous / (1.0 - mat.poisson_ratio)
+    sphere = Sphere(length)
+    load = sphere.load_at_size(length, e_star)
+    a = problem.body.contact_radius(load, sphere)
+    return 3.0 * load * length / (4.0 * a**3) if math.isfinite(a) and a > 0 else e_star
+
+
+def cohesive_zone_estimate(problem: Problem, est: ContactEstimate | None) -> tuple[float, str]:
+    """The length [m] of the adhesive cohesive zone a grid must resolve, and how it was found (for
+    the guard's message): the smaller of
+
+    * the Dugdale zone of a JKR-like contact, pi E* w / (4 sigma_0^2)
+      (:func:`~viscontact.physics.adhesion.cohesive_zone_length`; the Maugis-Dugdale ring tends to it
+      at a large Maugis parameter), with the body's own E* at the scale of that zone
+      (:func:`body_contact_modulus`: a layer judged by its compliance there, not its material's);
+    * the width over which the rigid gap of the sphere (R, contact radius a: ``est``) opens to the
+      range h_0 = w / sigma_0 beyond the contact's edge, sqrt(a^2 + 2 R h_0) - a: the zone of a small
+      Maugis parameter (the DMT limit), which a stiff body (a thin layer on a rigid base) reaches.
+
+    Measured at the largest approach of the shipped case at 128^2 (10 um cells): a half-space
+    (lambda = 0.48 with G(0)) 128 um (estimate 104 um), a 50 um layer on a rigid base 48 um (104 um;
+    the Dugdale zone with the layer's material 457 um, with its stiffness at that scale 3.4 mm)."""
+    adhesion, mat = problem.adhesion, problem.material
+    e_material = 2.0 * mat.shear_modulus_instantaneous / (1.0 - mat.poisson_ratio)
+    w, sigma = adhesion.work_of_adhesion, adhesion.cohesive_stress
+    e_star = body_contact_modulus(problem, cohesive_zone_length(e_material, w, sigma))
+    length = cohesive_zone_length(e_star, w, sigma)
+    what = f"cohesive zone pi E* w / (4 sigma_0^2) = {length:.3g} m (E* = {e_star:.3g} Pa, the body's at that scale)"
+    if est is not None and math.isfinite(est.sphere_radius):  # (a punch, a cone: none)
+        a, radius = est.smallest, est.sphere_radius
+        opening = math.sqrt(a**2 + 2.0 * radius * adhesion.range) - a
+        if opening < length:
+            length = opening
+            what = (f"cohesive zone sqrt(a^2 + 2 R h_0) - a = {length:.3g} m (where the sphere's gap opens to the "
+                    f"range h_0 = w / sigma_0 = {adhesion.range:.3g} m beyond a = {a:.3g} m)")
+    return length, what
 
 
 def _normal_key(problem: Problem) -> str:

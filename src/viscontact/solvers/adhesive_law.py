@@ -13,8 +13,18 @@ at a jump-in, a jump-off or a pull-off. Under load control a step whose load no 
 raises :class:`~viscontact.numerics.adhesive.NoEquilibriumError` (the pull-off: the run ends there,
 :func:`viscontact.solvers.transient.steps`).
 
-Registered as :data:`~viscontact.solvers.contact_laws.ADHESIVE_LAW`; tangential tractions are not
-modelled with adhesion yet (q_x = 0: indentation only).
+Friction (gross sliding, and the bound of partial slip; frictionless sliding and indentation: mu_f =
+0): Coulomb's law on the compressive part of the normal traction, q_x = mu_f max(p, 0) in gross
+sliding, |q_x| <= mu_f max(p, 0) in partial slip (:class:`AdhesivePartialSlip`). Where
+the interface is in tension (the cohesive zone, and the tensile rim of the contact) it carries no
+friction: the Coulomb bound mu_f p has no meaning for p < 0, and the interface's own shear strength
+in tension is not modelled; sliding with adhesion then rubs with mu_f times the compressive load, the
+rest of the resistance being the viscoelastic hysteresis of the adhesive contact (Carbone, Mandriota &
+Menga 2022, Extreme Mech. Lett. 56, 101877, "Theory of viscoelastic adhesion and friction", whose
+sliding interface carries no shear: the friction is the hysteresis alone, enhanced by adhesion;
+``tangential.mode = "frictionless_sliding"`` here). Registered as
+:data:`~viscontact.solvers.contact_laws.ADHESIVE_LAW` and
+:data:`~viscontact.solvers.contact_laws.ADHESIVE_PARTIAL_SLIP_LAW`.
 """
 from __future__ import annotations
 
@@ -24,7 +34,15 @@ from typing import ClassVar
 import numpy as np
 
 from viscontact.numerics.adhesive import adhesive_contact
-from viscontact.solvers.contact_laws import ADHESIVE_LAW, ContactLaw, StepContext, StepSolution, register_contact_law
+from viscontact.solvers.contact_laws import (
+    ADHESIVE_LAW,
+    ADHESIVE_PARTIAL_SLIP_LAW,
+    ContactLaw,
+    PartialSlip,
+    StepContext,
+    StepSolution,
+    register_contact_law,
+)
 
 
 def contact_cells(pressure: np.ndarray, interaction: np.ndarray | None, cohesive_stress: float) -> np.ndarray:
@@ -36,33 +54,65 @@ def contact_cells(pressure: np.ndarray, interaction: np.ndarray | None, cohesive
     return np.where(interaction, pressure > -cohesive_stress, pressure > 0)
 
 
+def solve_adhesive_normal(ctx: StepContext, known_uz: np.ndarray, pressure: np.ndarray, product: np.ndarray | None
+                          ) -> tuple[np.ndarray, float, int, np.ndarray, np.ndarray, np.ndarray]:
+    """The step's adhesive normal problem (module docstring) with the known displacement ``known_uz``
+    [m], from the iterate ``pressure`` [Pa] (its ``product``, the step's operator applied to it [m],
+    where known) and the last step's zone: (p [Pa], delta_z [m], iterations, u_z [m], the operator
+    applied to p [m], the interaction zone). Under load control, a step before the first positive
+    load with no interaction zone yet (the indenter not pressed on yet) holds the indenter just
+    touching, without traction."""
+    problem, settings = ctx.problem, ctx.problem.solver
+    adhesion = problem.adhesion
+    known = ctx.gap + known_uz
+    zone = ctx.interaction
+    control = problem.normal.control
+    if control == "load" and ctx.value <= 0 and (zone is None or not zone.any()):
+        p = np.zeros_like(known)
+        return p, float(known.min()), 0, known_uz.copy(), np.zeros_like(p), np.zeros(p.shape, dtype=bool)
+    op = ctx.compliance.elastic_operator("z", ctx.first)
+    sol = adhesive_contact(op, known, control=control, value=ctx.value,
+                           cohesive_stress=adhesion.cohesive_stress, work_of_adhesion=adhesion.work_of_adhesion,
+                           cell_area=problem.grid.cell_area, initial=pressure, interaction=zone,
+                           initial_product=product, tolerance=settings.tolerance,
+                           max_iterations=settings.max_iterations, mixed_precision=settings.mixed_precision)
+    return sol.pressure, float(sol.approach), sol.iterations, sol.product + known_uz, sol.product, sol.interaction
+
+
 @register_contact_law
 @dataclass(frozen=True)
 class AdhesiveNormal(ContactLaw):
-    """Adhesive indentation: the normal problem of a Maugis-Dugdale surface (module docstring), q_x = 0.
-
-    Under load control, a step before the first positive load with no interaction zone yet (the
-    indenter not pressed on yet) holds the indenter just touching, without traction."""
+    """Adhesive indentation and sliding: the normal problem of a Maugis-Dugdale surface (module
+    docstring), q_x = mu_f max(p, 0) (gross sliding; 0 otherwise); with the normal-tangential coupling
+    (IC_zx ~ (1 - 2 nu)) its displacement J_inst K_zx q_x enters the known one, iterated as a fixed
+    point by :func:`~viscontact.solvers.coupling.solve_coupled` (as
+    :class:`~viscontact.solvers.contact_laws.NormalContact` does)."""
 
     name: ClassVar[str] = ADHESIVE_LAW
 
     def solve(self, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray,
               product: np.ndarray | None) -> StepSolution:
-        problem, settings = ctx.problem, ctx.problem.solver
-        adhesion = problem.adhesion
-        op = ctx.compliance.elastic_operator("z", ctx.first)
-        known = ctx.gap + ctx.known_uz
-        zone = ctx.interaction
-        control = problem.normal.control
-        if control == "load" and ctx.value <= 0 and (zone is None or not zone.any()):
-            p = np.zeros_like(known)
-            return StepSolution(p, np.zeros_like(p), float(known.min()), ctx.known_uz.copy(), 0,
-                                pressure_product=np.zeros_like(p), interaction=np.zeros(p.shape, dtype=bool))
-        sol = adhesive_contact(op.apply, known, control=control, value=ctx.value,
-                               cohesive_stress=adhesion.cohesive_stress, work_of_adhesion=adhesion.work_of_adhesion,
-                               cell_area=problem.grid.cell_area, initial=pressure, interaction=zone,
-                               tolerance=settings.tolerance, max_iterations=settings.max_iterations,
-                               preconditioner=op.preconditioner)
-        applied = op.apply(sol.pressure)
-        return StepSolution(sol.pressure, np.zeros_like(sol.pressure), float(sol.approach), applied + ctx.known_uz,
-                            sol.iterations, pressure_product=applied, interaction=sol.interaction)
+        known_uz = ctx.known_uz
+        if self.coupled:
+            known_uz = known_uz + ctx.compliance.cross_displacement("z", "x", np.maximum(pressure, 0.0), ctx.first,
+                                                                    self.friction)
+        p, delta_z, iterations, u_z, product, zone = solve_adhesive_normal(ctx, known_uz, pressure, product)
+        shear_x = self.friction * np.maximum(p, 0.0) if self.friction else np.zeros_like(p)
+        return StepSolution(p, shear_x, delta_z, u_z, iterations, pressure_product=product, interaction=zone)
+
+
+@register_contact_law
+@dataclass(frozen=True)
+class AdhesivePartialSlip(PartialSlip):
+    """Partial slip with adhesion: :class:`~viscontact.solvers.contact_laws.PartialSlip` (the bounded
+    tangential problem alternated with the normal one) with the adhesive normal problem and the
+    friction bound on the compressive part, |q_x| <= mu_f max(p, 0): the cells in tension (the
+    cohesive zone, the tensile rim of the contact) carry no shear and slip (module docstring)."""
+
+    name: ClassVar[str] = ADHESIVE_PARTIAL_SLIP_LAW
+
+    def normal(self, ctx, known_uz, pressure, product):
+        return solve_adhesive_normal(ctx, known_uz, pressure, product)
+
+    def bound(self, pressure):
+        return self.friction * np.maximum(pressure, 0.0)

@@ -208,9 +208,11 @@ def get_contact_law(name: str) -> type[ContactLaw]:
         raise ParameterError("contact law", f"must be one of {sorted(CONTACT_LAWS)}, got {name!r}") from None
 
 
-#: the law of every step of a problem with ``adhesion`` (indentation only:
-#: :func:`~viscontact.problem.problem.check_adhesion_supported`; :mod:`viscontact.solvers.adhesive_law`)
+#: the law of every step of a problem with ``adhesion`` but those of partial slip with friction
+#: (:mod:`viscontact.solvers.adhesive_law`)
 ADHESIVE_LAW = "adhesive_normal"
+#: the law of a partial-slip step with ``adhesion`` and friction (:mod:`viscontact.solvers.adhesive_law`)
+ADHESIVE_PARTIAL_SLIP_LAW = "adhesive_partial_slip"
 
 #: the law of each phase, by phase code (:data:`~viscontact.problem.problem.PHASE_NAMES`); the
 #: tangential mode gives the first phase (:func:`first_phase`)
@@ -226,9 +228,11 @@ def first_phase(tangential: TangentialLoading) -> int:
 
 def law_name(problem: Problem, phase: int) -> str:
     """The name of the contact law of a step of ``phase`` of ``problem`` (:data:`PHASE_LAWS`; partial
-    slip without friction is the normal contact; with ``problem.adhesion``, :data:`ADHESIVE_LAW`)."""
+    slip without friction is the normal contact; with ``problem.adhesion``, :data:`ADHESIVE_LAW`, or
+    :data:`ADHESIVE_PARTIAL_SLIP_LAW` in partial slip with friction)."""
     if problem.adhesion is not None:
-        return ADHESIVE_LAW
+        friction = problem.tangential.effective_friction > 0
+        return ADHESIVE_PARTIAL_SLIP_LAW if phase == PHASE_PARTIAL_SLIP and friction else ADHESIVE_LAW
     if phase == PHASE_PARTIAL_SLIP and not problem.tangential.effective_friction > 0:
         return PHASE_LAWS[PHASE_INDENTATION]
     return PHASE_LAWS[phase]
@@ -346,14 +350,26 @@ class PartialSlip(ContactLaw):
         law = super().for_problem(problem, compliance, phase)
         return replace(law, free_mean=compliance.free_mean("x"))
 
+    def normal(self, ctx: StepContext, known_uz: np.ndarray, pressure: np.ndarray, product: np.ndarray | None
+               ) -> tuple[np.ndarray, float, int, np.ndarray, np.ndarray | None, np.ndarray | None]:
+        """The pass's normal problem with the known displacement ``known_uz`` [m] (:func:`solve_normal`;
+        a law with another normal problem overrides it): (p [Pa], delta_z [m], iterations, u_z [m], the
+        operator applied to p [m] or None, an adhesive interaction zone or None)."""
+        return *solve_normal(ctx, known_uz, pressure, product), None
+
+    def bound(self, pressure: np.ndarray) -> np.ndarray:
+        """The friction bound |q_x| <= mu_f p [Pa] (p >= 0 here)."""
+        return self.friction * pressure
+
     def solve(self, ctx, pressure, shear, product):
         sub, s = ctx.compliance, ctx.problem.solver
         cross_z = sub.cross_displacement("z", "x", shear, ctx.first) if self.coupled else None
-        p, delta_z, it_n, u_z, product = solve_normal(ctx, _plus(ctx.known_uz, cross_z), pressure, product)
+        p, delta_z, it_n, u_z, product, interaction = self.normal(ctx, _plus(ctx.known_uz, cross_z), pressure,
+                                                                  product)
         if self.free_mean:
             check_not_full_contact(p, ctx.t)
         cross_x = sub.cross_displacement("x", "z", p, ctx.first) if self.coupled else None
-        bound = self.friction * p
+        bound = self.bound(p)
         op = sub.elastic_operator("x", ctx.first)
         target = ctx.delta_x - _plus(ctx.known_ux, cross_x)
         if ctx.slip_x is not None:
@@ -362,7 +378,7 @@ class PartialSlip(ContactLaw):
                                   -bound, bound, tolerance=s.tolerance, max_iterations=s.max_iterations,
                                   what="tangential contact (partial slip)", mixed_precision=s.mixed_precision)
         return StepSolution(p, sol.x, float(delta_z), u_z, it_n + sol.iterations, pressure_product=product,
-                            slip=sol.gradient)
+                            slip=sol.gradient, interaction=interaction)
 
     def finish(self, ctx, solution):
         if not self.coupled:

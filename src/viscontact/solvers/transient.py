@@ -273,8 +273,8 @@ def step(problem: Problem, compliance: Compliance, state: State,
                       problem.normal.history(t), state.delta_x if incremental else state.delta_x - origin,
                       state.slip_x if incremental else None, state.interaction)
     adhesive = problem.adhesion is not None
-    # adhesion: the last pressure (its tensions kept: the extrapolation is clipped at 0) and zone
-    p0, p0_product = (state.pressure, None) if adhesive else _warm_start(compliance, state, k)
+    # adhesion: the last pressure (its tensions kept: the extrapolation is clipped at 0), its product and zone
+    p0, p0_product = (state.pressure, state.pressure_product) if adhesive else _warm_start(compliance, state, k)
     q0 = 2.0 * state.shear_x - state.shear_previous if k > 1 else state.shear_x
     sol = solve_coupled(law, ctx, p0, q0, p0_product)
     p, q = sol.pressure, sol.shear_x
