@@ -48,7 +48,6 @@ and pass its interpreter with ``--tamaas-python`` or the environment variable
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import subprocess
 import sys

@@ -31,7 +31,7 @@ def main() -> int:
     parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
     args = parser.parse_args()
     folder = Path(tempfile.mkdtemp(prefix="viscontact_cli_"))
-    print(f"| command | device | wall [s] | max dp / peak against the CPU | mu_app at the end |")
+    print("| command | device | wall [s] | max dp / peak against the CPU | mu_app at the end |")
     print("|---|---|---|---|---|")
     worst = 0.0
     for command in ("run", "steady"):

@@ -85,7 +85,7 @@ def test_partial_slip_begins_at_first_contact(control):
 
     pb, hz, dstar, held = _ramp(0.5, n=32, steps=20, control=control, reach=2.0)
     _, _, _, ramped = _ramp(0.5, n=32, steps=20, control=control, value=history, reach=2.0)
-    dt, rate = pb.time.dt, pb.tangential.displacement_rate
+    rate = pb.tangential.displacement_rate
     first = ramped[0]
     assert first.contact_area == 0 and first.friction_force == 0 and np.isnan(first.stick_ratio)
     assert first.phase == PHASE_PARTIAL_SLIP

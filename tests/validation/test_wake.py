@@ -8,7 +8,6 @@ Displacement control, v = 0.8 a0/tau, +-2.56 a0: load 0.55 % above steady, wake_
 """
 import warnings
 
-import numpy as np
 import pytest
 
 from viscontact.errors import ViscontactWarning

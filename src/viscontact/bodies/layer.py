@@ -100,8 +100,6 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import scipy.fft
-import scipy.linalg
-import scipy.optimize
 
 from viscontact.bodies.base import ContactShape, TermBody
 from viscontact.bodies.bulk_elastic import prony_creep_spectra, prony_creep_spectrum
@@ -722,6 +720,8 @@ def modulus_poles(layer: Layer, k: np.ndarray, key: str) -> ModulusPoles:
     Anti-plane (bonded): A = (1 + r T)/((T + r) G k), r = G_s/G, T = tanh(kh), has the single pole
     G = -G_s/T: A = T/(G k) + (1 - T^2)/(T k (G + G_s/T)).
     """
+    import scipy.linalg  # imported where used: with scipy.optimize, a third of a run's imports (BENCHMARKS.md)
+
     k = np.asarray(k, dtype=float)
     count = _pole_count(layer, key)
     if key == "pp":
@@ -1144,7 +1144,9 @@ class LayerOnBase(TermBody):
         low, high = math.log(1e-3 * min(h, scale)), math.log(1e3 * max(h, scale))
         if excess(low) <= 0.0 or excess(high) >= 0.0:
             return math.exp(low if excess(low) <= 0.0 else high)
-        return math.exp(scipy.optimize.brentq(excess, low, high, xtol=1e-12))
+        from scipy.optimize import brentq  # imported where used (see modulus_poles)
+
+        return math.exp(brentq(excess, low, high, xtol=1e-12))
 
     def contact_radius_at_approach(self, approach: float, shape: ContactShape) -> float:
         """The half-space's relation of the shape (Hertz: a = sqrt(R delta) [m]): a thin compressible

@@ -4,7 +4,8 @@ Bad input (an option, case file, missing file, existing result) prints one line
 ``viscontact: error: <key>: <message>`` and exits with status 2 (argparse's own errors too:
 :class:`~viscontact.cli.parser.Parser`; input found unsolvable during a run, such as partial slip reaching full contact
 on a periodic domain, keeps the steps done and says where); a failed solve (no convergence,
-numerical guard) exits with status 1, keeping the steps done in the result file (``complete = 0``).
+numerical guard) exits with status 1, keeping the steps done in the result file (``complete = 0``); a run
+out of memory (numpy's ``MemoryError``, CuPy's on the device) is one line and status 2, the steps done kept.
 SIGINT / SIGTERM stop a run after its current step, keep the steps done (``complete = 0``) and
 exit with 130 / 143. ``run`` streams its records to ``RESULT.nc.partial`` and renames it to
 ``RESULT.nc`` when it ends (:mod:`viscontact.io.streaming`); after a kill the steps done are in
@@ -310,8 +311,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``viscontact`` command; returns the exit status.
 
     Every sub-command's handler raises; the errors become one line ``viscontact: error: ...`` here:
-    bad input (:class:`ParameterError`, a missing or existing file) exits 2, a failed solve 1, a
-    stop by SIGINT 130 and by SIGTERM 143.
+    bad input (:class:`ParameterError`, a missing or existing file) and a run out of memory
+    (:class:`MemoryError`, the steps done kept) exit 2, a failed solve 1, a stop by SIGINT 130 and by
+    SIGTERM 143.
     """
     try:
         with interrupts_redelivered():
@@ -324,6 +326,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     except ParameterError as exc:  # found during a run (partial slip in full periodic contact): the steps done kept
         saved = _saved_note(exc) if getattr(exc, "saved", None) else ""
         return error(f"{exc.key}: {exc.message}{saved}", EXIT_USAGE)
+    except MemoryError as exc:  # the machine's (or, CuPy's OutOfMemoryError, the device's) memory ran out mid-run
+        return error(_out_of_memory(exc), EXIT_USAGE)
     except OSError as exc:  # missing file, existing result, permissions
         where = exc.filename if exc.filename is not None else "file"
         saved = _saved_note(exc) if getattr(exc, "saved", None) else ""
@@ -341,6 +345,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         if raised_by_interrupt(exc):
             return error("interrupted (no result file written)", EXIT_INTERRUPTED)
         raise
+
+
+def _out_of_memory(exc: MemoryError) -> str:
+    """The one line of a run that ran out of memory (``exc``: numpy's, or CuPy's on the device, whose
+    message says how much it asked for), with what was kept of it."""
+    detail = " ".join(str(exc).split())
+    return (f"out of memory{f' ({detail})' if detail else ''}: the run needs more memory than this machine has free "
+            f"(run --dry-run for its estimate); use a smaller grid.n, fewer recorded fields, or free memory"
+            f"{_saved_note(exc)}")
 
 
 def _saved_note(exc: BaseException) -> str:

@@ -45,7 +45,8 @@ from typing import Any, Callable
 import numpy as np
 import scipy.fft
 
-__all__ = ["ArrayBackend", "CPU", "array_backend", "cpu_fast_length", "cupy_backend", "device_fast_length"]
+__all__ = ["ArrayBackend", "CPU", "array_backend", "cpu_fast_length", "cupy_backend", "device_fast_length",
+           "device_free_memory"]
 
 
 def cpu_fast_length(length: int) -> int:
@@ -154,7 +155,8 @@ def cupy_backend() -> ArrayBackend:
     Raises
     ------
     ImportError
-        CuPy is not installed, or finds no CUDA device.
+        CuPy is not installed, finds no CUDA device, or its FFT (cuFFT) fails on a 4 x 4 transform
+        (an install without cuFFT's library, or one for another CUDA).
     """
     import cupy
     import cupyx.scipy.fft
@@ -165,4 +167,25 @@ def cupy_backend() -> ArrayBackend:
         raise ImportError(f"CuPy finds no CUDA device: {exc}") from exc
     if not devices:
         raise ImportError("CuPy finds no CUDA device")
+    try:  # an install without a working cuFFT (its library missing or of another CUDA) fails at the first transform
+        cupyx.scipy.fft.rfft2(cupy.zeros((4, 4)))
+    except Exception as exc:  # CuPy's and CUDA's own error types
+        raise ImportError(f"CuPy's FFT (cuFFT) does not work: {_one_line(exc)}") from exc
     return ArrayBackend("gpu", cupy, cupyx.scipy.fft, cupy.asnumpy, device_fast_length)
+
+
+def device_free_memory() -> int | None:
+    """Memory free on the current CUDA device [bytes] (``cupy.cuda.runtime.memGetInfo``), or None where
+    CuPy is not installed or finds no device (the run's machine check then refuses the run:
+    :func:`array_backend`)."""
+    try:
+        import cupy
+
+        return int(cupy.cuda.runtime.memGetInfo()[0])
+    except Exception:  # noqa: BLE001 - no CuPy, no driver, no device: nothing to say
+        return None
+
+
+def _one_line(exc: BaseException) -> str:
+    """An exception's message on one line (CUDA's span several)."""
+    return " ".join(str(exc).split()) or type(exc).__name__

@@ -16,7 +16,8 @@ whose optimality conditions are the contact conditions: with g = K x - b,
 
 The iteration is Polonsky & Keer's: conjugate directions restricted to the free set, a projection on
 the bounds, release of the bound points whose gradient points inwards, and a restart of conjugacy
-whenever the free set changes. Convergence is measured as the relative change of x between
+whenever the free set changes; the first iteration releases those of the warm start at once (a
+growing contact's new points: one restart fewer a solve). Convergence is measured as the relative change of x between
 iterations, sum |x_new - x_old| / sum |x|, or reached when the gradient on the free set is at
 round-off (an exact preconditioner, e.g. that of a periodic operator, converges in one iteration)
 or a step breaks down (no curvature above round-off along the direction: a preconditioned step
@@ -233,18 +234,22 @@ def constrained_cg(apply_k: Operator, b: np.ndarray, x0: np.ndarray, lower: np.n
             g -= multiplier
         np.multiply(g, free, out=free_gradient)  # the gradient on the free set
         restarted = not n_free or broke_down or _at_roundoff(_max_abs(free_gradient), kx, b_scale)
-        if restarted:
+        if restarted or it == 1:
             # nothing free, or converged on the free set to round-off (an exact preconditioner does it
             # in one iteration: another step would divide round-off by round-off), or the last step
-            # broke down: release the bound points whose gradient points inwards, or stop
+            # broke down: release the bound points whose gradient points inwards, or stop. The first
+            # iteration releases them too: the warm start's support misses the points a growing
+            # contact takes (from the warm start's gradient, the move of the first iteration takes
+            # them, which otherwise the second would, with a restart of conjugacy)
             inward = ((x <= lower) & (g < 0)) | ((x >= upper) & (g > 0))
             inward &= movable & ~free
-            if not inward.any():
+            if inward.any():
+                free |= inward
+                n_free = int(np.count_nonzero(free))
+                conjugate = broke_down = False
+                np.multiply(g, free, out=free_gradient)
+            elif restarted:
                 return solution(it, 0.0)
-            free |= inward
-            n_free = int(np.count_nonzero(free))
-            conjugate = broke_down = False
-            np.multiply(g, free, out=free_gradient)
         np.logical_not(free, out=bound)
         if preconditioner is not None:
             z = preconditioner(free_gradient)

@@ -24,7 +24,6 @@ from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 Control = Literal["load", "displacement"]
 
@@ -141,6 +140,8 @@ def maugis_dugdale_pull_off(sphere_radius: float, contact_modulus: float, work_o
     Found on the curve's parameter log(m - 1), first on a grid of 400 points from 1e-12 to 1e8, then
     refined (Brent) about the grid's minimum; the grid follows the curve's minimum from the JKR limit
     (m - 1 ~ 1 / lambda^2) to the DMT limit (m large)."""
+    from scipy.optimize import minimize_scalar  # imported where used: scipy.optimize weighs about 20 MiB
+
     lam = maugis_parameter(sphere_radius, contact_modulus, work_of_adhesion, cohesive_stress)
     pick = 1 if control == "load" else 2
 

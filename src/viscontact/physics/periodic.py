@@ -56,7 +56,6 @@ from typing import Iterable, Mapping
 
 import numpy as np
 import scipy.fft
-from scipy.special import erfc, gammainc
 
 from viscontact.errors import ParameterError
 from viscontact.numerics.convolution import Convolver, FourierPreconditioner, operand
@@ -88,6 +87,8 @@ def _spectral(qx: np.ndarray, qy: np.ndarray, nu: float, alpha: float,
     q2s = np.where(zero, 1.0, q2)
     q = np.sqrt(q2s)
     b = q / (2.0 * alpha)
+    from scipy.special import erfc  # imported where used: scipy.special weighs several MiB, periodic grids only
+
     screen_even = erfc(b)          # of 1/r
     gauss = np.exp(-b * b)         # of x/r^2
     cos2 = qx**2 / q2s
@@ -114,6 +115,8 @@ def _long_point_force(x: np.ndarray, y: np.ndarray, nu: float, alpha: float,
     r = np.sqrt(r2s)
     z2 = alpha**2 * r2
     # P(1/2, z^2)/r -> 2 alpha / sqrt(pi) at r = 0; the other two vanish there
+    from scipy.special import gammainc  # imported where used (see _spectral)
+
     inv_r = np.where(r2 > 0, gammainc(0.5, z2) / r, 2 * alpha / np.sqrt(np.pi))
     x2_r3 = np.where(r2 > 0, x**2 * gammainc(1.5, z2) / (r * r2s), 0.0)
     x_r2 = np.where(r2 > 0, x * gammainc(1.0, z2) / r2s, 0.0)

@@ -11,7 +11,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import ndimage
 
 from viscontact.numerics.grid import mask_span
 
@@ -22,6 +21,8 @@ def contact_patches(contact: np.ndarray, periodic: bool = False) -> tuple[np.nda
     Returns (labels, count): labels 1..count on contact points, 0 elsewhere. With ``periodic``
     the first and last rows (and columns) are neighbours.
     """
+    from scipy import ndimage  # imported where used: scipy.ndimage weighs several MiB
+
     labels, count = ndimage.label(contact)
     if not periodic or count == 0:
         return labels, count

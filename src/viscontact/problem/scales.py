@@ -5,7 +5,6 @@ stands for (a rough or measured surface's lowest point's), on which the guards a
 from __future__ import annotations
 
 import numpy as np
-from scipy import ndimage
 
 from viscontact.physics.reference import hertz_from_approach, hertz_from_load
 from viscontact.problem.problem import Problem
@@ -91,6 +90,8 @@ def _flatter_than_paraboloid(gap: np.ndarray, radius: float, depth: float, allow
     of its minimum covers more than ``allowed`` [m^2] plus :data:`FLAT_AREA_FACTOR` x 2 pi R t (the
     paraboloid of radius R's) for some t from 0 to ``depth`` [m]; cells of ``cell_area`` [m^2]."""
     low = gap - gap.min()
+    from scipy import ndimage  # imported where used: scipy.ndimage weighs several MiB
+
     labels, _ = ndimage.label(low <= depth)
     j, i = np.unravel_index(np.argmin(low), low.shape)
     levels = np.sort(low[labels == labels[j, i]])

@@ -26,7 +26,6 @@ import os
 from pathlib import Path
 
 import numpy as np
-from scipy import ndimage
 
 from viscontact.errors import ParameterError, warn_caller
 from viscontact.numerics.grid import Grid
@@ -243,4 +242,6 @@ def _resample(heights: np.ndarray, sizes: tuple[float, float], periodic: bool, g
                     f"{grid.spacing:.3g} m on the grid): check the file's physical size"
                     + ("" if ratio > 1 else "; finer detail than the grid's is dropped, not averaged"))
     yy, xx = np.meshgrid(y / sy, x / sx, indexing="ij")
+    from scipy import ndimage  # imported where used: scipy.ndimage weighs several MiB
+
     return ndimage.map_coordinates(heights, [yy, xx], order=3, mode="grid-wrap" if periodic else "mirror")

@@ -44,7 +44,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize
 
 from viscontact.errors import ParameterError, warn_caller
 from viscontact.numerics.hereditary import hereditary_integral
@@ -201,6 +200,8 @@ def _grid_problems(est: ContactEstimate, n: int, half_width: float) -> list[tupl
 
 def grid_suggestion(est: ContactEstimate, n: int, half_width: float) -> tuple[int, float]:
     """The smallest change of (n, half_width) that holds and resolves ``est`` (checked to pass)."""
+    from scipy import optimize  # imported where used: a run that needs no suggestion loads no scipy.optimize
+
     from viscontact.io.case import MAX_GRID_N
 
     if est.largest > half_width - EDGE_CELLS * 2.0 * half_width / n and 1.5 * est.largest > half_width:

@@ -48,14 +48,16 @@ TIMED_SIDE_LIMIT = 512
 MAX_RUN_SECONDS = 24 * 3600.0
 #: runs estimated (on the CPU) to take longer than this [s] are refused even when forced: a year
 MAX_FORCED_RUN_SECONDS = 365 * 24 * 3600.0
-#: a run's memory before its arrays [bytes]: the interpreter with numpy, scipy, h5py, pydantic and
-#: the solver imported; a run loads no xarray (108 MiB measured for a 32^2 ``viscontact run``,
-#: 2026-11-23, 107 MiB on 2026-11-28; BENCHMARKS.md)
-BASE_MEMORY = 115e6
-#: what importing SurfaceTopography adds to a run [bytes] (scipy.stats, .signal, .interpolate and .io
-#: with it), for a case whose surface it made (``indenter.shape = "self_affine"`` or ``"topography"``):
-#: the shipped rough periodic case's 32^2 ``viscontact run`` peaks 87 MiB above the creep case's (2026-11-28)
-TOPOGRAPHY_IMPORT_MEMORY = 95e6
+#: a run's memory before its arrays [bytes]: the interpreter with numpy, scipy.fft, h5py, pydantic and
+#: the solver imported; a run loads no xarray, and no scipy.optimize, .linalg, .sparse or .spatial
+#: (imported where used: 87 MiB measured for the creep case's 32^2 ``viscontact run`` on 2026-11-28,
+#: 112 MiB before; BENCHMARKS.md)
+BASE_MEMORY = 91e6
+#: what importing SurfaceTopography adds to a run [bytes] (scipy.stats, .signal, .interpolate, .optimize
+#: and .io with it), for a case whose surface it made (``indenter.shape = "self_affine"`` or
+#: ``"topography"``): the shipped rough periodic case's 32^2 ``viscontact run`` peaks 114 MiB above the
+#: creep case's (2026-11-28; 87 MiB while the creep case imported scipy.optimize too)
+TOPOGRAPHY_IMPORT_MEMORY = 120e6
 #: padded (2n)^2 float64 temporaries a step holds at once beside the kept arrays (the zero-block
 #: transforms' half spectra, the CG's products); 2.5 traced (``tracemalloc``) at 512^2 for creep
 #: indentation and sliding, 2026-11-28
@@ -133,13 +135,16 @@ class Estimate:
     """``result_bytes``: the result file (uncompressed); ``peak_memory_bytes``: the process at its peak;
     ``records``: how many time entries the result holds; ``checkpoint_bytes``: one checkpoint (the
     solver state only: the records are in the streamed result); ``seconds``: the run time on this machine
-    (:func:`run_seconds`)."""
+    (:func:`run_seconds`); ``device_bytes``: the solver's arrays alone (kernels, histories, work fields,
+    support windows: what ``solver.device = "gpu"`` holds on the device), without the interpreter and
+    the records."""
 
     result_bytes: int
     peak_memory_bytes: int
     records: int
     checkpoint_bytes: int = 0
     seconds: float = 0.0
+    device_bytes: int = 0
 
     def disk_bytes(self, checkpoints: bool) -> int:
         """Disk the run needs at its peak: the result, and with checkpoints the last one twice (the
@@ -214,6 +219,7 @@ def estimate(problem: Problem, *, topography: bool | None = None, transform: flo
         m = window_cells(problem)
         solver += (WINDOWS_KEPT + 1) * self_kernels * per_component * kernel_bytes(m) \
             + self_kernels * per_component * 4 * m * m * 8
+    arrays = solver
     if topography is None:
         topography = problem.surface_topography
     if topography:  # the case's surface (self-affine, a measured topography) imports SurfaceTopography
@@ -224,11 +230,13 @@ def estimate(problem: Problem, *, topography: bool | None = None, transform: flo
         from viscontact.physics.subsurface import working_bytes
 
         solver += working_bytes(problem.grid, max(depths), 2 if problem.tangential.has_shear else 1)
+        arrays += working_bytes(problem.grid, max(depths), 2 if problem.tangential.has_shear else 1)
     if transform is None:
         transform = transform_seconds(problem)
     share = 1.0 if problem.grid.periodic or problem.grid.dimension == 1 else ((window_cells(problem) or n) / n) ** 2
     seconds = run_seconds(steps, problem.tangential.mode, transform, problem.grid.periodic, share)
-    return Estimate(int(result), int(3 * per_record + solver + BASE_MEMORY), int(records), int(state), seconds)
+    return Estimate(int(result), int(3 * per_record + solver + BASE_MEMORY), int(records), int(state), seconds,
+                    int(arrays))
 
 
 def kernel_bytes(m: int, rows: int | None = None) -> int:
@@ -268,8 +276,9 @@ def available_memory() -> int | None:
 def check_resources(problem: Problem, out: str | Path, *, force: bool = False, checkpoints: bool = False,
                     written_bytes: int = 0, topography: bool | None = None) -> Estimate:
     """Refuse a run that needs more than the machine has: its result (and, with ``checkpoints``,
-    its checkpoints) beyond the free disk of ``out``, its memory beyond the free RAM, its run time
-    beyond :data:`MAX_RUN_SECONDS`. :class:`ParameterError` naming the key to change, or with
+    its checkpoints) beyond the free disk of ``out``, its memory beyond the free RAM (with
+    ``solver.device = "gpu"`` its arrays, :attr:`Estimate.device_bytes`, beyond the device's free
+    memory as well), its run time beyond :data:`MAX_RUN_SECONDS`. :class:`ParameterError` naming the key to change, or with
     ``force`` a warning; with ``solver.device = "gpu"`` the memory and the run time (the CPU run's,
     :func:`describe`) only warn. ``written_bytes``: what a resumed run's streamed file already holds on
     that disk [bytes] (not needed again). ``topography``: the case's surface imports SurfaceTopography
@@ -293,6 +302,15 @@ def check_resources(problem: Problem, out: str | Path, *, force: bool = False, c
         problems.append(("grid.n", f"the run may need about {format_size(est.peak_memory_bytes)} of memory, "
                          f"{format_size(ram)} is "
                          "free: thin the output ([output] every, fields) or use a smaller grid.n"))
+    device_problems = []  # what the device itself lacks: refused like the CPU's (--force warns)
+    if problem.solver.device == "gpu":  # its free memory (None: no CuPy or no device, refused by the machine check)
+        from viscontact.numerics.arrays import device_free_memory
+
+        device_free = device_free_memory()
+        if device_free is not None and est.device_bytes > device_free:
+            device_problems.append(("grid.n", (
+                f"the run may need about {format_size(est.device_bytes)} of GPU memory, {format_size(device_free)} "
+                "is free on the device: use a smaller grid.n, free the device, or solver.device = 'cpu'")))
     if est.seconds > MAX_RUN_SECONDS:
         problems.append(("time.t_end", f"{problem.time.n_steps} steps on {_cells_text(problem.grid)} would take about "
                          f"{_duration(est.seconds)}: check time.t_end and time.dt (and grid.n)"))
@@ -303,8 +321,8 @@ def check_resources(problem: Problem, out: str | Path, *, force: bool = False, c
         raise ParameterError("time.t_end", f"{problem.time.n_steps} steps on {_cells_text(problem.grid)} would take about "
                              f"{_duration(est.seconds)}, more than a year, which not even --force runs: check "
                              "time.t_end and time.dt (and grid.n)")
-    for key, message in problems:
-        if key in cpu_only:
+    for key, message in problems + device_problems:
+        if key in cpu_only and (key, message) not in device_problems:
             warn_caller(f"{key}: {message} (the CPU run's estimate: solver.device = 'gpu' runs it)")
         elif not force:
             raise ParameterError(key, f"{message} (--force runs it anyway)")
