@@ -31,6 +31,7 @@ from viscontact.physics.kernels import influence_coefficients
 from viscontact.io.case import load_case
 from viscontact.io.checkpoint import load_checkpoint, save_checkpoint
 from viscontact.problem.problem import LayerSettings, SolverSettings, TangentialLoading, TimeStepping
+from viscontact.problem.shapes import Cylinder
 from viscontact.io.shipped import shipped_case
 from viscontact.bodies.compliance import compliance_of
 from viscontact.solvers import contact_laws
@@ -284,8 +285,24 @@ def test_dcfft_preconditioned_cg_on_the_device_equals_numpy(backend):
         sol.multiplier == pytest.approx(ref.multiplier, rel=ROUND_OFF_AGREEMENT)
 
 
+def _line(problem, load: float = 30.0):
+    """``problem`` as a line contact (grid.dimension = 1, 4n cells on the same line; the cylinder's gap,
+    ``load`` [N/m] under load control: a half-width of 0.45 a0 at G(0), 1.4 a0 at G(inf))."""
+    grid = Grid(4 * problem.grid.n, problem.grid.half_width, dimension=1)
+    x, _ = grid.mesh()
+    normal = problem.normal
+    if normal.control == "load":
+        normal = dataclasses.replace(normal, history=type(normal.history).constant(load))
+    dt = problem.time.dt / 4 if problem.tangential.frame_moves else problem.time.dt
+    return dataclasses.replace(problem, grid=grid, gap=x**2 / (2 * SEED_RADIUS), normal=normal,
+                               time=dataclasses.replace(problem.time, dt=dt), radius=None,
+                               shape=Cylinder(SEED_RADIUS))
+
+
 def _transient(mode: str):
     """A short run of every transient mode on the seed's material (n = 32)."""
+    if mode.startswith("line_"):  # the same on a line contact
+        return _line(_transient(mode[len("line_"):]))
     if mode.endswith("_incremental"):  # the incremental slip: s_x carried in the state
         base = _transient(mode[:-len("_incremental")])
         return dataclasses.replace(base, tangential=dataclasses.replace(base.tangential, slip="incremental"))
@@ -340,7 +357,8 @@ def _transient(mode: str):
                                   "partial_slip", "partial_slip_incremental", "rough_periodic",
                                   "rough_periodic_incremental", "layer", "layer_on_elastic", "bulk_modulus",
                                   "sub_cell_sphere", "sub_cell_surface", "sub_cell_periodic", "rolling",
-                                  "rolling_force"])
+                                  "rolling_force", "line_creep", "line_gross_sliding",
+                                  "line_partial_slip_incremental"])
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_the_transient_on_the_device_equals_numpy(backend, mode, monkeypatch):
     problem = _solved_to_round_off(_transient(mode), backend)
@@ -358,7 +376,7 @@ def test_the_transient_on_the_device_equals_numpy(backend, mode, monkeypatch):
     if problem.tangential.slides and not problem.grid.periodic:
         assert final.wake.strips  # the frame moved and history left it (on the host)
     assert bool(direct_solves) == (mode == "strong_coupling")  # its steps ran the direct solve
-    if mode.startswith(("partial_slip", "rough_periodic")):
+    if mode.startswith(("partial_slip", "rough_periodic", "line_partial_slip")):
         assert {r.phase for _, r in ours} == {1, 2} and max(r.stick_ratio for _, r in ours) > 0.5
         carried = [state.slip_x for state, r in ours if r.phase == 1]
         if mode.endswith("_incremental"):  # s_x, a field on the device, until gross sliding
@@ -481,6 +499,8 @@ def test_a_streamed_run_stopped_and_resumed_on_the_device_equals_the_cpu_run(bac
 def _steady(body: str):
     """A steady sliding problem of each body (n = 32; 128 for the coarse-grid start)."""
     sliding = dict(mode="frictionless_sliding", speed=0.8 * SEED_A0 / SEED_TAU, t_end=SEED_TAU)
+    if body == "line":  # the isolated cylinder, with the coarse-grid start
+        return _line(sphere_problem(seed_material(), 64, 2.5 * SEED_A0, **sliding))
     if body == "rough_periodic":
         return load_case(shipped_case("rough_periodic_sliding")).with_overrides({"grid.n": 32}).to_problem()
     if body == "coarse_start":
@@ -521,7 +541,7 @@ def test_the_steady_rolling_state_on_the_device_equals_numpy(backend, held, monk
 
 
 @pytest.mark.parametrize("body", ["half_space", "coarse_start", "gross_sliding", "rough_periodic", "layer",
-                                  "bulk_modulus"])
+                                  "bulk_modulus", "line"])
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_the_steady_state_on_the_device_equals_numpy(backend, body, monkeypatch):
     from viscontact import steady

@@ -25,7 +25,8 @@ def test_shipped_cases_load(path: Path) -> None:
     problem = case.to_problem()
     assert isinstance(problem, Problem)
     assert case.text == path.read_text()
-    assert problem.gap.shape == (problem.grid.n, problem.grid.n)
+    assert problem.gap.shape == problem.grid.shape == ((problem.grid.n, problem.grid.n) if case.grid.dimension == 2
+                                                      else (1, problem.grid.n))
     assert problem.gap.min() >= 0
 
 

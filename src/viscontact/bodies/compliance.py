@@ -241,7 +241,7 @@ class Compliance:
     # --- histories --------------------------------------------------------------------------------
     def initial_histories(self) -> dict[str, History]:
         """Histories before the first step (all zero), by key."""
-        n = self.grid.n
+        n = self.grid.shape
         if self.direct:
             return {key: DirectHistory(n) for key in self.history_traction}
         return {key: PronyHistory.zeros(self.responses[key].retardation_times.size, n, self.xp)
@@ -301,7 +301,7 @@ class Compliance:
         term = self.response_term()
         if term is None:
             return None
-        return PronyHistory.zeros(self.responses[term.history].retardation_times.size, self.grid.n, self.xp)
+        return PronyHistory.zeros(self.responses[term.history].retardation_times.size, self.grid.shape, self.xp)
 
     def known_from_response(self, response: PronyHistory, t: float, first: bool) -> Array:
         """u_z [m] of the past increments from the response history (:meth:`initial_response`)."""
@@ -335,7 +335,8 @@ class Compliance:
         return [(t.kernel, coef[t.history].instantaneous) for t in self._terms(component, component)]
 
     def _elastic_operator(self, component: str, first: bool) -> ElasticOperator:
-        windowed = not self.periodic and self.convolver.kernels is not None
+        # a line grid's one row gains nothing from a window: its transforms are already 1-D
+        windowed = not self.periodic and self.convolver.kernels is not None and self.grid.dimension == 2
         window = (lambda m: self._window_operator(component, first, m)) if windowed else None
         return _operator(self._factors(component, first), self.convolver, self.preconditioners, window,
                          single=not self.periodic, fast_length=self.backend.fast_length)
@@ -414,7 +415,7 @@ class Compliance:
         """
         if self.periodic:
             raise NotImplementedError("a periodic steady state is exact in Fourier space: steady_spectrum")
-        n = self.grid.n
+        n, rows = self.grid.n, self.grid.rows
         kernels: dict[str, Array] = {}
         for term in self.terms:
             name = term.displacement + term.traction
@@ -422,7 +423,7 @@ class Compliance:
                 continue
             spectrum = self.responses[term.history]
             # the convolver keeps its kernels centred (offset 0 at n - 1): back to wrap-around order
-            kernel = spectrum.instantaneous * np.roll(self.convolver.kernels[term.kernel], (1 - n, 1 - n), axis=(0, 1))
+            kernel = spectrum.instantaneous * np.roll(self.convolver.kernels[term.kernel], (1 - rows, 1 - n), axis=(0, 1))
             if np.any(spectrum.amplitudes):
                 shape = self.steady_shapes.get(term.kernel)
                 if shape is None:
@@ -537,14 +538,15 @@ def history_key(term: ComplianceTerm) -> str:
     return f"{term.traction}:{label}"
 
 
-def grid_transforms(n: int, workers: int, fft: str = "scipy", backend: ArrayBackend = CPU) -> DCFFTTransforms:
-    """The DC-FFT transforms of an n x n grid's fields: those of ``solver.fft`` by name on the CPU
-    (:func:`~viscontact.numerics.fftbackends.dcfft_transforms`), on a device ``backend`` its own FFT
-    module's zero-block transforms (``fft`` must then be ``"scipy"``, as
+def grid_transforms(n: int, workers: int, fft: str = "scipy", backend: ArrayBackend = CPU,
+                    rows: int | None = None) -> DCFFTTransforms:
+    """The DC-FFT transforms of an n x n grid's fields (``rows`` x n: a line grid's one row): those of
+    ``solver.fft`` by name on the CPU (:func:`~viscontact.numerics.fftbackends.dcfft_transforms`), on a
+    device ``backend`` its own FFT module's zero-block transforms (``fft`` must then be ``"scipy"``, as
     :class:`~viscontact.problem.problem.SolverSettings` checks)."""
     if backend.is_cpu:
-        return dcfft_transforms(fft, n, workers)
-    return ZeroBlockTransforms(n, workers, backend.fft)
+        return dcfft_transforms(fft, n, workers, rows)
+    return ZeroBlockTransforms(n, workers, backend.fft, rows=rows)
 
 
 def term_substrate(grid, terms: Iterable[ComplianceTerm], scheme, dt: float, *, workers: int = -1,
@@ -573,7 +575,7 @@ def term_substrate(grid, terms: Iterable[ComplianceTerm], scheme, dt: float, *, 
         precond = {name: conv.preconditioner(name) for name in selves}
     else:
         conv = Convolver.from_kernels(grid.n, kernels, workers, xp=backend.xp, fft=backend.fft,
-                                      transforms=grid_transforms(grid.n, workers, fft, backend))
+                                      transforms=grid_transforms(grid.n, workers, fft, backend, grid.rows))
         precond = {name: FourierPreconditioner.for_kernel(kernels[name], 1.0, workers, fft=backend.fft)
                    for name in selves}
     core_terms = [t.placed() for t in terms]

@@ -65,7 +65,7 @@ class HalfSpace(Compliance):
         else:
             ics = {c: backend.to_device(k) for c, k in influence_coefficients(grid, material.poisson_ratio, comps).items()}
             conv = Convolver.from_kernels(grid.n, {c: ics[c] for c in comps}, workers, xp=backend.xp,
-                                          fft=backend.fft, transforms=grid_transforms(grid.n, workers, fft, backend))
+                                          fft=backend.fft, transforms=grid_transforms(grid.n, workers, fft, backend, grid.rows))
             precond = {c: FourierPreconditioner.for_kernel(ics[c], 1.0, workers, fft=backend.fft)
                        for c in ("zz", "xx") if c in comps}
         terms = [Term(c[0], c[1], c, c[1]) for c in comps]

@@ -429,13 +429,18 @@ _ALLOWED = {**{name: {*cls.required, *cls.optional, "roughness"} for name, cls i
 
 
 class GridSection(_Section):
-    """n x n cells on [-half_width, half_width]^2 [m]; ``periodic``: one period of a repeated surface."""
+    """n x n cells on [-half_width, half_width]^2 [m]; ``periodic``: one period of a repeated surface;
+    ``dimension = 1``: a line contact (plane strain), n cells along x, forces per unit length."""
 
     n: int = _int(ge=MIN_GRID_N, le=MAX_GRID_N, description="cells per side")
     half_width: float = _num(unit="m", ge=MIN_HALF_WIDTH, le=MAX_HALF_WIDTH,
                              description="the domain is [-half_width, half_width]^2")
     periodic: bool = Field(False, description="the domain is one period of an infinitely repeated surface "
                            "(periodic kernels, the moving frame wrapping around)")
+    dimension: Literal[1, 2] = Field(2, description="2: the n x n surface grid; 1: a line contact in plane strain "
+                                     "(fields depend on x only, y has size 1 in results; normal.value and every "
+                                     "force per unit length, N/m; contact_area per unit length, m; approaches "
+                                     "relative to the surface at half_width from the load)")
 
 
 class OscillationSection(_Section):
@@ -876,6 +881,10 @@ class Case(_Section):
         from viscontact.problem.topography import check_surface, gap_from_heights, read_heights
 
         ind = self.indenter
+        if grid.dimension == 1 and (ind.shape in ("self_affine", "topography") or ind.roughness is not None):
+            raise ParameterError("indenter.shape" if ind.roughness is None else "indenter.roughness",
+                                 "a rough surface is not supported in line contact (grid.dimension = 1) yet: "
+                                 "give a smooth indenter or a .npy 'surface' of shape (1, grid.n)")
         shape = ind.analytic_shape()
         if shape is not None:  # its heights are in m by construction: no slope check (walls: problem.shapes)
             if ind.roughness is None:
@@ -893,7 +902,7 @@ class Case(_Section):
             ind.warn_deprecated()
             gap, key = gap_from_heights(heights), "indenter.file"
         else:
-            h0 = read_height_file(self._base_dir / ind.file, (grid.n, grid.n))
+            h0 = read_height_file(self._base_dir / ind.file, grid.shape)
             gap, key = h0 - h0.min(), "indenter.file"
         check_surface(gap, grid, key)
         return gap
@@ -908,10 +917,10 @@ class Case(_Section):
         estimate of a run's memory, disk and time needs
         (:func:`viscontact.running.resources.check_resources`), before any n x n array is allocated (at
         n = 16384 the problem alone takes 8 GB)."""
-        return self._problem(lambda grid: np.broadcast_to(np.float64(0.0), (grid.n, grid.n)))
+        return self._problem(lambda grid: np.broadcast_to(np.float64(0.0), grid.shape))
 
     def _problem(self, gap: Callable[[Grid], np.ndarray]) -> Problem:
-        grid = Grid(self.grid.n, self.grid.half_width, self.grid.periodic)
+        grid = Grid(self.grid.n, self.grid.half_width, self.grid.periodic, self.grid.dimension)
         fields = tuple(f for f in StepRecord.FIELDS if f in self.output.fields)
         shape = self.indenter.analytic_shape()
         return Problem(

@@ -47,14 +47,15 @@ def problem_fingerprint(problem: Problem) -> str:
     """A hash of everything that shapes the result: the solution and the output settings (which
     steps and fields the records hold). A setting added since checkpoints were first written enters
     it only away from its default (the body's, ``tangential.slip`` in partial slip,
-    ``tangential.displacement_history``, rolling's keys), so that the checkpoints of the problems it does not change
-    still resume. ``solver.device`` does not enter it (it is hashed as ``"cpu"``, as before the GPU):
+    ``tangential.displacement_history``, ``grid.dimension`` on a line, rolling's keys), so that the
+    checkpoints of the problems it does not change still resume. ``solver.device`` does not enter it (it is hashed as ``"cpu"``, as before the GPU):
     the two devices solve the same problem, so a run checkpointed on one resumes on the other
     (:func:`state_from_arrays`)."""
     h = hashlib.sha256()
     tangential = _repr_without(problem.tangential, "slip", "displacement_history", *ROLLING_KEYS)
     solver = dataclasses.replace(problem.solver, device="cpu") if problem.solver.device != "cpu" else problem.solver
-    h.update(repr((problem.material, problem.grid, problem.normal, tangential,
+    grid = _repr_without(problem.grid, "dimension") if problem.grid.dimension == 2 else problem.grid
+    h.update(repr((problem.material, grid, problem.normal, tangential,
                    problem.time, solver, problem.radius, problem.output)).encode())
     h.update(np.ascontiguousarray(problem.gap).tobytes())
     h.update(problem.body.fingerprint())  # nothing for the half-space: its fingerprint stays what it was

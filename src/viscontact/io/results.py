@@ -96,6 +96,10 @@ VARIABLES: dict[str, tuple[str, str]] = {
                               "reverses: the area of the Q-delta_x loop, integral of friction_force d delta_x "
                               "(trapezoids over the records)"),
 }
+#: the units of a line contact's (``grid.dimension = 1``, plane strain) variables that are per unit length
+#: along y: a force [N/m], an area [m], an energy [J/m]
+LINE_UNITS = {"N": "N/m", "m2": "m", "J": "J/m"}
+
 #: units and long names of the coordinates a result may hold ("": no units, an index)
 COORDINATES: dict[str, tuple[str, str]] = {
     "t": ("s", "time"),
@@ -193,6 +197,7 @@ def global_attrs(problem: Problem, case_text: str = "") -> dict[str, Any]:
         "grid_n": problem.grid.n,
         "grid_half_width": problem.grid.half_width,
         "grid_periodic": int(problem.grid.periodic),
+        **({"grid_dimension": 1} if problem.grid.dimension == 1 else {}),
         "case": case_text,
         "version": package_version(),
         "Conventions": "CF-1.8",
@@ -270,8 +275,22 @@ def subsurface_variables(records: Sequence[StepRecord], problem: Problem) -> tup
 
 
 def _coords(problem: Problem) -> dict[str, Any]:
-    x = problem.grid.x
-    return {"y": _coordinate("y", x), "x": _coordinate("x", x)}
+    grid = problem.grid
+    return {"y": _coordinate("y", grid.y), "x": _coordinate("x", grid.x)}
+
+
+def _per_unit_length(variables: dict[str, VariableSpec], problem: Problem) -> dict[str, VariableSpec]:
+    """``variables`` with the units of a line contact's per-unit-length quantities
+    (:data:`LINE_UNITS`: forces in N/m, areas in m) on a line grid; as they are otherwise."""
+    if problem.grid.dimension != 1:
+        return variables
+    out = {}
+    for name, (dims, data, attrs) in variables.items():
+        if attrs.get("units") in LINE_UNITS:
+            attrs = {**attrs, "units": LINE_UNITS[attrs["units"]],
+                     "long_name": attrs["long_name"] + " (per unit length of the line contact)"}
+        out[name] = (dims, data, attrs)
+    return out
 
 
 def _coordinate(name: str, data: np.ndarray, dim: str | None = None) -> VariableSpec:
@@ -309,9 +328,9 @@ def _add_scales(ds: xr.Dataset) -> xr.Dataset:
     return ds
 
 
-def _field_stack(records: Sequence[StepRecord], name: str, n: int) -> np.ndarray:
+def _field_stack(records: Sequence[StepRecord], name: str, shape: tuple[int, int]) -> np.ndarray:
     dtype = bool if name == "stick" else float
-    out = np.zeros((len(records), n, n), dtype=dtype)
+    out = np.zeros((len(records), *shape), dtype=dtype)
     for k, rec in enumerate(records):
         value = getattr(rec, name)
         if value is not None:
@@ -363,12 +382,12 @@ def result_layout(records: Sequence[StepRecord], problem: Problem, *, case_text:
     writer (:mod:`viscontact.io.streaming`) writes a file's layout from it without loading xarray."""
     records = list(records)
     mode = problem.tangential.mode
-    n = problem.grid.n
+    shape = problem.grid.shape
     t = np.array([r.t for r in records], dtype=float)
     variables: dict[str, VariableSpec] = {}
     for name in StepRecord.FIELDS:
         if name in problem.output.fields:
-            variables[name] = _variable(name, ("t", "y", "x"), _field_stack(records, name, n), mode)
+            variables[name] = _variable(name, ("t", "y", "x"), _field_stack(records, name, shape), mode)
     for name in StepRecord.scalars(problem.adhesion is not None, problem.tangential.rolls):
         dtype = int if name in ("phase", "iterations", "coupling_iterations", "contact_patches") else float
         data = np.array([getattr(r, name) for r in records], dtype=dtype)
@@ -382,7 +401,8 @@ def result_layout(records: Sequence[StepRecord], problem: Problem, *, case_text:
     ds_attrs["t_gross_sliding"] = t_gross_sliding(mode, t, variables["phase"][1])
     ds_attrs["complete"] = completeness(coords["step"][1], problem)
     ds_attrs.update(attrs or {})
-    return {**variables, **sub_vars, **cycle_vars}, {**coords, **sub_coords, **cycle_coords}, ds_attrs
+    return (_per_unit_length({**variables, **sub_vars, **cycle_vars}, problem), {**coords, **sub_coords, **cycle_coords},
+            ds_attrs)
 
 
 def completeness(steps: np.ndarray, problem: Problem) -> int:
@@ -454,14 +474,14 @@ def sweep_dataset(records: Sequence[StepRecord], speeds: Sequence[float], proble
         for name in ("mu_app", "contact_area", "contact_shift", "delta_z", "load", "hysteresis_force",
                      "friction_force", "contact_fraction", "contact_patches", "mean_gap", "mean_contact_pressure")
     }
-    pressure = _field_stack(records, "pressure", problem.grid.n)
+    pressure = _field_stack(records, "pressure", problem.grid.shape)
     variables["peak_pressure"] = _variable("peak_pressure", ("speed",), pressure.max(axis=(1, 2)), mode)
     variables["pressure"] = _variable("pressure", ("speed", "y", "x"), pressure, mode)
     base = global_attrs(problem, case_text)
     deborah = speeds * base["retardation_time"] / base["a0"]
     coords = {"speed": _coordinate("speed", speeds), "deborah": _coordinate("deborah", deborah, "speed"),
               **_coords(problem)}
-    ds = xr.Dataset(variables, coords=coords)
+    ds = xr.Dataset(_per_unit_length(variables, problem), coords=coords)
     ds.attrs.update(base)
     ds.attrs.update({"solver": "steady", "complete": 1})
     ds.attrs.update(attrs or {})
@@ -488,7 +508,7 @@ def creepage_dataset(records: Sequence[StepRecord], creepages: Sequence[float], 
                                                     where=limit > 0),
                                    {"units": "1", "long_name": "traction / (mu_f W)"})
     for name in ("pressure", "shear_x", "stick"):
-        variables[name] = _variable(name, ("creepage", "y", "x"), _field_stack(records, name, problem.grid.n), mode)
+        variables[name] = _variable(name, ("creepage", "y", "x"), _field_stack(records, name, problem.grid.shape), mode)
     coords = {"creepage": _coordinate_of_variable("creepage", np.asarray(creepages, dtype=float)), **_coords(problem)}
     ds = xr.Dataset(variables, coords=coords)
     ds.attrs.update(global_attrs(problem, case_text))

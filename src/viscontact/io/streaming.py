@@ -130,8 +130,8 @@ def record_bytes(problem: Problem) -> int:
     uncompressed, its scalars and :data:`RECORD_OVERHEAD`."""
     from viscontact.problem.records import StepRecord
 
-    n = problem.grid.n
-    return sum(FIELD_BYTES.get(f, 8) for f in problem.output.fields) * n * n \
+    rows, n = problem.grid.shape
+    return sum(FIELD_BYTES.get(f, 8) for f in problem.output.fields) * rows * n \
         + 8 * (len(StepRecord.scalars(problem.adhesion is not None, problem.tangential.rolls)) + 2) + RECORD_OVERHEAD
 
 

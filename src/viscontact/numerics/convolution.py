@@ -4,6 +4,11 @@ Liu, Wang & Liu (2000), "A versatile method of discrete convolution and FFT (DC-
 analyses", Wear 243. The n x n traction is zero-padded to 2n x 2n, the kernel is laid out on the
 2n x 2n offset grid in wrap-around order, and the product of their real FFTs gives the exact
 aperiodic discrete convolution. Kernel spectra are computed once per grid and reused.
+
+On a line grid (one row of n cells, plane strain) the same code is the 1-D DC-FFT: the (1, n) field
+is padded to (1, 2n) only, the kernel lies on the 2n offsets along x, and the transforms are
+one-dimensional (:func:`~viscontact.numerics.fftbackends.padded_rows`). Shapes below are written for
+the square grid; read (rows, n) for (n, n) and (padded rows, 2n) for (2n, 2n).
 """
 from __future__ import annotations
 
@@ -16,7 +21,7 @@ from typing import Iterable, Mapping
 import numpy as np
 import scipy.fft
 
-from viscontact.numerics.fftbackends import DCFFTTransforms, ZeroBlockTransforms, fft_keywords
+from viscontact.numerics.fftbackends import DCFFTTransforms, ZeroBlockTransforms, fft_keywords, padded_rows
 
 
 @dataclass(frozen=True)
@@ -59,21 +64,32 @@ class Convolver:
     transforms: DCFFTTransforms | None = dataclass_field(default=None, compare=False, repr=False)
     #: complex64 copies of ``spectra`` made by the first single-precision product of each kernel
     single_spectra: dict[str, np.ndarray] = dataclass_field(default_factory=dict, compare=False, repr=False)
+    rows: int | None = None
 
     def __post_init__(self) -> None:
+        if self.rows is None:
+            object.__setattr__(self, "rows", self.n)
         if self.transforms is None:
-            object.__setattr__(self, "transforms", ZeroBlockTransforms(self.n, self.workers, self.fft))
+            object.__setattr__(self, "transforms", ZeroBlockTransforms(self.n, self.workers, self.fft, rows=self.rows))
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """Shape (rows, n) of the fields."""
+        return (self.rows, self.n)
 
     @classmethod
     def from_kernels(cls, n: int, kernels: Mapping[str, np.ndarray], workers: int = -1, *,
                      xp: ModuleType = np, fft: ModuleType = scipy.fft,
                      transforms: DCFFTTransforms | None = None) -> "Convolver":
         """Spectra of kernels given on the (2n, 2n) offset grid, numpy arrays or fields of ``xp`` (moved
-        there first; the kernels are kept for :meth:`apply_sparse`)."""
+        there first; the kernels are kept for :meth:`apply_sparse`). Kernels of one row (1, 2n) make
+        the convolver of a line grid."""
         kernels = {k: xp.asarray(v) for k, v in kernels.items()}
-        centred = {k: xp.roll(v, (n - 1, n - 1), axis=(0, 1)) for k, v in kernels.items()}
-        threads = fft_keywords(fft, workers, 4 * n * n)
-        return cls(n, {k: fft.rfft2(v, **threads) for k, v in kernels.items()}, workers, centred, xp, fft, transforms)
+        rows = n if next(iter(kernels.values())).shape[0] > 1 else 1
+        centred = {k: xp.roll(v, (rows - 1, n - 1), axis=(0, 1)) for k, v in kernels.items()}
+        threads = fft_keywords(fft, workers, 2 * padded_rows(rows) * n)
+        return cls(n, {k: fft.rfft2(v, **threads) for k, v in kernels.items()}, workers, centred, xp, fft, transforms,
+                   rows=rows)
 
     def apply_sparse(self, name: str, field: np.ndarray, factor: float = 1.0) -> np.ndarray:
         """Same as :meth:`apply` (times ``factor``) for a field with few non-zeros, by direct sum of
@@ -81,15 +97,15 @@ class Convolver:
         centred: offset (i - r) sits at index i - r + n - 1, so the block of a source (r, c) is a plain
         slice. The factor scales the source values, and each block is scaled in a work array reused
         over the sources: two passes over the grid a source, no temporaries."""
-        n, xp = self.n, self.xp
+        n, m, xp = self.n, self.rows, self.xp
         rows, cols = xp.nonzero(field)
         kernel = self.kernels[name]
-        out = xp.zeros((n, n))
+        out = xp.zeros((m, n))
         if not len(rows):
             return out
-        scaled = xp.empty((n, n))
+        scaled = xp.empty((m, n))
         for r, c, value in zip(rows.tolist(), cols.tolist(), (factor * field[rows, cols]).tolist()):
-            out += xp.multiply(kernel[n - 1 - r: 2 * n - 1 - r, n - 1 - c: 2 * n - 1 - c], value, out=scaled)
+            out += xp.multiply(kernel[m - 1 - r: 2 * m - 1 - r, n - 1 - c: 2 * n - 1 - c], value, out=scaled)
         return out
 
     def window_kernels(self, m: int, names: Iterable[str]) -> dict[str, np.ndarray]:
@@ -144,7 +160,7 @@ class Convolver:
             contrib = (factor * self.kernel_spectrum(name, single)) * transforms[id(field)]
             acc = contrib if acc is None else acc + contrib
         if acc is None:
-            return self.xp.zeros((self.n, self.n))
+            return self.xp.zeros(self.shape)
         return self.inverse(acc)
 
     def displacements(self, terms: Iterable[tuple[str, str, np.ndarray]],
@@ -174,7 +190,7 @@ class Convolver:
                     acc[out] += contrib
                 else:
                     acc[out] = contrib
-        return {o: self.inverse(acc[o]) if o in acc else self.xp.zeros((self.n, self.n)) for o in outputs}
+        return {o: self.inverse(acc[o]) if o in acc else self.xp.zeros(self.shape) for o in outputs}
 
 
 def operand(field: np.ndarray, single: bool) -> np.ndarray:
@@ -227,12 +243,12 @@ class FourierPreconditioner:
     def for_kernel(cls, kernel: np.ndarray, factor: float = 1.0, workers: int = -1, *,
                    fft: ModuleType = scipy.fft) -> "FourierPreconditioner":
         """From a kernel on the (2n, 2n) DC-FFT offset grid (a field of ``fft``'s library), times the
-        scalar ``factor``."""
-        n = kernel.shape[0] // 2
+        scalar ``factor``; a kernel of one row (1, 2n), that of a line grid."""
+        n = kernel.shape[1] // 2
         half = n // 2 + 1  # offsets 0..n/2, then -(n/2-1)..-1 (at n + n/2 + 1 .. 2n - 1)
-        wrapped = np.concatenate((kernel[:half], kernel[n + half:]), axis=0)
+        wrapped = np.concatenate((kernel[:half], kernel[n + half:]), axis=0) if kernel.shape[0] > 1 else kernel
         wrapped = np.concatenate((wrapped[:, :half], wrapped[:, n + half:]), axis=1)
-        symbol = factor * np.abs(fft.rfft2(wrapped, **fft_keywords(fft, workers, n * n)).real)
+        symbol = factor * np.abs(fft.rfft2(wrapped, **fft_keywords(fft, workers, wrapped.size)).real)
         symbol = np.maximum(symbol, symbol.max() * 1e-12)
         return cls(1.0 / symbol, workers, fft)
 

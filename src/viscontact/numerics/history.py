@@ -53,6 +53,11 @@ def shift_material(field_: np.ndarray, cells: int = 1, wrap: bool = False) -> tu
     return out, dropped
 
 
+def field_shape(n: int | tuple[int, int]) -> tuple[int, int]:
+    """The shape of a field on n x n cells, or ``n`` itself when it is a shape (rows, cells)."""
+    return (n, n) if isinstance(n, (int, np.integer)) else tuple(n)
+
+
 class History(Protocol):
     """What the transient solver needs of a hereditary history (see the module docstring)."""
 
@@ -65,16 +70,18 @@ class History(Protocol):
 
 @dataclass(frozen=True)
 class PronyHistory:
-    """Recursive hereditary state: internal fields H (M, n, n) and the previous traction (n, n)."""
+    """Recursive hereditary state: internal fields H (M, n, n) and the previous traction (n, n)
+    (fields of any grid's shape: (M, 1, n) and (1, n) on a line grid)."""
 
     internal: np.ndarray
     previous: np.ndarray
 
     @classmethod
-    def zeros(cls, n_modes: int, n: int, xp: ModuleType = np) -> "PronyHistory":
-        """The history before the first step, its fields made by the array namespace ``xp``
-        (:mod:`viscontact.numerics.arrays`)."""
-        return cls(xp.zeros((n_modes, n, n)), xp.zeros((n, n)))
+    def zeros(cls, n_modes: int, n: int | tuple[int, int], xp: ModuleType = np) -> "PronyHistory":
+        """The history before the first step on n x n cells (or fields of the shape ``n``, a grid's
+        ``shape``), its fields made by the array namespace ``xp`` (:mod:`viscontact.numerics.arrays`)."""
+        shape = field_shape(n)
+        return cls(xp.zeros((n_modes, *shape)), xp.zeros(shape))
 
     def known(self, coef: StepCoefficients, t: float) -> np.ndarray:
         """r_k = sum_m J_m (beta_m p_{k-1} - A_m H_m,k-1) [m/Pa x Pa, to convolve with IC at G = 1]."""
@@ -106,10 +113,11 @@ class DirectHistory:
     """Literal hereditary sum of seed Eq. 5: keeps every past increment (reference, O(k) per step).
 
     ``increments`` holds dp_n as material fields on the current frame grid, ``times`` their t_n,
-    ``ramps`` whether each acted as a ramp over its step (from the scheme).
+    ``ramps`` whether each acted as a ramp over its step (from the scheme); ``n`` the cells per side,
+    or the fields' shape (a line grid's (1, n)).
     """
 
-    n: int
+    n: int | tuple[int, int]
     increments: tuple[np.ndarray, ...] = ()
     times: tuple[float, ...] = ()
     ramps: tuple[bool, ...] = ()
@@ -117,7 +125,7 @@ class DirectHistory:
 
     def known(self, coef: StepCoefficients, t: float) -> np.ndarray:
         """r_k = sum_{n<k} Phi(t_k, t_n) dp_n - J_inst p_{k-1}, Phi from the scheme and J(t) directly."""
-        out = np.zeros((self.n, self.n))
+        out = np.zeros(field_shape(self.n))
         for inc, tn, ramp in zip(self.increments, self.times, self.ramps):
             out += coef.scheme.response(coef.spectrum, t - tn, coef.dt, ramp) * inc
         if self.previous is not None:
@@ -133,7 +141,7 @@ class DirectHistory:
         """H_m (M, n, n) of the equivalent recursive history after the last increment:
         sum_n exp(-(t_last - t_n)/lambda_m) beta_m,n dp_n (beta_m,n from the scheme)."""
         lam = coef.spectrum.retardation_times
-        out = np.zeros((lam.size, self.n, self.n))
+        out = np.zeros((lam.size, *field_shape(self.n)))
         if not self.times:
             return out
         ramp_weight = coef.scheme.weights(lam, coef.dt, first=False) if lam.size else lam

@@ -1,4 +1,5 @@
-"""Surface influence coefficients of a uniformly loaded rectangle on a half-space, at G = 1.
+"""Surface influence coefficients of a uniformly loaded rectangle (a strip, in plane strain) on a
+half-space, at G = 1.
 
 Boussinesq (normal point force P into the solid) and Cerruti (tangential point force Q in +x)
 surface displacements for shear modulus G and Poisson ratio nu (Johnson, *Contact Mechanics*,
@@ -26,6 +27,28 @@ material's past, F(d) = int_0^inf exp(-xi/L)/L IC(d + xi) dxi with L = v lambda
 (:func:`history_kernels`, used by :meth:`viscontact.bodies.half_space.HalfSpace.steady_convolver`): a tail
 quadrature at the largest offset (composite Gauss-Legendre on geometrically growing intervals) and
 the exact backward recursion F(d) = int_0^dx E(xi) IC(d + xi) dxi + exp(-dx/L) F(d + dx).
+
+Plane strain (a line grid, ``grid.dimension = 1``): a line load (force per unit length) on the surface
+of a half-space in plane strain (Flamant; Johnson, *Contact Mechanics*, Eqs. 2.19 and 2.20 with
+(1 - nu^2)/E = (1 - nu)/(2 G), (1 - 2 nu)(1 + nu)/(2 E) = (1 - 2 nu)/(4 G)) displaces the surface by::
+
+    u_z = -(1 - nu) / (pi G) P ln(|x| / b)          (zz)
+    u_x = -(1 - 2 nu) / (4 G) P sgn(x)              (xz)
+    u_x = -(1 - nu) / (pi G) Q ln(|x| / b)          (xx)
+    u_z = +(1 - 2 nu) / (4 G) Q sgn(x)              (zx)
+
+(the 3-D coefficients integrated along y: the coupling is again proportional to 1 - 2 nu). The
+displacements of plane strain are defined up to a rigid-body constant (the log grows without bound):
+here the normal and tangential displacements of a line load are zero at the datum, the surface points
+at the distance b (``grid.datum_distance``, the domain's half-width) from it, as Johnson's constant C
+of Eq. 2.19 leaves free. An approach delta is then the indenter's displacement relative to that datum
+(:func:`viscontact.physics.reference.hertz_line` gives Hertz's for it). With b >= L/4, L the domain's
+length, the discrete log operator stays positive definite (the logarithmic capacity L/4 of the
+domain is below b). Integrated over a strip of width dx = 2h (:func:`strip_influence`), with
+P(s) = s ln(|s|/b) - s::
+
+    int ln(|s| / b) ds over [d - h, d + h] = P(d + h) - P(d - h),
+    int sgn(s) ds over [d - h, d + h]       = |d + h| - |d - h|.
 """
 from __future__ import annotations
 
@@ -144,6 +167,43 @@ def lattice_rectangle_influence(x_first: float, count: int, spacing: float, dy: 
     return _components(*(corner_sum(f) for f in prims), poisson_ratio, components)
 
 
+def strip_influence(offset: np.ndarray, half_x: float, poisson_ratio: float, datum: float,
+                    components: tuple[str, ...] = COMPONENTS) -> dict[str, np.ndarray]:
+    """Plane-strain displacements [m per Pa of traction] at the x offsets ``offset`` [m] from the centre
+    of a strip of half-width ``half_x`` [m] loaded by a unit uniform traction, at G = 1 Pa, relative to
+    the datum at ``datum`` b [m] from a line load (module docstring: Johnson 1985, Eqs. 2.19-2.20
+    integrated over the strip). Returns the requested ``components`` among ``zz``, ``xx``, ``xz``, ``zx``."""
+    d = np.asarray(offset, dtype=float)
+    nu = poisson_ratio
+
+    def primitive(s: np.ndarray) -> np.ndarray:  # P(s) = s ln(|s|/b) - s, P(0) = 0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(s == 0, 0.0, s * np.log(np.abs(s) / datum) - s)
+
+    log_integral = primitive(d + half_x) - primitive(d - half_x)
+    sign_integral = np.abs(d + half_x) - np.abs(d - half_x)
+    out = {
+        "zz": lambda: -(1 - nu) / np.pi * log_integral,
+        "xx": lambda: -(1 - nu) / np.pi * log_integral,
+        "xz": lambda: -(1 - 2 * nu) / 4 * sign_integral,
+        "zx": lambda: (1 - 2 * nu) / 4 * sign_integral,
+    }
+    return {c: out[c]() for c in components}
+
+
+def cell_influence(grid: Grid, dx: np.ndarray, dy: np.ndarray, poisson_ratio: float,
+                   components: tuple[str, ...] = COMPONENTS) -> dict[str, np.ndarray]:
+    """Displacements [m per Pa] at offsets (dx, dy) [m] from a cell of ``grid`` under a unit traction
+    at G = 1: :func:`rectangle_influence` of the square cell, or on a line grid (dy = 0)
+    :func:`strip_influence` of the strip, relative to the grid's datum."""
+    h = grid.spacing / 2.0
+    if grid.dimension == 1:
+        shape = np.broadcast(np.asarray(dx), np.asarray(dy)).shape
+        return {c: np.broadcast_to(v, shape) for c, v in
+                strip_influence(dx, h, poisson_ratio, grid.datum_distance, components).items()}
+    return rectangle_influence(dx, dy, h, h, poisson_ratio, components)
+
+
 def influence_coefficients(grid: Grid, poisson_ratio: float,
                            components: Sequence[str] = COMPONENTS) -> Mapping[str, np.ndarray]:
     """Influence coefficients on the DC-FFT offset grid, shape (2n, 2n) indexed [y, x] in FFT
@@ -151,7 +211,15 @@ def influence_coefficients(grid: Grid, poisson_ratio: float,
     times traction: displacement = IC * traction / G]. Row/column n (offset n dx) is zeroed: it is
     never used by a linear convolution of two n x n arrays (Liu, Wang & Liu 2000, DC-FFT).
     ``components``: those to compute (the coupling ones cost a third of the time and memory).
+    On a line grid: the plane-strain strip kernels (:func:`strip_influence`), shape (1, 2n).
     """
+    if grid.dimension == 1:
+        ics = cell_influence(grid, grid.offsets()[None, :], grid.row_offsets()[:, None], poisson_ratio,
+                             tuple(components))
+        ics = {name: np.array(k) for name, k in ics.items()}
+        for k in ics.values():
+            k[:, grid.n] = 0.0
+        return ics
     off = grid.offsets()
     dx, dy = np.meshgrid(off, off, indexing="xy")
     h = grid.spacing / 2.0
@@ -231,15 +299,18 @@ def history_kernels(grid: Grid, poisson_ratio: float, length: float,
 
 def offset_columns_to_kernels(values: np.ndarray, components: Sequence[str]) -> dict[str, np.ndarray]:
     """Kernels (2n, 2n) in DC-FFT wrap order from ``values`` (components, 2n y offsets in wrap order,
-    2n - 1 x offsets -(n-1) dx ... (n-1) dx); row and column n (offset n dx) zero."""
-    n = values.shape[1] // 2
+    2n - 1 x offsets -(n-1) dx ... (n-1) dx); row and column n (offset n dx) zero. One y offset (a
+    line grid): kernels (1, 2n)."""
+    n = (values.shape[2] + 1) // 2
+    rows = values.shape[1]
     k = np.arange(-(n - 1), n)
     cols = np.where(k >= 0, k, k + 2 * n)
     out = {}
     for ci, c in enumerate(components):
-        kernel = np.zeros((2 * n, 2 * n))
+        kernel = np.zeros((rows, 2 * n))
         kernel[:, cols] = values[ci]
-        kernel[n, :] = 0.0
+        if rows > 1:
+            kernel[n, :] = 0.0
         kernel[:, n] = 0.0
         out[c] = kernel
     return out

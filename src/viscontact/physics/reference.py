@@ -1,5 +1,5 @@
 """Analytic reference solutions (Hertz, Lee & Radok, Cattaneo-Mindlin, elliptical Hertz, Sneddon's
-flat punch and cone) used to validate and normalise.
+flat punch and cone; Hertz's and Cattaneo's line contacts) used to validate and normalise.
 
 All functions take SI inputs and return SI outputs. ``shear_modulus`` is G, ``poisson_ratio`` nu; the
 contact modulus of a rigid indenter on the half-space is E* = 2G/(1-nu) (``contact_modulus`` where a
@@ -196,6 +196,144 @@ def hertz_line_half_width(load_per_length: float, radius: float, contact_modulus
     ``load_per_length`` W' [N/m] on a half-space of E* [Pa] (plane strain; Johnson, *Contact Mechanics*,
     1985, Sec. 4.3, Eq. 4.45): b = sqrt(4 W' R / (pi E*)), its peak pressure 2 W' / (pi b)."""
     return float(np.sqrt(4.0 * load_per_length * radius / (np.pi * contact_modulus)))
+
+
+# --- line contact (plane strain) -------------------------------------------------------------------
+
+def line_approach(contact_half_width: float, cylinder_radius: float, datum: float) -> float:
+    """Approach delta [m] of a rigid cylinder (radius R [m]) in Hertz line contact of half-width a [m],
+    relative to the datum b [m] (the surface points at distance b from a line load stay put, the
+    convention of :mod:`viscontact.physics.kernels`):
+
+        delta = (a^2 / 2R) (ln(2b/a) + 1/2) = (2W / (pi E*)) (ln(2b/a) + 1/2).
+
+    From u_z(0) = -(2/(pi E*)) int p(s) ln(|s|/b) ds with p = p0 sqrt(1 - s^2/a^2) and
+    the integral of sqrt(1 - t^2) ln|t| over [-1, 1], -(pi/2)(ln 2 + 1/2) (Gradshteyn & Ryzhik 4.241). The approach of
+    a line contact is defined only relative to a datum (Johnson, *Contact Mechanics*, 1985, §2.2 after
+    Eq. 2.19 and §4.3: it depends on where it is measured from).
+    """
+    a = contact_half_width
+    return a**2 / (2.0 * cylinder_radius) * (np.log(2.0 * datum / a) + 0.5)
+
+
+def hertz_line_from_load(load: float, cylinder_radius: float, shear_modulus: float, poisson_ratio: float,
+                         datum: float) -> Hertz:
+    """Hertz line contact of a rigid cylinder (radius R [m], axis along y) on an elastic half-space in
+    plane strain under a load W per unit length [N/m] (Johnson, *Contact Mechanics*, 1985, §4.3,
+    Eqs. 4.43-4.45 with a rigid cylinder): half-width a = sqrt(4 W R / (pi E*)) [m]
+    (:func:`hertz_line_half_width`), peak pressure
+    p0 = 2 W / (pi a) [Pa], p(x) = p0 sqrt(1 - x^2/a^2); the approach relative to the datum b [m]
+    (:func:`line_approach`). The :class:`Hertz` returned holds a in ``radius`` and W [N/m] in ``load``."""
+    a = hertz_line_half_width(load, cylinder_radius, contact_modulus(shear_modulus, poisson_ratio))
+    return Hertz(a, 2.0 * load / (np.pi * a), line_approach(a, cylinder_radius, datum), load)
+
+
+def hertz_line_from_approach(approach: float, cylinder_radius: float, shear_modulus: float, poisson_ratio: float,
+                             datum: float) -> Hertz:
+    """:func:`hertz_line_from_load` for the approach delta [m] relative to the datum b [m]: a [m] solves
+    :func:`line_approach` (monotone for a < 2b), then W = pi a^2 E* / (4 R) [N/m]."""
+    from scipy.optimize import brentq
+
+    if approach <= 0:
+        return Hertz(0.0, 0.0, float(approach), 0.0)
+    top = 2.0 * datum
+    if approach >= line_approach(top * (1.0 - 1e-12), cylinder_radius, datum):
+        raise ValueError(f"approach {approach:g} m: no Hertz line contact narrower than 4 b = {2 * top:g} m")
+    a = brentq(lambda a: line_approach(a, cylinder_radius, datum) - approach, 1e-300, top, xtol=1e-15 * top,
+               rtol=1e-14)
+    e_star = contact_modulus(shear_modulus, poisson_ratio)
+    load = np.pi * a**2 * e_star / (4.0 * cylinder_radius)
+    return Hertz(a, 2.0 * load / (np.pi * a), float(approach), load)
+
+
+@dataclass(frozen=True)
+class StripPunch:
+    """A rigid flat strip punch of half-width a [m] (a flat punch in line contact, plane strain) pressed
+    on a half-space of E* [Pa] by a load W per unit length [N/m] (Johnson, *Contact Mechanics*, 1985,
+    §2.8, Eq. 2.64):
+
+        p(x) = W / (pi sqrt(a^2 - x^2)),   delta = (2 W / (pi E*)) ln(2b / a),
+
+    the pressure singular (integrably) at the edges, its value at the centre W / (pi a); the approach
+    relative to the datum b [m] (:func:`line_approach`'s convention), from the integral of
+    ln|x - s| / (pi sqrt(a^2 - s^2)) over s in [-a, a], ln(a/2) for |x| <= a (the displacement is
+    uniform over the face). Attributes: ``half_width`` a [m], ``approach`` delta [m], ``load`` W [N/m],
+    ``datum`` b [m]."""
+
+    half_width: float
+    approach: float
+    load: float
+    datum: float
+
+    @classmethod
+    def from_load(cls, load: float, half_width: float, contact_modulus: float, datum: float) -> "StripPunch":
+        return cls(half_width, 2.0 * load / (np.pi * contact_modulus) * np.log(2.0 * datum / half_width), load, datum)
+
+    @classmethod
+    def from_approach(cls, approach: float, half_width: float, contact_modulus: float, datum: float) -> "StripPunch":
+        return cls(half_width, approach, np.pi * contact_modulus * approach / (2.0 * np.log(2.0 * datum / half_width)),
+                   datum)
+
+    def pressure(self, x: np.ndarray) -> np.ndarray:
+        """p(x) [Pa] on the face (|x| < a), 0 outside (inf at the edges themselves)."""
+        x = np.asarray(x, dtype=float)
+        a = self.half_width
+        with np.errstate(divide="ignore", invalid="ignore"):
+            p = self.load / (np.pi * np.sqrt(a**2 - x**2))
+        return np.where(np.abs(x) < a, p, np.where(np.abs(x) == a, np.inf, 0.0))
+
+
+@dataclass(frozen=True)
+class LineCattaneo:
+    """Partial slip of a rigid cylinder in line contact (plane strain) under a load W [N/m] and a growing
+    tangential force Q [N/m] (Cattaneo 1938; Johnson, *Contact Mechanics*, 1985, §7.1, Eqs. 7.4-7.8):
+    the shear traction is mu_f p0 [sqrt(1 - x^2/a^2) - (c/a) sqrt(1 - x^2/c^2)], the stick zone
+    |x| < c with c/a = sqrt(1 - Q / (mu_f W)). Exact without normal-tangential coupling (nu = 0.5;
+    else the coupling terms, proportional to 1 - 2 nu, are neglected as in Johnson's).
+
+    Attributes: ``contact_half_width`` a [m], ``load`` W [N/m], ``friction_coefficient`` mu_f [-],
+    ``cylinder_radius`` R [m], ``datum`` b [m] (for :meth:`displacement`).
+    """
+
+    contact_half_width: float
+    load: float
+    friction_coefficient: float
+    cylinder_radius: float
+    datum: float
+
+    def stick_ratio_from_force(self, force: np.ndarray | float) -> np.ndarray:
+        """c/a = (1 - Q/(mu_f W))^(1/2) [-] for Q [N/m], 0 <= Q <= mu_f W."""
+        q = np.asarray(force, dtype=float) / (self.friction_coefficient * self.load)
+        return np.sqrt(np.clip(1.0 - q, 0.0, None))
+
+    def shear_traction(self, x: np.ndarray, force: float) -> np.ndarray:
+        """q(x) [Pa] in the direction of Q at x [m] (the second term inside the stick zone only)."""
+        a = self.contact_half_width
+        c = float(self.stick_ratio_from_force(force)) * a
+        p0 = 2.0 * self.load / (np.pi * a)
+        x = np.asarray(x, dtype=float)
+        outer = np.sqrt(np.clip(1.0 - (x / a) ** 2, 0.0, None))
+        inner = (c / a) * np.sqrt(np.clip(1.0 - (x / c) ** 2, 0.0, None)) if c > 0 else 0.0 * x
+        return self.friction_coefficient * p0 * (outer - inner)
+
+    def displacement(self, force: np.ndarray | float) -> np.ndarray:
+        """Tangential displacement delta_x [m] of the stick zone relative to the datum b:
+        mu_f [a^2 (ln(2b/a) + 1/2) - c^2 (ln(2b/c) + 1/2)] / (2R), the two Hertz-like traction
+        distributions' displacements (:func:`line_approach`; the tangential kernel of plane strain
+        equals the normal one)."""
+        a, r, b = self.contact_half_width, self.cylinder_radius, self.datum
+        c = self.stick_ratio_from_force(force) * a
+        with np.errstate(divide="ignore", invalid="ignore"):
+            inner = np.where(c > 0, c**2 * (np.log(2.0 * b / np.where(c > 0, c, 1.0)) + 0.5), 0.0)
+        return self.friction_coefficient * (a**2 * (np.log(2.0 * b / a) + 0.5) - inner) / (2.0 * r)
+
+
+def line_cattaneo(load: float, cylinder_radius: float, friction_coefficient: float, shear_modulus: float,
+                  poisson_ratio: float, datum: float) -> LineCattaneo:
+    """:class:`LineCattaneo` of a rigid cylinder (R [m]) pressed by W [N/m] on an elastic half-space
+    (G [Pa], nu), Coulomb friction mu_f, datum b [m]: the Hertz half-width of :func:`hertz_line_from_load`."""
+    a = hertz_line_from_load(load, cylinder_radius, shear_modulus, poisson_ratio, datum).radius
+    return LineCattaneo(float(a), float(load), float(friction_coefficient), float(cylinder_radius), float(datum))
 
 
 def oedometric_modulus(shear_modulus: float, poisson_ratio: float) -> float:

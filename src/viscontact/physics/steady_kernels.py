@@ -40,10 +40,10 @@ import numpy as np
 from viscontact.numerics.exponentials import CreepSpectrum, complex_compliance
 from viscontact.numerics.grid import Grid
 from viscontact.physics.kernels import (
+    cell_influence,
     influence_coefficients,
     lattice_rectangle_influence,
     offset_columns_to_kernels,
-    rectangle_influence,
 )
 
 #: exp(-45) ~ 3e-20: beyond 45 decay lengths a mode's weight is below double precision
@@ -168,8 +168,7 @@ class SteadyKernelBuilder:
         if self.point_kernel is not None:
             res = self.point_kernel(dx_offsets, dy_offsets)
         else:
-            h = 0.5 * self.grid.spacing
-            res = rectangle_influence(dx_offsets, dy_offsets, h, h, self.poisson_ratio, self.components)
+            res = cell_influence(self.grid, dx_offsets, dy_offsets, self.poisson_ratio, self.components)
         return np.stack([np.broadcast_to(res[c], np.broadcast(dx_offsets, dy_offsets).shape)
                          for c in self.components])
 
@@ -195,11 +194,12 @@ class SteadyKernelBuilder:
                         positions.append(float(x))
                     idx.append(hit[0] if hit else len(positions) - 1)
                 index.append(np.array(idx))
-            dy = self.grid.offsets()[:, None]
+            dy = self.grid.row_offsets()[:, None]
             d = self._x_offsets[:-1]
             values = np.empty((d.size, len(positions), len(self.components) * dy.size))
             for q, x in enumerate(positions):
-                if self.point_kernel is not None:  # another kernel than the half-space's, at any offset
+                # another kernel than the half-space's, at any offset, or the strips of a line grid
+                if self.point_kernel is not None or self.grid.dimension == 1:
                     values[:, q, :] = self._ic(d[None, :] + x, dy).reshape(-1, d.size).T
                     continue
                 ic = lattice_rectangle_influence(d[0] + x, d.size, dx, dy[:, 0], self.poisson_ratio, self.components)
@@ -232,22 +232,23 @@ class SteadyKernelBuilder:
         lengths = np.asarray(lengths, dtype=float)
         n, dx = self.grid.n, self.grid.spacing
         n_comp = len(self.components)
+        rows = self.grid.row_offsets().size
         if amps.size == 0:
-            return {c: np.zeros((2 * n, 2 * n)) for c in self.components}
+            return {c: np.zeros((rows, 2 * n)) for c in self.components}
         intervals, index, local_ic = self._local_nodes()
         weights = np.zeros((lengths.size, local_ic.shape[1]))
         for (a, b), idx in zip(intervals, index):
             np.add.at(weights, (slice(None), idx), product_weights(a, b, self.degree, lengths))
         running = self._tail(lengths)  # (M, C * 2n) at the largest offset
         decay = np.exp(-dx / lengths)[:, None]
-        values = np.empty((2 * n - 1, n_comp * 2 * n))
+        values = np.empty((2 * n - 1, n_comp * rows))
         values[-1] = amps @ running
         for i in range(2 * n - 3, -1, -1):
             running = weights @ local_ic[i] + decay * running
             values[i] = amps @ running
         if self.smooth is not None:
             values += self._smooth_history(amps, lengths)
-        return offset_columns_to_kernels(values.T.reshape(n_comp, 2 * n, 2 * n - 1), self.components)
+        return offset_columns_to_kernels(values.T.reshape(n_comp, rows, 2 * n - 1), self.components)
 
     def _smooth_history(self, amps: np.ndarray, lengths: np.ndarray) -> np.ndarray:
         """sum_m J_m F_m of the ``smooth`` part at the offsets -(n-1) dx ... (n-1) dx, shape
@@ -281,7 +282,7 @@ class SteadyKernelBuilder:
         scale = max(d_max, self.grid.spacing)
         top = _DECAY_CUTOFF * float(lengths.max())
         unit, _ = lobatto_nodes(self.degree)
-        dy = self.grid.offsets()[:, None]
+        dy = self.grid.row_offsets()[:, None]
         out = np.zeros((lengths.size, len(self.components) * dy.size))
         k = 0
         while True:

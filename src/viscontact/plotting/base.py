@@ -139,6 +139,12 @@ class Scales:
         return f"t/τ = {t / scale:.3g}" if label.startswith("t /") else f"t = {t:.3g} s"
 
 
+def is_line(ds: xr.Dataset) -> bool:
+    """Whether ``ds`` is a line contact's result (``grid.dimension = 1``: one row, plane strain; its
+    fields are drawn as profiles, not maps)."""
+    return int(ds.attrs.get("grid_dimension", 2)) == 1
+
+
 def is_periodic(ds: xr.Dataset) -> bool:
     """The result is one period of a periodic domain (``grid.periodic = true``)."""
     return bool(int(ds.attrs.get("grid_periodic", 0) or 0))

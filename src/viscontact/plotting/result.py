@@ -23,6 +23,7 @@ from viscontact.plotting.base import (
     draw_map,
     fit_title,
     integer_ticks,
+    is_line,
     is_periodic,
     is_steady,
     map_axes,
@@ -157,14 +158,16 @@ def contact_history_figure(ds: xr.Dataset) -> Any:
 
     sc = Scales(ds)
     t = ds["t"].values
-    radius = np.sqrt(ds["contact_area"].values / np.pi)
-    panels = [("contact_area", radius / sc.radius[0], f"contact radius √(A/π), {sc.radius[1]}", sc.radius[0])]
+    line = is_line(ds)  # a line contact: its half-width, and no sphere's reference
+    radius = ds["contact_area"].values / 2 if line else np.sqrt(ds["contact_area"].values / np.pi)
+    what = "contact half-width A/2" if line else "contact radius √(A/π)"
+    panels = [("contact_area", radius / sc.radius[0], f"{what}, {sc.radius[1]}", sc.radius[0])]
     panels += _normal_panels(ds)
     fig, axes = pyplot().subplots(1, len(panels), figsize=(4.4 * len(panels), 3.9), squeeze=False, sharex=True)
     curves = {}
     sphere = positive_attr(ds, "radius")
     material = material_of(ds)
-    if ds.attrs.get("tangential_mode") == "none" and sphere and material is not None:
+    if ds.attrs.get("tangential_mode") == "none" and sphere and material is not None and not line:
         if ds.attrs.get("normal_control") == "load" and _held(ds["load"].values):
             ref = lee_radok_creep(float(ds["load"].values[0]), sphere, material, t)
             curves = {"contact_area": ref.radius, "delta_z": ref.approach}
@@ -191,9 +194,10 @@ _NORMAL = (("load", 1.0, "load W [N]"), ("delta_z", 1e6, "approach δ_z [µm]"))
 
 
 def _normal_panels(ds: xr.Dataset) -> list[tuple[str, np.ndarray, str, float]]:
-    """(name, scaled values, label, scale) of the load and the approach, without the one held."""
-    return [(name, ds[name].values * scale, label, scale) for name, scale, label in _NORMAL
-            if not _held(ds[name].values)]
+    """(name, scaled values, label, scale) of the load and the approach, without the one held (a line
+    contact's load per unit length, N/m)."""
+    return [(name, ds[name].values * scale, label.replace("[N]", "[N/m]") if is_line(ds) else label, scale)
+            for name, scale, label in _NORMAL if not _held(ds[name].values)]
 
 
 def _held_note(ds: xr.Dataset) -> str:
@@ -296,7 +300,7 @@ def _cattaneo_mindlin_references(ds: xr.Dataset) -> list[tuple[Any, str, str]]:
 
     sphere = positive_attr(ds, "radius")
     mu = float(ds.attrs.get("friction_coefficient", 0.0) or 0.0)
-    if not sphere or mu <= 0:
+    if not sphere or mu <= 0 or is_line(ds):  # a line contact: not the sphere's references
         return []
     nu = float(ds.attrs["poisson_ratio"])
     control = ds.attrs.get("normal_control")
@@ -589,7 +593,8 @@ def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] |
     """Figures of a transient (or single steady) result, written into ``out_dir``.
 
     ``pressure_profiles``: pressure (and shear, when nonzero) along y = 0; ``pressure_maps``: p/p0
-    maps at ``times`` [s] (default: four records). A transient adds ``contact_history`` (contact
+    maps at ``times`` [s] (default: four records). A line contact (one row) has its profiles only:
+    no maps, stick maps or animation, and its contact history shows the half-width A/2. A transient adds ``contact_history`` (contact
     radius, load and approach against time; Lee & Radok, or Hertz when elastic, for held indentation;
     not on a periodic domain), for a rough contact (:func:`is_rough`) ``rough_contact`` (μ_app, real
     contact area fraction, contact patches, mean gap against time), ``pressure.gif`` (an animation
@@ -621,9 +626,11 @@ def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] |
     _warn_incomplete(ds)
     files = FigureFiles(Path(out_dir), fmt, dpi)
     figures: dict[str, Any] = {}
+    maps = not is_line(ds)  # a line contact's one row: its profiles, no maps
     if "pressure" in ds:
         figures["pressure_profiles"] = profiles_figure(ds, times)
-        figures["pressure_maps"] = pressure_maps_figure(ds, times)
+        if maps:
+            figures["pressure_maps"] = pressure_maps_figure(ds, times)
     if not is_steady(ds):
         if not is_periodic(ds):  # a contact radius means nothing for the many spots of a period
             figures["contact_history"] = contact_history_figure(ds)
@@ -633,12 +640,12 @@ def plot_result(ds: xr.Dataset, out_dir: str | Path, *, times: Sequence[float] |
             figures["friction"] = friction_figure(ds)
         if mode == "partial_slip":
             figures["tangential_loop"] = tangential_loop_figure(ds)
-            if "stick" in ds and "pressure" in ds:
+            if "stick" in ds and "pressure" in ds and maps:
                 figures["stick_map"] = stick_maps_figure(ds, times)
     if "von_mises_stress" in ds and ds.sizes.get("t_sub", 0):
         figures["subsurface_stress"] = subsurface_figure(ds)
     paths = [files.save(fig, name) for name, fig in figures.items()]
-    if "pressure" in ds and not is_steady(ds) and ds.sizes["t"] > 1:
+    if "pressure" in ds and not is_steady(ds) and ds.sizes["t"] > 1 and maps:
         paths.append(_pressure_animation(ds, files))
     return paths
 
@@ -654,7 +661,10 @@ def speed_curve_figure(ds: xr.Dataset) -> Any:
     tau, a0 = positive_attr(ds, "retardation_time"), positive_attr(ds, "a0")
     k = tau / a0 if tau and a0 else None
     x = speed * k if k else speed
-    area_scale, area_label = (np.pi * a0**2, "contact area A / (π a0²)") if a0 else (1e-6, "contact area [mm²]")
+    if is_line(ds):  # a line contact: its width per unit length against 2 a0
+        area_scale, area_label = (2 * a0, "contact width A / (2 a0)") if a0 else (1e-3, "contact width [mm]")
+    else:
+        area_scale, area_label = (np.pi * a0**2, "contact area A / (π a0²)") if a0 else (1e-6, "contact area [mm²]")
     panels = (("mu_app", 1.0, "μ_app = F_T / W [-]"), ("peak_pressure", sc.pressure[0], f"peak {sc.pressure[1]}"),
               ("contact_area", area_scale, area_label),
               ("contact_shift", sc.length[0], f"contact shift {sc.length[1].replace('x', 'x_c')}"))

@@ -510,6 +510,31 @@ def check_subsurface_body(depths, kind: Body | type) -> None:
                              "current tractions only there")
 
 
+def check_line_contact_supported(problem: "Problem") -> None:
+    """Refuse, in one line naming the key, what a line contact (``grid.dimension = 1``, plane strain)
+    does not work with yet: a periodic grid, a layer on a base (its kernels are those of a 3-D
+    layer), subsurface stresses (those of a 3-D half-space), adhesion, and an analytic shape other
+    than the infinite cylinder and the strip punch (:meth:`~viscontact.problem.shapes.Shape.line_profile`;
+    a gap without a shape, e.g. a ``surface`` file of one row, is taken as it is)."""
+    if problem.grid.dimension != 1:
+        return
+    if problem.grid.periodic:
+        raise ParameterError("grid.periodic", "true is not supported in line contact (grid.dimension = 1) yet: "
+                             "periodic plane-strain kernels are missing; use grid.periodic = false")
+    if problem.layer is not None:
+        raise ParameterError("layer", "a layer on a base is not supported in line contact (grid.dimension = 1) yet: "
+                             "its plane-strain kernels are missing")
+    if problem.output.subsurface_depths:
+        raise ParameterError("output.subsurface_depths", "subsurface stresses are not supported in line contact "
+                             "(grid.dimension = 1) yet: those computed are a 3-D half-space's")
+    if problem.adhesion is not None:
+        raise ParameterError("adhesion", "is not supported in line contact (grid.dimension = 1) yet")
+    if problem.shape is not None and not problem.shape.line_profile():
+        raise ParameterError("indenter.shape", f"'{problem.shape.name}' is not a line contact's indenter "
+                             "(grid.dimension = 1): use shape = 'cylinder' without a length (an infinite "
+                             "cylinder, its gap x^2/(2R)) or 'flat_punch' (a strip)")
+
+
 def check_adhesion_supported(problem: "Problem") -> None:
     """Refuse, in one line naming the key, what adhesion does not work with: a load history that pulls
     before it first presses (no equilibrium carries a tension without contact), and (not yet)
@@ -568,15 +593,16 @@ class Problem:
     shape: Shape | None = None
 
     def __post_init__(self) -> None:
-        n = self.grid.n
+        grid_shape = self.grid.shape
         self._mirror_sphere()
         if self.adhesion is None and self.normal.tensile and min(self.normal.history.values) < 0:
             raise ParameterError("normal.history", f"values must be >= 0 (N or m) without [adhesion], got "
                                  f"{self.normal.history.values!r}")
         if self.adhesion is not None:
             check_adhesion_supported(self)
-        if np.shape(self.gap) != (n, n):
-            raise ParameterError("gap", f"must be an array of the grid's shape ({n}, {n}), got shape {np.shape(self.gap)}")
+        if np.shape(self.gap) != grid_shape:
+            raise ParameterError("gap", f"must be an array of the grid's shape {grid_shape}, got shape "
+                                 f"{np.shape(self.gap)}")
         if not (np.isfinite(np.min(self.gap)) and np.isfinite(np.max(self.gap))):  # no n x n temporary
             raise ParameterError("gap", "must hold finite heights [m] only (NaN or Inf found)")
         if self.radius is not None:
@@ -589,6 +615,7 @@ class Problem:
             if key in ("bulk_modulus", "layer"):
                 object.__setattr__(self, key, value)
         check_subsurface_body(self.output.subsurface_depths, body)
+        check_line_contact_supported(self)
 
     def _mirror_sphere(self) -> None:
         """Keep ``radius`` and a :class:`~viscontact.problem.shapes.Sphere` ``shape`` one description

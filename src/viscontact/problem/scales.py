@@ -15,13 +15,18 @@ def hertz_scale(problem: Problem) -> tuple[float, float]:
 
     An analytic shape's own (:meth:`viscontact.problem.shapes.Shape.scale`): a sphere's Hertz radius
     and peak pressure (load control: Hertz for the load; displacement control: a0 = sqrt(R delta),
-    p0 from the Hertz load of that approach), an ellipsoid's, a roller's, a punch's, a cone's. A gap
-    without a shape: Hertz for the sphere of the gap's :func:`equivalent_radius` (NaN where no
+    p0 from the Hertz load of that approach), an ellipsoid's, a roller's, a punch's, a cone's; on a line
+    grid the shape's :meth:`~viscontact.problem.shapes.Shape.line_scale` (the infinite cylinder's Hertz
+    line contact, a strip punch's), approaches relative to the grid's datum. A gap without a shape:
+    Hertz for the sphere of the gap's :func:`equivalent_radius` (NaN where no
     curvature defines its lowest point: a plane, a cylinder, a flat punch, whose contact is its face
     at any load); NaN on a periodic domain.
     """
     mat = problem.material
     ref = problem.normal.history.reference
+    if problem.shape is not None and problem.grid.dimension == 1:  # a line's shape: per unit length, datum
+        return problem.shape.line_scale(ref, problem.normal.control, mat.shear_modulus_instantaneous,
+                                        mat.poisson_ratio, problem.grid.datum_distance)
     if problem.shape is not None:
         return problem.shape.scale(ref, problem.normal.control, mat.shear_modulus_instantaneous, mat.poisson_ratio)
     if problem.grid.periodic:

@@ -134,6 +134,18 @@ class Shape:
         them and refuses what :meth:`check_grid` refuses."""
         return []
 
+    def line_profile(self) -> bool:
+        """Whether the shape is a line contact's indenter (``grid.dimension = 1``, plane strain): uniform
+        along y without end, its estimates per unit length and its scales :meth:`line_scale`. False by
+        default; :class:`Cylinder` without a length, :class:`FlatPunch` (a strip)."""
+        return False
+
+    def line_scale(self, reference_value: float, control: str, shear_modulus: float, poisson_ratio: float,
+                   datum: float) -> tuple[float, float]:
+        """:meth:`scale` in line contact (loads per unit length [N/m], approaches relative to the datum
+        b [m] of :mod:`viscontact.physics.kernels`), for a shape whose :meth:`line_profile` is True."""
+        raise NotImplementedError(f"{self.name} is not a line contact's indenter")
+
     def check_grid(self, grid: Grid) -> None:
         """Refuse (:class:`~viscontact.errors.ParameterError`) a grid the shape cannot be posed on
         (nothing by default)."""
@@ -346,6 +358,18 @@ class Cylinder(Shape):
             raise ParameterError("indenter.edge_radius", f"must be <= length / 2 = {self.length / 2:g} m (the "
                                  f"rounded ends of a roller {self.length:g} m long), got {self.edge_radius:g}")
 
+    def line_profile(self) -> bool:
+        """The infinite cylinder (no length) is the line contact's indenter."""
+        return self.length is None
+
+    def line_scale(self, reference_value: float, control: str, shear_modulus: float, poisson_ratio: float,
+                   datum: float) -> tuple[float, float]:
+        """Hertz's line contact (:func:`~viscontact.physics.reference.hertz_line_from_load`,
+        :func:`~viscontact.physics.reference.hertz_line_from_approach`): a0 = b, p0 = 2 W / (pi b)."""
+        build = reference.hertz_line_from_load if control == "load" else reference.hertz_line_from_approach
+        hertz = build(reference_value, self.radius, shear_modulus, poisson_ratio, datum)
+        return float(hertz.radius), float(hertz.peak_pressure)
+
     def check_grid(self, grid: Grid) -> None:
         """Refuse an infinite cylinder (no length) on a 2-D grid: its contact would cross the domain."""
         if self.length is None and getattr(grid, "dimension", 2) == 2:
@@ -471,6 +495,19 @@ class FlatPunch(_SingularShape):
         """(a, a + rho): a rounded rim's contact reaches into the rounding by sqrt(2 rho delta), less
         than rho while delta < rho/2."""
         return self.radius, self.radius + self.edge_radius
+
+    def line_profile(self) -> bool:
+        """In line contact the punch is a strip of half-width ``radius``."""
+        return True
+
+    def line_scale(self, reference_value: float, control: str, shear_modulus: float, poisson_ratio: float,
+                   datum: float) -> tuple[float, float]:
+        """The strip (:class:`~viscontact.physics.reference.StripPunch`): a0 = a, p0 = W / (pi a), the
+        pressure at the centre of the face."""
+        e_star = _e_star(shear_modulus, poisson_ratio)
+        build = reference.StripPunch.from_load if control == "load" else reference.StripPunch.from_approach
+        punch = build(reference_value, self.radius, e_star, datum)
+        return self.radius, float(punch.load / (np.pi * self.radius))
 
     def scale(self, reference_value: float, control: str, shear_modulus: float,
               poisson_ratio: float) -> tuple[float, float]:

@@ -54,9 +54,9 @@ RESAMPLE_RATIO = 4.0
 def rms_slopes(gap: np.ndarray, spacing: float, periodic: bool) -> tuple[float, float]:
     """(rms |grad h| by forward differences over the interior, rms of the steps across the period's
     edges over rms of the interior steps) of a field [m] on a grid of ``spacing`` [m]; the second is 1
-    when not ``periodic``."""
+    when not ``periodic``. A line grid's one row has no step along y."""
     dx, dy = np.diff(gap, axis=1), np.diff(gap, axis=0)
-    interior = float(np.sqrt(np.mean(dx**2) + np.mean(dy**2))) / spacing
+    interior = float(np.sqrt(np.mean(dx**2) + (np.mean(dy**2) if dy.size else 0.0))) / spacing
     if not periodic or interior == 0:
         return interior, 1.0
     seams = np.concatenate([gap[:, 0] - gap[:, -1], gap[0] - gap[-1]])

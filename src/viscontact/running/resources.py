@@ -81,21 +81,23 @@ def run_seconds(steps: int, mode: str, transform: float, periodic: bool = False,
 
 
 @functools.lru_cache(maxsize=32)
-def _timed_pair(n: int, periodic: bool, workers: int) -> float:
-    """Best of a few forward + inverse transform pairs of an n x n field on the run's grid [s]."""
+def _timed_pair(n: int, periodic: bool, workers: int, rows: int | None = None) -> float:
+    """Best of a few forward + inverse transform pairs of an n x n field (``rows`` x n: a line grid's
+    one row) on the run's grid [s]."""
     import numpy as np
     import scipy.fft
 
     from viscontact.numerics.fftbackends import ZeroBlockTransforms, fft_keywords
 
-    field = np.random.default_rng(0).random((n, n))
+    rows = n if rows is None else rows
+    field = np.random.default_rng(0).random((rows, n))
     if periodic:
         kw = fft_keywords(scipy.fft, workers, n * n)
 
         def pair():
             scipy.fft.irfft2(scipy.fft.rfft2(field, **kw), s=(n, n), overwrite_x=True, **kw)
     else:
-        transforms = ZeroBlockTransforms(n, workers)
+        transforms = ZeroBlockTransforms(n, workers, rows=rows)
 
         def pair():
             transforms.inverse(transforms.forward(field))
@@ -117,6 +119,8 @@ def transform_seconds(problem: Problem) -> float:
     (``solver.workers``; the pyFFTW backend's plans are not made for it), on the padded DC-FFT grid or
     the periodic one; above :data:`TIMED_SIDE_LIMIT` timed there and scaled by n^2 log2(2n)."""
     n, periodic, workers = problem.grid.n, problem.grid.periodic, problem.solver.workers
+    if problem.grid.dimension == 1:  # a line grid's 1-D transforms: timed at its own size
+        return _timed_pair(n, periodic, workers, 1)
     side = min(n, TIMED_SIDE_LIMIT)
     work = (n * n * math.log2(2 * n)) / (side * side * math.log2(2 * side))
     return _timed_pair(side, periodic, workers) * work
@@ -191,6 +195,7 @@ def estimate(problem: Problem, *, topography: bool | None = None, transform: flo
     its s_x).
     """
     n = problem.grid.n
+    cells = problem.grid.rows * n  # n x n, or a line grid's n
     steps = problem.time.n_steps
     records = recorded_steps(problem)
     per_record = record_bytes(problem)
@@ -203,12 +208,12 @@ def estimate(problem: Problem, *, topography: bool | None = None, transform: flo
     from viscontact.bodies.compliance import RESPONSE_MODES
 
     response = modes + 1 if per_component == 1 and modes <= RESPONSE_MODES else 0
-    carried = 0 if problem.grid.periodic else (2 + response) * 8 * n * n
+    carried = 0 if problem.grid.periodic else (2 + response) * 8 * cells
     # the incremental slip's s_x, rolling's u_x
-    slip = 8 * n * n if problem.tangential.incremental_slip or problem.tangential.rolls else 0
-    solver = (2 * 2 * modes + WORK_FIELDS) * 8 * n * n + 2 * (carried + slip) + kernels * kernel_bytes(n) \
-        + PADDED_TEMPORARIES * 4 * n * n * 8
-    if not problem.grid.periodic:  # support windows: cropped self kernels of the last sides used
+    slip = 8 * cells if problem.tangential.incremental_slip or problem.tangential.rolls else 0
+    solver = (2 * 2 * modes + WORK_FIELDS) * 8 * cells + 2 * (carried + slip) \
+        + kernels * kernel_bytes(n, problem.grid.rows) + PADDED_TEMPORARIES * 4 * cells * 8
+    if not problem.grid.periodic and problem.grid.dimension == 2:  # support windows: cropped self kernels
         from viscontact.bodies.compliance import WINDOWS_KEPT
 
         self_kernels = 2 if problem.tangential.mode in ("partial_slip", "rolling") else 1
@@ -224,7 +229,7 @@ def estimate(problem: Problem, *, topography: bool | None = None, transform: flo
         topography = problem.surface_topography
     if topography:  # the case's surface (self-affine, a measured topography) imports SurfaceTopography
         solver += TOPOGRAPHY_IMPORT_MEMORY
-    state = (2 * modes + 8) * 8 * n * n + carried + slip
+    state = (2 * modes + 8) * 8 * cells + carried + slip
     depths = problem.output.subsurface_depths
     if depths:  # computed once the steps are done, from the recorded tractions: on top of the run's peak
         from viscontact.physics.subsurface import working_bytes
@@ -233,15 +238,18 @@ def estimate(problem: Problem, *, topography: bool | None = None, transform: flo
         arrays += working_bytes(problem.grid, max(depths), 2 if problem.tangential.has_shear else 1)
     if transform is None:
         transform = transform_seconds(problem)
-    share = 1.0 if problem.grid.periodic else ((window_cells(problem) or n) / n) ** 2
+    share = 1.0 if problem.grid.periodic or problem.grid.dimension == 1 else ((window_cells(problem) or n) / n) ** 2
     seconds = run_seconds(steps, problem.tangential.mode, transform, problem.grid.periodic, share)
     return Estimate(int(result), int(3 * per_record + solver + BASE_MEMORY), int(records), int(state), seconds,
                     int(arrays))
 
 
-def kernel_bytes(m: int) -> int:
+def kernel_bytes(m: int, rows: int | None = None) -> int:
     """What one influence kernel of an m x m grid (or support window) holds [bytes]: its centred (2m)^2
-    real-space copy, its (2m)(m + 1) complex spectrum and its preconditioner's m (m/2 + 1) symbol."""
+    real-space copy, its (2m)(m + 1) complex spectrum and its preconditioner's m (m/2 + 1) symbol; of a
+    line grid (``rows = 1``): its 2m offsets, its (m + 1) spectrum, its (m/2 + 1) symbol."""
+    if rows == 1:
+        return 2 * m * 8 + (m + 1) * 16 + (m // 2 + 1) * 8
     return 4 * m * m * 8 + 2 * m * (m + 1) * 16 + m * (m // 2 + 1) * 8
 
 
@@ -309,13 +317,13 @@ def check_resources(problem: Problem, out: str | Path, *, force: bool = False, c
                 f"the run may need about {format_size(est.device_bytes)} of GPU memory, {format_size(device_free)} "
                 "is free on the device: use a smaller grid.n, free the device, or solver.device = 'cpu'")))
     if est.seconds > MAX_RUN_SECONDS:
-        problems.append(("time.t_end", f"{problem.time.n_steps} steps on {problem.grid.n}^2 cells would take about "
+        problems.append(("time.t_end", f"{problem.time.n_steps} steps on {_cells_text(problem.grid)} would take about "
                          f"{_duration(est.seconds)}: check time.t_end and time.dt (and grid.n)"))
     # a GPU run's memory and time are not estimated: the CPU run's, which hold its fields in host memory
     # and take 5-11 times as long at 1024^2 and above (docs/gpu.md), refuse nothing; the disk is the same
     cpu_only = {"grid.n", "time.t_end"} if problem.solver.device == "gpu" else set()
     if est.seconds > MAX_FORCED_RUN_SECONDS and problem.solver.device != "gpu":
-        raise ParameterError("time.t_end", f"{problem.time.n_steps} steps on {problem.grid.n}^2 cells would take about "
+        raise ParameterError("time.t_end", f"{problem.time.n_steps} steps on {_cells_text(problem.grid)} would take about "
                              f"{_duration(est.seconds)}, more than a year, which not even --force runs: check "
                              "time.t_end and time.dt (and grid.n)")
     for key, message in problems + device_problems:
@@ -326,6 +334,11 @@ def check_resources(problem: Problem, out: str | Path, *, force: bool = False, c
         else:
             warn_caller(f"{key}: {message}")
     return est
+
+
+def _cells_text(grid) -> str:
+    """``256^2 cells``, or ``4096 cells of a line contact``."""
+    return f"{grid.n}^2 cells" if grid.dimension == 2 else f"{grid.n} cells of a line contact"
 
 
 def _duration(seconds: float) -> str:
@@ -344,7 +357,7 @@ def _records_of(problem: Problem, est: Estimate) -> str:
 def describe(problem: Problem, est: Estimate) -> str:
     """One paragraph for ``viscontact run --dry-run`` (its memory and run time those of a CPU run)."""
     g, t = problem.grid, problem.time
-    return (f"{problem.title or 'case'}: {g.n} x {g.n} cells of {g.spacing * 1e6:.3g} um, {t.n_steps} steps of "
+    return (f"{problem.title or 'case'}: {g.n} x {g.rows} cells of {g.spacing * 1e6:.3g} um, {t.n_steps} steps of "
             f"{t.dt:.4g} s ({problem.tangential.mode}, {problem.normal.control} control, scheme {t.scheme}); "
             f"result about {format_size(est.result_bytes)} ({_records_of(problem, est)}), "
             f"peak memory about {format_size(est.peak_memory_bytes)}, run time about {_duration(est.seconds)}"

@@ -84,7 +84,25 @@ def summary(ds: Any) -> dict[str, Any]:
     names = set(out["values"]) | {name for row in out["rows"] for name in row}
     out["units"] = {name: _unit(ds, name) for name in sorted(names) if _unit(ds, name) is not None}
     out["scales"] = {name: _plain(float(attrs.get(name, math.nan))) for name in ("a0", "p0")}
+    if _line(ds):
+        out["labels"] = LINE_LABELS
     return out
+
+
+#: the labels of a line contact's (``grid.dimension = 1``) numbers where they differ from :data:`LABELS`
+LINE_LABELS = {"contact_radius": "contact half-width A/2", "load": "normal load W per unit length"}
+
+
+def _line(ds: Any) -> bool:
+    """Whether ``ds`` is a line contact's result (plane strain: forces per unit length)."""
+    return int(ds.attrs.get("grid_dimension", 2)) == 1
+
+
+def _contact_radius(ds: Any, area: Any) -> Any:
+    """sqrt(A/pi) [m] of the contact area A [m^2], or a line contact's half-width A/2 [m] (A per unit
+    length [m])."""
+    area = np.maximum(area, 0.0)
+    return area / 2.0 if _line(ds) else np.sqrt(area / math.pi)
 
 
 def summary_of_file(path: str | Path) -> dict[str, Any]:
@@ -134,7 +152,7 @@ def _run_values(ds: Any) -> dict[str, Any]:
     values: dict[str, Any] = {"t_end": float(t[-1])}
     for name in ("load", "delta_z"):
         values[name] = _last(ds, name)
-    values["contact_radius"] = math.sqrt(max(_last(ds, "contact_area"), 0.0) / math.pi)
+    values["contact_radius"] = float(_contact_radius(ds, _last(ds, "contact_area")))
     if "pressure" in ds.variables:
         values["peak_pressure"] = float(np.max(ds["pressure"][-1]))
     if _defined(ds, "mu_app"):
@@ -170,7 +188,7 @@ def _rows(ds: Any, names: tuple[str, ...]) -> list[dict[str, Any]]:
     columns, _ = table(ds)
     rows = len(columns["mu_app"])
     if "contact_area" in columns:
-        columns["contact_radius"] = np.sqrt(np.maximum(columns["contact_area"], 0.0) / math.pi)
+        columns["contact_radius"] = _contact_radius(ds, columns["contact_area"])
     if "speed" in names and "speed" not in columns:  # one steady state (along t): its speed, its peak
         columns["speed"] = np.full(rows, float(ds.attrs.get("sliding_speed", math.nan)))
         if "pressure" in ds.variables:
@@ -190,11 +208,11 @@ def _plain(value: Any) -> Any:
 
 
 def _unit(ds: Any, name: str) -> str | None:
-    if name in UNITS:
-        return UNITS[name]
+    """The unit of ``name``: the result variable's own (a line contact's forces are per unit length,
+    N/m), else :data:`UNITS`'."""
     if name in ds.variables and ds[name].attrs.get("units"):
         return str(ds[name].attrs["units"])
-    return None
+    return UNITS.get(name)
 
 
 def format_summary(s: dict[str, Any]) -> str:
@@ -206,9 +224,10 @@ def format_summary(s: dict[str, Any]) -> str:
     if s["kind"] == "run":
         values = dict(s["values"])
         pull_off = {k: values.pop(k) for k in ("pull_off_force", "t_pull_off") if k in values}
-        width = max((len(LABELS.get(k, k)) for k in values), default=0)
+        labels = {**LABELS, **s.get("labels", {})}
+        width = max((len(labels.get(k, k)) for k in values), default=0)
         for name, value in values.items():
-            lines.append(f"  {LABELS.get(name, name):<{width}}  {_quantity(name, value, s['units'], scales)}")
+            lines.append(f"  {labels.get(name, name):<{width}}  {_quantity(name, value, s['units'], scales)}")
         if pull_off:  # an adhesive run: its own line, last
             force, t = pull_off["pull_off_force"], pull_off["t_pull_off"]
             lines.append("pull-off: none (no tensile load in the run)" if force is None else

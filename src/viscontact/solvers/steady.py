@@ -50,7 +50,6 @@ from viscontact.bodies.compliance import Compliance
 from viscontact.errors import ParameterError
 from viscontact.numerics.active_set import solve_contact_active_set
 from viscontact.numerics.convolution import Convolver, FourierPreconditioner
-from viscontact.numerics.grid import Grid
 from viscontact.problem.problem import PHASE_GROSS_SLIDING, Problem
 from viscontact.problem.records import StepRecord
 from viscontact.solvers.measure import measure
@@ -96,7 +95,7 @@ def _symmetric_guess(conv: Convolver, problem: Problem, value: float, coupled: b
     spec = conv.spectra["zz"].real.astype(complex)
     if coupled:
         spec = spec + mu * conv.spectra["zx"].real
-    sym = Convolver(conv.n, {"s": spec}, conv.workers, xp=conv.xp, fft=conv.fft)
+    sym = Convolver(conv.n, {"s": spec}, conv.workers, xp=conv.xp, fft=conv.fft, rows=conv.rows)
     grid = problem.grid
     gap = conv.xp.asarray(problem.gap)
     b = -gap if problem.normal.control == "load" else value - gap
@@ -115,9 +114,7 @@ def coarse_problem(problem: Problem) -> Problem:
     """The problem on the grid with half the cells per side (same domain, n even): the gap averaged
     over each 2 x 2 block of cells (its value at the coarse cell centre to O(dx^2))."""
     grid = problem.grid
-    coarse = Grid(grid.n // 2, grid.half_width, grid.periodic)
-    gap = problem.gap.reshape(coarse.n, 2, coarse.n, 2).mean(axis=(1, 3))
-    return replace(problem, grid=coarse, gap=gap, radius=None)
+    return replace(problem, grid=grid.coarsened(), gap=grid.block_mean(problem.gap), radius=None)
 
 
 def coarse_start(problem: Problem, speed: float) -> np.ndarray:
@@ -129,7 +126,7 @@ def coarse_start(problem: Problem, speed: float) -> np.ndarray:
     rounds instead of the ~10 it needs from the symmetric guess; a coarse solve costs a quarter of
     a fine one per iteration (kernel build included)."""
     coarse = solve_steady(coarse_problem(problem), speed)
-    return np.repeat(np.repeat(coarse.pressure, 2, axis=0), 2, axis=1)
+    return problem.grid.spread_blocks(coarse.pressure)
 
 
 #: the case keys a steady state never reads -> why (:func:`ignored_keys`: with those it ignores only

@@ -145,15 +145,15 @@ def init(problem: Problem, compliance: Compliance | None = None) -> State:
     """State before the first step (t = 0 is solved by the first call of :func:`step`)."""
     validate(problem)
     compliance = compliance or compliance_of(problem)
-    n, xp = problem.grid.n, compliance.xp
+    shape, xp = problem.grid.shape, compliance.xp
     phase = first_phase(problem.tangential)
-    return State(step=-1, t=-problem.time.dt, phase=phase, pressure=xp.zeros((n, n)),
-                 shear_x=xp.zeros((n, n)), histories=compliance.initial_histories(),
-                 pressure_previous=xp.zeros((n, n)), shear_previous=xp.zeros((n, n)),
+    return State(step=-1, t=-problem.time.dt, phase=phase, pressure=xp.zeros(shape),
+                 shear_x=xp.zeros(shape), histories=compliance.initial_histories(),
+                 pressure_previous=xp.zeros(shape), shear_previous=xp.zeros(shape),
                  t_gross_sliding=0.0 if phase == PHASE_GROSS_SLIDING else None,
                  response=compliance.initial_response(),
-                 slip_x=xp.zeros((n, n)) if problem.tangential.incremental_slip else None,
-                 displacement_x=xp.zeros((n, n)) if problem.tangential.rolls and
+                 slip_x=xp.zeros(shape) if problem.tangential.incremental_slip else None,
+                 displacement_x=xp.zeros(shape) if problem.tangential.rolls and
                  problem.tangential.effective_friction > 0 else None)
 
 

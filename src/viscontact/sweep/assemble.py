@@ -92,7 +92,7 @@ def _interpolated(t: np.ndarray, tr: np.ndarray, tol: float) -> bool:
 
 
 def assemble(the_plan: Plan, results: Mapping[int, dict[str, Any]], transient: bool) -> xr.Dataset:
-    from viscontact.io.results import VARIABLES, global_attrs
+    from viscontact.io.results import LINE_UNITS, VARIABLES, global_attrs
 
     spec = the_plan.spec
     dims, shape = spec.dims, tuple(len(v) for v in spec.parameters.values())
@@ -133,12 +133,18 @@ def assemble(the_plan: Plan, results: Mapping[int, dict[str, Any]], transient: b
         if isinstance(extra, dict) and extra.get("unit"):
             attrs["units"] = extra["unit"]
         coords[dim] = (dim, _coordinate(spec.parameters[key]), attrs)
+    base_attrs = global_attrs(the_plan.base.to_problem(), the_plan.base.text)
+    line = base_attrs.get("grid_dimension") == 1  # a line contact: forces per unit length (N/m), widths (m)
+
+    def units(name: str) -> str:
+        return LINE_UNITS.get(_SUMMARY_UNITS[name], _SUMMARY_UNITS[name]) if line else _SUMMARY_UNITS[name]
+
     variables: dict[str, Any] = {}
     for n in names:
         long_name = VARIABLES.get(n, ("", n))[1] if n in VARIABLES else {
             "t_gross_sliding": "time gross sliding began (0 when sliding from t = 0, NaN when never)",
             "run_time": "wall time of the run"}[n]
-        variables[n] = (dims, arrays[n], {"units": _SUMMARY_UNITS[n], "long_name": f"{long_name}, final state"
+        variables[n] = (dims, arrays[n], {"units": units(n), "long_name": f"{long_name}, final state"
                                           if n not in ("t_gross_sliding", "run_time") else long_name})
     variables["error"] = (dims, error.astype(str), {"long_name": "error of a failed run ('' when it succeeded)"})
     variables["warnings"] = (dims, notes.astype(str), {"long_name": "warnings of the run, one per line"})
@@ -154,14 +160,15 @@ def assemble(the_plan: Plan, results: Mapping[int, dict[str, Any]], transient: b
         for n, data in series.items():
             base = n[:-2]
             long_name = VARIABLES[base][1] if base in VARIABLES else base
-            variables[n] = (dims + ("t",), data, {"units": _SUMMARY_UNITS[base], "long_name": long_name})
+            variables[n] = (dims + ("t",), data, {"units": units(base), "long_name": long_name})
     import xarray as xr
 
     ds = xr.Dataset(variables, coords=coords)
-    base_attrs = global_attrs(the_plan.base.to_problem(), the_plan.base.text)
     for name in ("case", "a0", "p0", "retardation_time", "tangential_mode", "normal_control", "version",
                  "Conventions", "source", "references", "history"):
         ds.attrs[name] = base_attrs[name]
+    if line:
+        ds.attrs["grid_dimension"] = 1
     ds.attrs.update({"kind": "sweep", "solver": spec.solver, "title": spec.title or the_plan.base.title,
                      "swept_keys": json.dumps(list(spec.keys)), "fixed_overrides": json.dumps(the_plan.fixed),
                      "base": str(the_plan.base_path), "sweep": spec.text})
