@@ -4,6 +4,8 @@ the surface strain of the half-plane under it, du_x/dx = -(2 / (pi E*)) PV int q
 (Johnson, Contact Mechanics, Eq. 2.25b), is the creepage at every point of the stick zone (the stick
 condition of steady rolling, du_x/dx = xi) and differs from it on the slip zone. The line-contact
 transient and steady solvers are checked against it where the plane-strain grid exists."""
+from itertools import pairwise
+
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -21,7 +23,7 @@ def _strain(ref, force: float, x: float) -> float:
     c = ref.stick_half_width(force)
     breaks = sorted({-a, a - 2 * c, x, a})
     smooth = sum(quad(lambda s: (float(ref.shear_traction(s, force)) - qx) / (x - s), lo, hi, limit=200,
-                      epsabs=1e-12 * ref.peak_pressure)[0] for lo, hi in zip(breaks[:-1], breaks[1:]) if hi > lo)
+                      epsabs=1e-12 * ref.peak_pressure)[0] for lo, hi in pairwise(breaks) if hi > lo)
     return -2.0 / (np.pi * ref.contact_modulus) * (smooth + qx * np.log((x + a) / (a - x)))
 
 
