@@ -30,7 +30,7 @@ from viscontact.numerics.grid import Grid
 from viscontact.physics.kernels import influence_coefficients
 from viscontact.io.case import load_case
 from viscontact.io.checkpoint import load_checkpoint, save_checkpoint
-from viscontact.problem.problem import LayerSettings, SolverSettings
+from viscontact.problem.problem import LayerSettings, SolverSettings, TangentialLoading, TimeStepping
 from viscontact.problem.shapes import Cylinder
 from viscontact.io.shipped import shipped_case
 from viscontact.bodies.compliance import compliance_of
@@ -124,6 +124,8 @@ def _assert_same_records(ours: list, reference: list, backend, spacing: float) -
             if isinstance(want, np.ndarray):
                 assert isinstance(value, np.ndarray), f.name  # records are on the host
                 _assert_same(value, want, backend, f"{f.name} at step {record.step}")
+            elif isinstance(want, float) and want != want:  # NaN (rolling's creepage at t = 0 under a held force)
+                assert value != value, f"{f.name} at step {record.step}"
             elif isinstance(want, float) and not _exact(backend):
                 assert abs(value - want) <= ROUND_OFF_AGREEMENT * scales[f.name], f"{f.name} at step {record.step}"
             elif f.name != "iterations" or _exact(backend):
@@ -335,6 +337,12 @@ def _transient(mode: str):
             {"grid.n": 32, "tangential.displacement_rate": 0.004, "time.t_end": 10 * 1e-3 / 32 / 0.02,
              "tangential.slip": "total"})
         return case.to_problem()
+    if mode.startswith("rolling"):  # rolling with the coupling: u_x convected in the state; a held force's root find
+        held = {"creepage": -3e-3} if mode == "rolling" else {"tangential_force": 0.02}
+        base = sphere_problem(material, 32, 2.5 * SEED_A0, t_end=8 * 2.5 * SEED_A0 / 16 / 0.05, dt=1.0)
+        tangential = TangentialLoading("rolling", 0.5, rolling_speed=0.05, **held)
+        return dataclasses.replace(base, tangential=tangential,
+                                   time=TimeStepping(base.time.t_end, 2.5 * SEED_A0 / 16 / 0.05, "linear"))
     creep = _transient("creep")
     if mode == "layer":
         return dataclasses.replace(creep, layer=LayerSettings(0.3e-3))
@@ -348,8 +356,9 @@ def _transient(mode: str):
 @pytest.mark.parametrize("mode", ["creep", "displacement", "frictionless_sliding", "gross_sliding", "strong_coupling",
                                   "partial_slip", "partial_slip_incremental", "rough_periodic",
                                   "rough_periodic_incremental", "layer", "layer_on_elastic", "bulk_modulus",
-                                  "sub_cell_sphere", "sub_cell_surface", "sub_cell_periodic", "line_creep",
-                                  "line_gross_sliding", "line_partial_slip_incremental"])
+                                  "sub_cell_sphere", "sub_cell_surface", "sub_cell_periodic", "rolling",
+                                  "rolling_force", "line_creep", "line_gross_sliding",
+                                  "line_partial_slip_incremental"])
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_the_transient_on_the_device_equals_numpy(backend, mode, monkeypatch):
     problem = _solved_to_round_off(_transient(mode), backend)
@@ -504,6 +513,31 @@ def _steady(body: str):
     if body == "bulk_modulus":
         return dataclasses.replace(problem, material=seed_material(poisson_ratio=0.25), bulk_modulus=5e6)
     return problem
+
+
+@pytest.mark.parametrize("held", [{"creepage": -3e-3}, {"tangential_force": 0.02}], ids=["creepage", "force"])
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_the_steady_rolling_state_on_the_device_equals_numpy(backend, held, monkeypatch):
+    """Coupled (nu = 0.3): the steady normal and tangential problems alternate on the device."""
+    from viscontact.bodies import compliance
+    from viscontact.solvers.steady_rolling import solve_steady_rolling
+
+    base = sphere_problem(seed_material(), 32, 2.5 * SEED_A0, t_end=SEED_TAU, dt=SEED_TAU / 20)
+    problem = _solved_to_round_off(dataclasses.replace(base, tangential=TangentialLoading(
+        "rolling", 0.5, rolling_speed=0.8 * SEED_A0 / SEED_TAU, **held)), backend)
+    reference = solve_steady_rolling(problem)
+    monkeypatch.setattr(compliance, "array_backend", lambda device: backend)  # solver.device -> the device
+    ours = solve_steady_rolling(problem)
+    for f in dataclasses.fields(ours):
+        value, want = getattr(ours, f.name), getattr(reference, f.name)
+        if isinstance(want, np.ndarray):
+            assert isinstance(value, np.ndarray), f.name
+            _assert_same(value, want, backend, f.name)
+        elif isinstance(want, float) and not _exact(backend):
+            scale = max(abs(want), problem.grid.spacing if f.name in LENGTHS else 0.0)
+            assert value == want or abs(value - want) <= ROUND_OFF_AGREEMENT * scale, f.name
+        elif f.name != "iterations" or _exact(backend):
+            assert value == want, f.name
 
 
 @pytest.mark.parametrize("body", ["half_space", "coarse_start", "gross_sliding", "rough_periodic", "layer",

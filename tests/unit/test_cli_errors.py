@@ -31,7 +31,7 @@ BAD = {
     "out_of_range": ({"poisson_ratio = 0.3": "poisson_ratio = 0.7"}, "material.poisson_ratio"),
     "not_toml": ({"[time]": "[time"}, "case file"),
     "value_and_history": ({"value = 0.15 ": "value = 0.15\nhistory = [[0.0, 0.15]] "}, "normal.value"),
-    "bad_mode": ({'mode = "none"': 'mode = "rolling"'}, "tangential.mode"),
+    "bad_mode": ({'mode = "none"': 'mode = "spinning"'}, "tangential.mode"),
     # issue 12: bulk modulus, [layer], subsurface output
     "both_poisson_and_bulk": ({"poisson_ratio = 0.3": "poisson_ratio = 0.3\nbulk_modulus = 4e6"},
                               "material.poisson_ratio"),

@@ -11,7 +11,13 @@ from test_results import N, fake_records, make_problem  # tests/unit is on sys.p
 from viscontact.plotting import phase_name, profile
 from viscontact.plotting.result import profiles_figure
 from viscontact.plotting.seed import frictional_figure
-from viscontact.problem.problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_NAMES, PHASE_PARTIAL_SLIP
+from viscontact.problem.problem import (
+    PHASE_GROSS_SLIDING,
+    PHASE_INDENTATION,
+    PHASE_NAMES,
+    PHASE_PARTIAL_SLIP,
+    PHASE_ROLLING,
+)
 from viscontact.io.results import to_dataset
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -58,9 +64,9 @@ def test_result_figure_draws_that_profile(result):
 
 
 def test_phase_names_come_from_the_problem_constants():
-    assert [phase_name(c) for c in (PHASE_INDENTATION, PHASE_PARTIAL_SLIP, PHASE_GROSS_SLIDING)] == \
-        ["indentation", "partial slip", "gross sliding"]
-    assert set(PHASE_NAMES) == {PHASE_INDENTATION, PHASE_PARTIAL_SLIP, PHASE_GROSS_SLIDING}
+    assert [phase_name(c) for c in (PHASE_INDENTATION, PHASE_PARTIAL_SLIP, PHASE_GROSS_SLIDING, PHASE_ROLLING)] == \
+        ["indentation", "partial slip", "gross sliding", "rolling"]
+    assert set(PHASE_NAMES) == {PHASE_INDENTATION, PHASE_PARTIAL_SLIP, PHASE_GROSS_SLIDING, PHASE_ROLLING}
 
 
 def test_frictional_figure_labels_each_curve_with_its_phase(result):

@@ -588,7 +588,7 @@ def compliance_of(problem, components: Sequence[str] | None = None,
     """The compliance of ``problem``'s body (:meth:`~viscontact.bodies.base.Body.compliance`).
 
     ``components``: the kernels to build; by default what the transient needs: ``zz``, ``xx`` for
-    partial slip, and the coupling ``xz``, ``zx`` when sliding with friction, nu < 0.5 and
+    partial slip and rolling, and the coupling ``xz``, ``zx`` when sliding with friction, nu < 0.5 and
     ``solver.coupling``. The steady solver asks for ``("zz",)`` (it builds its own kernels).
 
     ``backend``: where the fields live (:mod:`viscontact.numerics.arrays`); None: that of ``solver.device``.
@@ -597,8 +597,8 @@ def compliance_of(problem, components: Sequence[str] | None = None,
     if components is None:
         nu = problem.material.poisson_ratio
         mode = problem.tangential.mode
-        components = ["zz"] + (["xx"] if mode == "partial_slip" else [])
-        if nu < 0.5 and problem.solver.coupling and mode in ("partial_slip", "gross_sliding"):
+        components = ["zz"] + (["xx"] if mode in ("partial_slip", "rolling") else [])
+        if nu < 0.5 and problem.solver.coupling and mode in ("partial_slip", "gross_sliding", "rolling"):
             components += ["xz", "zx"]
     solver = problem.solver
     return problem.body.compliance(problem.grid, components, problem.time.scheme, problem.time.dt,

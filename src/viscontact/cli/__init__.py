@@ -179,9 +179,11 @@ def _cmd_steady(args: argparse.Namespace) -> int:
 
     started = time.perf_counter()
     speeds = parse_positive(args.speeds, "--speeds", "m/s", "0.01,0.1,1") if args.speeds is not None else None
+    creepages = (parse_positive(args.creepages, "--creepages", "(creepage, -)", "-0.01,-0.001,0.001", signed=True)
+                 if args.creepages is not None else None)
     with _writing(args.out):
         checked = _prepare(args)
-        _finish(api.run_steady(checked, speeds), args, started)
+        _finish(api.run_steady(checked, speeds, creepages), args, started)
     return 0
 
 

@@ -47,15 +47,17 @@ def check_result_name(out: str) -> None:
         raise ParameterError("--out", f"must be a netCDF-4 result file named *.nc, got {out!r}")
 
 
-def parse_positive(text: str, option: str, unit: str, example: str, zero: bool = False) -> list[float]:
-    """Comma-separated finite numbers > 0 (``zero``: >= 0), each once (``--speeds``, ``--times``)."""
+def parse_positive(text: str, option: str, unit: str, example: str, zero: bool = False,
+                   signed: bool = False) -> list[float]:
+    """Comma-separated finite numbers > 0 (``zero``: >= 0; ``signed``: of any sign), each once
+    (``--speeds``, ``--times``, ``--creepages``)."""
     from viscontact.io.values import positive_values
 
     try:
         values = [float(s) for s in text.split(",") if s.strip()]
     except ValueError:
         raise ParameterError(option, f"expected comma-separated numbers in {unit} (e.g. {example}), got {text!r}") from None
-    return positive_values(values, option, unit, repr(text), zero=zero)
+    return positive_values(values, option, unit, repr(text), zero=zero, signed=signed)
 
 
 def command_line(argv: Sequence[str]) -> str:

@@ -107,6 +107,8 @@ def _add_steady(sub: Any) -> None:
     p = sub.add_parser("steady", help="steady sliding state(s) (direct solver)")
     _case_arguments(p)
     p.add_argument("--speeds", metavar="V1,V2,...", help="speed sweep [m/s], comma-separated")
+    p.add_argument("--creepages", metavar="XI1,XI2,...", help="rolling: traction-creepage curve at the case's "
+                   "rolling_speed, creepages [-] comma-separated (e.g. -0.01,-0.001,0,0.001)")
     p.add_argument("--quiet", action="store_true", help="no summary, no warnings")
 
 

@@ -70,7 +70,7 @@ MIN_GRID_N, MAX_GRID_N = 8, 16384
 #: smallest and largest grid.half_width [m] accepted (1 nm to 1 km): beyond them the estimates drawn
 #: from the grid (cells per contact radius, steps per cell of sliding) overflow
 MIN_HALF_WIDTH, MAX_HALF_WIDTH = 1e-9, 1e3
-_SLIDING_MODES = ("frictionless_sliding", "gross_sliding", "partial_slip")
+_SLIDING_MODES = ("frictionless_sliding", "gross_sliding", "partial_slip", "rolling")
 #: the keys of [normal] that give its values, one at a time
 _NORMAL_FORMS = ("value", "history", "oscillation")
 
@@ -522,10 +522,11 @@ def piecewise_linear(points: list[list[float]], key: str) -> PiecewiseLinear:
 class TangentialSection(_Section):
     """Tangential motion: ``mode`` and the friction coefficient, rates and speed [m/s]."""
 
-    mode: Literal["none", "frictionless_sliding", "gross_sliding", "partial_slip"] = Field(
-        "none", description="indentation only, sliding without friction, Coulomb sliding from t = 0, or partial "
+    mode: Literal["none", "frictionless_sliding", "gross_sliding", "partial_slip", "rolling"] = Field(
+        "none", description="indentation only, sliding without friction, Coulomb sliding from t = 0, partial "
         "slip at displacement_rate until the stick zone vanishes, then sliding (or following "
-        "displacement_history, which does not slide)")
+        "displacement_history, which does not slide), or rolling in +x at rolling_speed with a held creepage "
+        "or a held tangential_force")
     friction_coefficient: float = _num(0.0, unit="", ge=0, description="Coulomb coefficient mu_f; > 0 for "
                                        "partial_slip")
     displacement_rate: float = _num(0.0, unit="m/s", ge=0, description="rate of the tangential displacement "
@@ -539,6 +540,14 @@ class TangentialSection(_Section):
         "gross slip) stops the run; sliding_speed is not needed and time.dt must be given")
     sliding_speed: float = _num(0.0, unit="m/s", ge=0, description="speed v once sliding; > 0 in every sliding mode "
                                 "(but partial slip under displacement_history)")
+    rolling_speed: float = _num(0.0, unit="m/s", ge=0, description="rolling: speed V of the indenter's centre in "
+                                "+x (> 0; the frame moves one cell per step: dt = (2 half_width / n) / V)")
+    creepage: float | None = _num(None, unit="", description="rolling: the held creepage (V_c - V) / V of the "
+                                  "indenter's circumferential speed V_c (< 0: braking, the traction on the body "
+                                  "in +x, friction_force > 0); give this or tangential_force")
+    tangential_force: float | None = _num(None, unit="N", description="rolling: the held traction force "
+                                          "friction_force = sum q_x dA (|F| < mu_f W), the creepage found at each "
+                                          "step; give this or creepage")
     steps_per_cell: int = _int(1, ge=1, description="time steps per grid cell of sliding (the default dt is "
                                "one cell of travel divided by this)")
     slip: Literal["total", "incremental"] = Field(
@@ -559,8 +568,12 @@ class TangentialSection(_Section):
                    piecewise_linear(self.displacement_history, "tangential.displacement_history"))
         # a displacement history needs the incremental slip: its default where slip is not given
         slip = "incremental" if history is not None and "slip" not in self.model_fields_set else self.slip
+        if self.mode == "rolling" and "sliding_speed" in self.model_fields_set:
+            raise ParameterError("tangential.sliding_speed", "give tangential.rolling_speed (the speed of the "
+                                 "indenter's centre) with mode = 'rolling', not sliding_speed")
         return TangentialLoading(self.mode, self.friction_coefficient, self.displacement_rate,
-                                 self.sliding_speed, self.steps_per_cell, slip, history)
+                                 self.sliding_speed, self.steps_per_cell, slip, history, self.rolling_speed,
+                                 self.creepage, self.tangential_force)
 
 
 class TimeSection(_Section):
@@ -844,7 +857,8 @@ class Case(_Section):
         if self.time.dt is not None:
             return self.time.dt
         tan = self.tangential
-        return (2.0 * self.grid.half_width / self.grid.n) / tan.sliding_speed / tan.steps_per_cell
+        speed = tan.rolling_speed if tan.mode == "rolling" else tan.sliding_speed
+        return (2.0 * self.grid.half_width / self.grid.n) / speed / tan.steps_per_cell
 
     def input_files(self) -> dict[str, Path]:
         """Every file the case reads besides its own text, by the key naming it (:data:`FILE_KEYS`:

@@ -39,16 +39,20 @@ FORMAT_VERSION = 2
 _ROOT = "state"
 
 
+#: the settings of rolling (:class:`~viscontact.problem.problem.TangentialLoading`), hashed in rolling only
+ROLLING_KEYS = ("rolling_speed", "creepage", "tangential_force")
+
+
 def problem_fingerprint(problem: Problem) -> str:
     """A hash of everything that shapes the result: the solution and the output settings (which
     steps and fields the records hold). A setting added since checkpoints were first written enters
     it only away from its default (the body's, ``tangential.slip`` in partial slip,
-    ``tangential.displacement_history``, ``grid.dimension`` on a line), so that the checkpoints of the
-    problems it does not change still resume. ``solver.device`` does not enter it (it is hashed as ``"cpu"``, as before the GPU):
+    ``tangential.displacement_history``, ``grid.dimension`` on a line, rolling's keys), so that the
+    checkpoints of the problems it does not change still resume. ``solver.device`` does not enter it (it is hashed as ``"cpu"``, as before the GPU):
     the two devices solve the same problem, so a run checkpointed on one resumes on the other
     (:func:`state_from_arrays`)."""
     h = hashlib.sha256()
-    tangential = _repr_without(problem.tangential, "slip", "displacement_history")
+    tangential = _repr_without(problem.tangential, "slip", "displacement_history", *ROLLING_KEYS)
     solver = dataclasses.replace(problem.solver, device="cpu") if problem.solver.device != "cpu" else problem.solver
     grid = _repr_without(problem.grid, "dimension") if problem.grid.dimension == 2 else problem.grid
     h.update(repr((problem.material, grid, problem.normal, tangential,
@@ -59,6 +63,8 @@ def problem_fingerprint(problem: Problem) -> str:
         h.update(repr({"slip": problem.tangential.slip}).encode())
     if problem.tangential.displacement_history is not None:  # a ramp's fingerprint stays what it was
         h.update(repr({"displacement_history": problem.tangential.displacement_history}).encode())
+    if problem.tangential.rolls:  # the other modes: as they were
+        h.update(repr({key: getattr(problem.tangential, key) for key in ROLLING_KEYS}).encode())
     if problem.adhesion is not None:  # without adhesion, as it was
         h.update(repr({"adhesion": problem.adhesion, "tensile": problem.normal.tensile}).encode())
     return h.hexdigest()

@@ -18,7 +18,13 @@ import numpy as np
 
 from viscontact.errors import check_type
 from viscontact.physics.materials import Material
-from viscontact.problem.problem import PHASE_GROSS_SLIDING, PHASE_INDENTATION, PHASE_PARTIAL_SLIP, Problem
+from viscontact.problem.problem import (
+    PHASE_GROSS_SLIDING,
+    PHASE_INDENTATION,
+    PHASE_PARTIAL_SLIP,
+    PHASE_ROLLING,
+    Problem,
+)
 from viscontact.problem.records import StepRecord
 from viscontact.problem.scales import hertz_scale, retardation_time
 from viscontact.version import package_version
@@ -63,6 +69,8 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "phase": ("1", "phase: 0 indentation, 1 partial slip (until the stick zone of a contact vanishes), "
               "2 gross sliding"),
     "friction_force": ("N", "dry friction force sum q_x dA (positive when resisting the motion)"),
+    "creepage": ("1", "creepage (V_c - V) / V of the rolling indenter (V_c its circumferential speed, V that of "
+                 "its centre): held, or found under a held tangential force (NaN at t = 0 there)"),
     "hysteresis_force": ("N", "hysteresis force F_T = -sum p du_z/dx dA (seed Eq. 15)"),
     "mu_app": ("1", "apparent friction coefficient F_T / W (seed Eq. 15): the hysteresis friction; with "
                "friction and nu < 0.5 it also holds the non-dissipative normal-tangential coupling term"),
@@ -141,6 +149,14 @@ _UNDEFINED = {
     "gross_sliding": (("stick", "stick_ratio"),
                       "zero: no stick zone in gross sliding from t = 0 (tangential.mode = 'gross_sliding')"),
     "partial_slip": ((), ""),
+    "rolling": ((), ""),
+}
+#: attributes of a variable that differ in one tangential mode: rolling's only phase code
+_MODE_ATTRIBUTES: dict[str, dict[str, dict[str, Any]]] = {
+    "rolling": {"phase": {"long_name": "phase: 3 rolling (the only phase of a rolling run)",
+                          "flag_values": [PHASE_ROLLING], "flag_meanings": "rolling"},
+                "sliding_distance": {"long_name": "distance rolled (the indenter's centre) since t = 0"},
+                "delta_x": {"long_name": "position of the rolling indenter's centre (distance rolled)"}},
 }
 #: compression of the 3-D fields (chunks of one time step): byte shuffle, then zlib at level 1. 256^2
 #: creep pressures on one core of the 2-core VM: a sparse one 2.9 ms and 4.7x smaller against 6.0 ms
@@ -167,6 +183,7 @@ def global_attrs(problem: Problem, case_text: str = "") -> dict[str, Any]:
         "sliding_speed": tan.sliding_speed,
         "displacement_rate": tan.displacement_rate,
         **_displacement_history_attrs(tan.displacement_history),
+        **_rolling_attrs(tan),
         "shear_modulus_instantaneous": mat.shear_modulus_instantaneous,
         "shear_modulus_long_term": mat.shear_modulus_long_term,
         "poisson_ratio": mat.poisson_ratio,
@@ -204,6 +221,16 @@ def _displacement_history_attrs(history) -> dict[str, Any]:
         return {}
     return {"displacement_history_times": np.asarray(history.times, dtype=float),
             "displacement_history_values": np.asarray(history.values, dtype=float)}
+
+
+def _rolling_attrs(tangential) -> dict[str, Any]:
+    """Rolling's settings, where it rolls: ``rolling_speed`` [m/s] and the held ``creepage`` [-] or
+    ``tangential_force`` [N]; none in the other modes."""
+    if not tangential.rolls:
+        return {}
+    held = ({"creepage": float(tangential.creepage)} if tangential.creepage is not None else
+            {"tangential_force": float(tangential.tangential_force)})
+    return {"rolling_speed": float(tangential.rolling_speed), **held}
 
 
 def _prony_attrs(material) -> dict[str, Any]:
@@ -283,6 +310,8 @@ def _variable(name: str, dims: tuple[str, ...], data: np.ndarray, mode: str) -> 
         values, meanings = _FLAGS[name]
         stored = np.int8 if data.dtype == bool else data.dtype  # a boolean is stored as int8 in the file
         attrs.update(flag_values=np.array(values, dtype=stored), flag_meanings=meanings)
+    for key, value in _MODE_ATTRIBUTES.get(mode, {}).get(name, {}).items():
+        attrs[key] = np.array(value, dtype=attrs["flag_values"].dtype) if key == "flag_values" else value
     return dims, data, attrs
 
 
@@ -359,7 +388,7 @@ def result_layout(records: Sequence[StepRecord], problem: Problem, *, case_text:
     for name in StepRecord.FIELDS:
         if name in problem.output.fields:
             variables[name] = _variable(name, ("t", "y", "x"), _field_stack(records, name, shape), mode)
-    for name in StepRecord.scalars(problem.adhesion is not None):
+    for name in StepRecord.scalars(problem.adhesion is not None, problem.tangential.rolls):
         dtype = int if name in ("phase", "iterations", "coupling_iterations", "contact_patches") else float
         data = np.array([getattr(r, name) for r in records], dtype=dtype)
         variables[name] = _variable(name, ("t",), data, mode)
@@ -457,6 +486,40 @@ def sweep_dataset(records: Sequence[StepRecord], speeds: Sequence[float], proble
     ds.attrs.update({"solver": "steady", "complete": 1})
     ds.attrs.update(attrs or {})
     return _add_scales(ds)
+
+
+def creepage_dataset(records: Sequence[StepRecord], creepages: Sequence[float], problem: Problem, *,
+                     case_text: str = "") -> xr.Dataset:
+    """Dataset of steady rolling states along dimension ``creepage`` [-] (the traction-creepage
+    curve at the case's rolling speed): ``friction_force`` [N] (the traction), ``traction_ratio``
+    = friction_force / (mu_f W) [-], ``stick_ratio``, ``hysteresis_force`` (the rolling resistance)
+    and ``mu_app``, ``load``, ``delta_z``, ``contact_area``, and the fields ``pressure``, ``shear_x``
+    and ``stick`` on (``creepage``, ``y``, ``x``)."""
+    import xarray as xr
+
+    records = list(records)
+    mode = problem.tangential.mode
+    along = ("creepage",)
+    variables = {name: _variable(name, along, np.array([getattr(r, name) for r in records], dtype=float), mode)
+                 for name in ("friction_force", "stick_ratio", "hysteresis_force", "mu_app", "load", "delta_z",
+                              "contact_area")}
+    limit = problem.tangential.friction_coefficient * variables["load"][1]
+    variables["traction_ratio"] = (along, np.divide(variables["friction_force"][1], limit, out=np.zeros_like(limit),
+                                                    where=limit > 0),
+                                   {"units": "1", "long_name": "traction / (mu_f W)"})
+    for name in ("pressure", "shear_x", "stick"):
+        variables[name] = _variable(name, ("creepage", "y", "x"), _field_stack(records, name, problem.grid.shape), mode)
+    coords = {"creepage": _coordinate_of_variable("creepage", np.asarray(creepages, dtype=float)), **_coords(problem)}
+    ds = xr.Dataset(variables, coords=coords)
+    ds.attrs.update(global_attrs(problem, case_text))
+    ds.attrs.update({"solver": "steady", "complete": 1})
+    return _add_scales(ds)
+
+
+def _coordinate_of_variable(name: str, data: np.ndarray) -> VariableSpec:
+    """A coordinate along itself with the units and long name of the variable ``name``."""
+    units, long_name = VARIABLES[name]
+    return (name,), data, {"units": units, "long_name": long_name}
 
 
 def material_dataset(material: Material, *, points: int = 200) -> xr.Dataset:

@@ -132,7 +132,7 @@ def record_bytes(problem: Problem) -> int:
 
     rows, n = problem.grid.shape
     return sum(FIELD_BYTES.get(f, 8) for f in problem.output.fields) * rows * n \
-        + 8 * (len(StepRecord.scalars(problem.adhesion is not None)) + 2) + RECORD_OVERHEAD
+        + 8 * (len(StepRecord.scalars(problem.adhesion is not None, problem.tangential.rolls)) + 2) + RECORD_OVERHEAD
 
 
 def stream_bytes(problem: Problem, records: int, *, first: int = 0, finishing: bool = True) -> int:
@@ -147,7 +147,8 @@ def stream_bytes(problem: Problem, records: int, *, first: int = 0, finishing: b
     chunks = -(-(first + records) // SERIES_CHUNK) - (-(-first // SERIES_CHUNK))
     out = problem.output
     subsurface = 6 * len(out.subsurface_depths) * problem.grid.n * 8 * len(out.subsurface_times or (0,))
-    series, fields = len(StepRecord.scalars(problem.adhesion is not None)) + 2, len(problem.output.fields)
+    series = len(StepRecord.scalars(problem.adhesion is not None, problem.tangential.rolls)) + 2
+    fields = len(problem.output.fields)
     return records * record_bytes(problem) \
         + chunks * (series * SERIES_CHUNK * 8 + (series + fields) * INDEX_NODE_BYTES) \
         + (FINISH_BYTES + subsurface if finishing else 0)
@@ -494,7 +495,7 @@ class ResultStream:
                 self._resize(k + 1)
                 self._put("t", k, record.t)
                 self._put("step", k, record.step)
-                for name in StepRecord.scalars(self.problem.adhesion is not None):
+                for name in StepRecord.scalars(self.problem.adhesion is not None, self.problem.tangential.rolls):
                     self._put(name, k, getattr(record, name))
                 for name, step in steps.items():
                     if name in encoded:

@@ -9,11 +9,12 @@ __all__ = ["positive_values"]
 
 
 def positive_values(values: object, key: str, unit: str, given: str | None = None, *,
-                    zero: bool = False) -> list[float]:
+                    zero: bool = False, signed: bool = False) -> list[float]:
     """``values`` (a sequence of numbers) as a list of floats after checking that it is not empty and
     that each is a finite number > 0 (``zero``: >= 0) given once (a coordinate along them, ``speed``
     or a time, would repeat a value): the speeds of a steady speed curve, the times of
-    ``plot --times`` (t = 0 included).
+    ``plot --times`` (t = 0 included); ``signed``: any finite number (the creepages of a
+    traction-creepage curve).
 
     Raises
     ------
@@ -29,7 +30,9 @@ def positive_values(values: object, key: str, unit: str, given: str | None = Non
     values = [float(v) for v in values]
     if not values:
         raise ParameterError(key, f"must list at least one number in {unit}, got {shown}")
-    if any(not (0 <= v if zero else 0 < v) or v == float("inf") for v in values):
+    if signed and any(abs(v) == float("inf") or v != v for v in values):
+        raise ParameterError(key, f"every value must be a finite number {unit}, got {shown}")
+    if not signed and any(not (0 <= v if zero else 0 < v) or v == float("inf") for v in values):
         raise ParameterError(key, f"every value must be a finite number {'>=' if zero else '>'} 0 {unit}, got {shown}")
     twice = sorted({v for v in values if values.count(v) > 1})
     if twice:  # a result along them would have a coordinate with repeated values

@@ -605,6 +605,72 @@ def cattaneo_mindlin(load: float, sphere_radius: float, friction_coefficient: fl
                            float(poisson_ratio))
 
 
+@dataclass(frozen=True)
+class Carter:
+    """Steady rolling with traction of a rigid cylinder on an elastic half-plane (plane strain; Carter
+    1926; Johnson, *Contact Mechanics*, 1985, Sec. 8.2, with a rigid second body): a held load W'
+    [N/m], a traction Q' [N/m] (|Q'| < mu_f W'), Hertz half-width a [m] and peak p0 = 2 W'/(pi a) [Pa].
+
+    Signs of viscontact's rolling (the cylinder rolls in +x; Q' the traction on the body, > 0 when
+    braking): the stick zone of half-width c = a sqrt(1 - |Q'|/(mu_f W')) at the leading edge,
+    [a - 2c, a]; the traction sgn(Q') mu_f p0 [sqrt(1 - x^2/a^2) - (c/a) sqrt(1 - (x - a + c)^2/c^2)]
+    (the second term on the stick zone); the creepage (V_c - V)/V, the surface strain du_x/dx that the
+    stick zone carries,
+
+        xi = -sgn(Q') (2 mu_f p0 / E*) (1 - c/a) = -sgn(Q') (mu_f a / R) (1 - sqrt(1 - |Q'|/(mu_f W'))),
+
+    from du_x/dx = -(2 / (pi E*)) PV int q(s) / (x - s) ds on the half-plane's surface. Exact without
+    the normal-tangential coupling (nu = 0.5). Attributes: ``half_width`` a [m], ``load`` W' [N/m],
+    ``friction_coefficient`` mu_f [-], ``contact_modulus`` E* [Pa] (2 G / (1 - nu) for a rigid
+    cylinder on the body)."""
+
+    half_width: float
+    load: float
+    friction_coefficient: float
+    contact_modulus: float
+
+    @property
+    def peak_pressure(self) -> float:
+        """p0 = 2 W' / (pi a) [Pa]."""
+        return 2.0 * self.load / (np.pi * self.half_width)
+
+    def stick_half_width(self, force: float) -> float:
+        """c = a sqrt(1 - |Q'|/(mu_f W')) [m] for the traction Q' [N/m]."""
+        return self.half_width * float(np.sqrt(max(1.0 - abs(force) / (self.friction_coefficient * self.load), 0.0)))
+
+    def creepage(self, force: np.ndarray | float) -> np.ndarray:
+        """xi(Q') = -sgn(Q') (2 mu_f p0 / E*) (1 - c/a) [-] (class docstring); beyond |Q'| = mu_f W'
+        the contact slides."""
+        ratio = np.clip(np.abs(np.asarray(force, dtype=float)) / (self.friction_coefficient * self.load), 0.0, 1.0)
+        scale = 2.0 * self.friction_coefficient * self.peak_pressure / self.contact_modulus
+        return -np.sign(force) * scale * (1.0 - np.sqrt(1.0 - ratio))
+
+    def force(self, creepage: np.ndarray | float) -> np.ndarray:
+        """Q'(xi) [N/m]: the inverse of :meth:`creepage`, mu_f W' sgn(-xi) (1 - (1 - |xi|/xi*)^2) up to
+        |xi| = xi* = 2 mu_f p0 / E*, mu_f W' sgn(-xi) beyond (full slip)."""
+        xi = np.asarray(creepage, dtype=float)
+        scale = 2.0 * self.friction_coefficient * self.peak_pressure / self.contact_modulus
+        stick = np.clip(1.0 - np.abs(xi) / scale, 0.0, 1.0)
+        return -np.sign(xi) * self.friction_coefficient * self.load * (1.0 - stick**2)
+
+    def shear_traction(self, x: np.ndarray, force: float) -> np.ndarray:
+        """q(x) [Pa] on the body for the traction Q' [N/m] (class docstring)."""
+        a, c = self.half_width, self.stick_half_width(force)
+        x = np.asarray(x, dtype=float)
+        outer = np.sqrt(np.clip(1.0 - (x / a) ** 2, 0.0, None))
+        inner = (c / a) * np.sqrt(np.clip(1.0 - ((x - a + c) / c) ** 2, 0.0, None)) if c > 0 else 0.0 * x
+        return float(np.sign(force)) * self.friction_coefficient * self.peak_pressure * (outer - inner)
+
+
+def carter(load_per_length: float, radius: float, friction_coefficient: float, shear_modulus: float,
+           poisson_ratio: float) -> Carter:
+    """:class:`Carter`'s rolling of a rigid cylinder of radius R [m] pressed by W' [N/m] on an elastic
+    half-plane (G [Pa], nu; E* = 2 G / (1 - nu)) with Coulomb friction mu_f."""
+    modulus = contact_modulus(shear_modulus, poisson_ratio)
+    return Carter(hertz_line_half_width(load_per_length, radius, modulus), float(load_per_length),
+                  float(friction_coefficient), modulus)
+
+
 def hertz_axis_stresses(depth: np.ndarray | float, contact_radius: float, peak_pressure: float,
                         poisson_ratio: float) -> tuple[np.ndarray, np.ndarray]:
     """(sigma_r, sigma_z) [Pa] on the axis r = 0 below a Hertz pressure p0 sqrt(1 - r^2/a^2) at

@@ -249,7 +249,7 @@ def time_index(ds: xr.Dataset, t: float) -> int:
 
 
 def phase_name(code: int) -> str:
-    """``"indentation"``, ``"partial slip"`` or ``"gross sliding"`` for a ``phase`` code."""
+    """``"indentation"``, ``"partial slip"``, ``"gross sliding"`` or ``"rolling"`` for a ``phase`` code."""
     return PHASE_NAMES[int(code)]
 
 

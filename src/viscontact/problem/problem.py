@@ -22,15 +22,17 @@ if TYPE_CHECKING:
     from viscontact.bodies.base import Body
 
 NormalControl = Literal["load", "displacement"]
-TangentialMode = Literal["none", "frictionless_sliding", "gross_sliding", "partial_slip"]
+TangentialMode = Literal["none", "frictionless_sliding", "gross_sliding", "partial_slip", "rolling"]
+#: every tangential mode (:class:`TangentialLoading`)
+TANGENTIAL_MODES = ("none", "frictionless_sliding", "gross_sliding", "partial_slip", "rolling")
 SlipCondition = Literal["total", "incremental"]
 TimeScheme = Literal["constant", "linear"]
 
 #: phase codes written to ``phase(t)``
-PHASE_INDENTATION, PHASE_PARTIAL_SLIP, PHASE_GROSS_SLIDING = 0, 1, 2
+PHASE_INDENTATION, PHASE_PARTIAL_SLIP, PHASE_GROSS_SLIDING, PHASE_ROLLING = 0, 1, 2, 3
 #: what each phase code means (labels of figures and of the ``phase`` variable)
 PHASE_NAMES = {PHASE_INDENTATION: "indentation", PHASE_PARTIAL_SLIP: "partial slip",
-               PHASE_GROSS_SLIDING: "gross sliding"}
+               PHASE_GROSS_SLIDING: "gross sliding", PHASE_ROLLING: "rolling"}
 
 
 def is_number(value: object) -> bool:
@@ -178,7 +180,9 @@ class TangentialLoading:
         ``gross_sliding`` (q_x = mu_f p from t = 0, seed case 2) or ``partial_slip``
         (delta_x ramped at ``displacement_rate`` until the stick zone of a contact vanishes, then
         sliding; the stuck points move with delta_x since the contact began; or delta_x following
-        ``displacement_history``, which may reverse: fretting, stopped if the stick zone vanishes).
+        ``displacement_history``, which may reverse: fretting, stopped if the stick zone vanishes)
+        or ``rolling`` (the indenter rolls in +x at ``rolling_speed`` with a held ``creepage`` or a
+        held ``tangential_force``: :mod:`viscontact.solvers.rolling`).
     friction_coefficient
         Coulomb coefficient mu_f [-].
     displacement_rate
@@ -192,7 +196,16 @@ class TangentialLoading:
         amplitude beyond gross slip) stops the run (:class:`~viscontact.errors.ParameterError`
         naming the time), and ``sliding_speed`` is not needed (``time.dt`` is free).
     sliding_speed
-        Speed v of the indenter in +x once sliding [m/s].
+        Speed v of the indenter in +x once sliding [m/s]; in rolling, set to ``rolling_speed`` (the
+        frame moves with the indenter's centre).
+    rolling_speed
+        Rolling: speed V of the indenter's centre in +x [m/s] (> 0).
+    creepage
+        Rolling: the held creepage xi = (V_c - V) / V [-] of the indenter's circumferential speed V_c
+        (xi < 0: braking, the traction on the body points in +x); None under a held force.
+    tangential_force
+        Rolling: the held traction force sum q_x dA [N] (the ``friction_force``; |F| < mu_f W), the
+        creepage found at each step; None under a held creepage.
     steps_per_cell
         k >= 1: time steps per grid cell of sliding (v dt = dx / k).
     slip
@@ -212,6 +225,9 @@ class TangentialLoading:
     steps_per_cell: int = 1
     slip: SlipCondition = "total"
     displacement_history: PiecewiseLinear | None = None
+    rolling_speed: float = 0.0
+    creepage: float | None = None
+    tangential_force: float | None = None
 
     def __post_init__(self) -> None:
         """What each mode needs; the one place that decides it (the case layer delegates here).
@@ -225,9 +241,10 @@ class TangentialLoading:
             ever stick); a displacement history outside partial slip, not starting at 0 m, or with
             the total slip.
         """
-        if self.mode not in ("none", "frictionless_sliding", "gross_sliding", "partial_slip"):
-            raise ParameterError("tangential.mode", "must be one of 'none', 'frictionless_sliding', 'gross_sliding', "
-                                 f"'partial_slip', got {self.mode!r}")
+        if self.mode not in TANGENTIAL_MODES:
+            raise ParameterError("tangential.mode", f"must be one of {', '.join(map(repr, TANGENTIAL_MODES))}, "
+                                 f"got {self.mode!r}")
+        self._check_rolling()
         for name, unit in (("friction_coefficient", ""), ("displacement_rate", " m/s"), ("sliding_speed", " m/s")):
             _check_number(f"tangential.{name}", getattr(self, name), unit, strict=False)
         _check_integer("tangential.steps_per_cell", self.steps_per_cell)
@@ -247,6 +264,36 @@ class TangentialLoading:
                                      f"must be > 0 with mode = 'partial_slip', got {self.friction_coefficient:g}")
         if self.slip not in ("total", "incremental"):
             raise ParameterError("tangential.slip", f"must be 'total' or 'incremental', got {self.slip!r}")
+
+    def _check_rolling(self) -> None:
+        """Rolling needs ``rolling_speed`` > 0 m/s and exactly one of ``creepage`` and
+        ``tangential_force`` (finite numbers); its frame moves at the rolling speed (``sliding_speed``
+        is set to it; the case refuses a ``sliding_speed`` of its own), one cell per step. The rolling
+        keys are refused in the other modes."""
+        rolling_keys = {"rolling_speed": self.rolling_speed != 0, "creepage": self.creepage is not None,
+                        "tangential_force": self.tangential_force is not None}
+        if self.mode != "rolling":
+            given = [key for key, set_ in rolling_keys.items() if set_]
+            if given:
+                raise ParameterError(f"tangential.{given[0]}", f"only with mode = 'rolling', got mode = '{self.mode}'")
+            return
+        _check_number("tangential.rolling_speed", self.rolling_speed, " m/s")
+        if (self.creepage is None) == (self.tangential_force is None):
+            raise ParameterError("tangential.creepage", "give exactly one of tangential.creepage (held, the traction "
+                                 "found) and tangential.tangential_force (N, held, the creepage found) with mode = "
+                                 "'rolling'")
+        for name in ("creepage", "tangential_force"):
+            value = getattr(self, name)
+            if value is not None and not (is_number(value) and np.isfinite(value)):
+                raise ParameterError(f"tangential.{name}", f"must be a finite number, got {value!r}")
+        if self.tangential_force is not None and not self.friction_coefficient > 0:
+            raise ParameterError("tangential.friction_coefficient", "must be > 0 with a held "
+                                 "tangential.tangential_force (frictionless rolling carries none), got "
+                                 f"{self.friction_coefficient:g}")
+        if self.steps_per_cell != 1:
+            raise ParameterError("tangential.steps_per_cell", "must be 1 with mode = 'rolling' (the rolling "
+                                 f"frame moves by one cell per step), got {self.steps_per_cell!r}")
+        object.__setattr__(self, "sliding_speed", float(self.rolling_speed))
 
     def _check_history(self, history: PiecewiseLinear) -> None:
         key = "tangential.displacement_history"
@@ -290,8 +337,13 @@ class TangentialLoading:
     @property
     def has_shear(self) -> bool:
         """Whether this mode puts a shear traction q_x on the surface (``gross_sliding``,
-        ``partial_slip``); in ``none`` and ``frictionless_sliding`` q_x = 0 by definition."""
-        return self.mode in ("gross_sliding", "partial_slip")
+        ``partial_slip``, ``rolling``); in ``none`` and ``frictionless_sliding`` q_x = 0 by definition."""
+        return self.mode in ("gross_sliding", "partial_slip", "rolling")
+
+    @property
+    def rolls(self) -> bool:
+        """Whether the indenter rolls (``mode = "rolling"``)."""
+        return self.mode == "rolling"
 
     @property
     def effective_friction(self) -> float:
@@ -486,7 +538,10 @@ def check_line_contact_supported(problem: "Problem") -> None:
 def check_adhesion_supported(problem: "Problem") -> None:
     """Refuse, in one line naming the key, what adhesion does not work with: a load history that pulls
     before it first presses (no equilibrium carries a tension without contact), and (not yet)
-    ``solver.device = "gpu"``."""
+    ``solver.device = "gpu"`` and rolling."""
+    if problem.tangential.rolls:
+        raise ParameterError("tangential.mode", "'rolling' is not supported with [adhesion] yet: an adhesive "
+                             "rolling law is missing; roll without [adhesion], or slide (gross_sliding, partial_slip)")
     values = problem.normal.history.values
     pressed = next(i for i, v in enumerate(values) if v > 0)
     if problem.normal.control == "load" and min(values[:pressed + 1]) < 0:

@@ -52,6 +52,9 @@ class StepRecord:
     adhesive_force, adhesive_area
         With adhesion only (:data:`ADHESIVE_SCALARS`): the tensile part of the load, sum min(p, 0) dA
         [N] (<= 0), and the area where the gap is open and tension acts [m^2] (the cohesive zone).
+    creepage
+        Rolling only (:data:`ROLLING_SCALARS`): the creepage (V_c - V) / V [-] of the step, held or
+        found under a held tangential force (NaN at t = 0 there: nothing has rolled yet).
     """
 
     step: int
@@ -77,6 +80,7 @@ class StepRecord:
     mean_contact_pressure: float = 0.0
     adhesive_force: float = 0.0
     adhesive_area: float = 0.0
+    creepage: float = 0.0
     pressure: np.ndarray | None = field(default=None, repr=False)
     shear_x: np.ndarray | None = field(default=None, repr=False)
     stick: np.ndarray | None = field(default=None, repr=False)
@@ -89,11 +93,14 @@ class StepRecord:
     FIELDS = ("pressure", "shear_x", "stick", "displacement_z")
     #: the scalars a result holds only with adhesion (after :attr:`SCALARS`)
     ADHESIVE_SCALARS = ("adhesive_force", "adhesive_area")
+    #: the scalars a result holds only in rolling (after the others)
+    ROLLING_SCALARS = ("creepage",)
 
     @classmethod
-    def scalars(cls, adhesive: bool) -> tuple[str, ...]:
-        """The scalar histories of a result: :attr:`SCALARS`, and with ``adhesive`` :attr:`ADHESIVE_SCALARS`."""
-        return cls.SCALARS + (cls.ADHESIVE_SCALARS if adhesive else ())
+    def scalars(cls, adhesive: bool, rolling: bool = False) -> tuple[str, ...]:
+        """The scalar histories of a result: :attr:`SCALARS`, with ``adhesive`` :attr:`ADHESIVE_SCALARS`
+        and with ``rolling`` :attr:`ROLLING_SCALARS`."""
+        return cls.SCALARS + (cls.ADHESIVE_SCALARS if adhesive else ()) + (cls.ROLLING_SCALARS if rolling else ())
 
 
 def records_to_arrays(records: Sequence[StepRecord]) -> dict[str, np.ndarray]:

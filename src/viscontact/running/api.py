@@ -350,8 +350,9 @@ def _reason(exc: BaseException) -> str:
     return getattr(exc, "reason", None) or code or type(exc).__name__
 
 
-def run_steady(case: CaseLike | Preflight, speeds: Sequence[float] | None = None) -> xr.Dataset:
-    """Steady sliding state(s) of ``case`` (direct steady-state solver).
+def run_steady(case: CaseLike | Preflight, speeds: Sequence[float] | None = None,
+               creepages: Sequence[float] | None = None) -> xr.Dataset:
+    """Steady sliding or rolling state(s) of ``case`` (direct steady-state solvers).
 
     Parameters
     ----------
@@ -362,6 +363,11 @@ def run_steady(case: CaseLike | Preflight, speeds: Sequence[float] | None = None
         length 1 (same layout as :func:`run`). A sequence of speeds [m/s]: a Dataset along
         dimension ``speed`` with ``mu_app``, ``peak_pressure``, ``contact_area``,
         ``contact_shift``, ``delta_z``, ``load`` (see :func:`viscontact.io.results.sweep_dataset`).
+    creepages
+        Rolling (``tangential.mode = "rolling"``, :mod:`viscontact.solvers.steady_rolling`): a sequence
+        of creepages [-], the traction-creepage curve at ``tangential.rolling_speed``: a Dataset along
+        dimension ``creepage`` (:func:`viscontact.io.results.creepage_dataset`). ``None``: one rolling
+        state at the case's creepage or tangential force.
 
     Raises
     ------
@@ -375,11 +381,32 @@ def run_steady(case: CaseLike | Preflight, speeds: Sequence[float] | None = None
 
     checked = _checked(case, transient=False)
     problem, text = checked.problem, checked.text
+    if problem.tangential.rolls or creepages is not None:
+        return _run_steady_rolling(problem, text, speeds, creepages)
     if speeds is None:
         record = solve_steady(problem)
         return to_dataset([record], problem, case_text=text, attrs={"solver": "steady", "complete": 1})
     speeds = positive_values(speeds, "speeds", "m/s")
     return sweep_dataset(speed_sweep(problem, speeds), speeds, problem, case_text=text)
+
+
+def _run_steady_rolling(problem, text: str, speeds: Sequence[float] | None,
+                        creepages: Sequence[float] | None) -> xr.Dataset:
+    """:func:`run_steady` of a rolling case: one state, or the traction-creepage curve."""
+    from viscontact.errors import ParameterError
+    from viscontact.io.results import creepage_dataset, to_dataset
+    from viscontact.io.values import positive_values
+    from viscontact.solvers.steady_rolling import check_steady_rolling, creepage_sweep, solve_steady_rolling
+
+    if speeds is not None:
+        raise ParameterError("speeds", "a rolling case takes creepages (--creepages), not speeds: give "
+                             "tangential.rolling_speed")
+    check_steady_rolling(problem)
+    if creepages is None:
+        record = solve_steady_rolling(problem)
+        return to_dataset([record], problem, case_text=text, attrs={"solver": "steady", "complete": 1})
+    creepages = positive_values(creepages, "creepages", "(creepage, -)", signed=True)
+    return creepage_dataset(creepage_sweep(problem, creepages), creepages, problem, case_text=text)
 
 
 #: short alias of :func:`run_steady` inside this module (``viscontact.solvers.steady`` is the solver module)

@@ -408,7 +408,8 @@ def _check_time(problem: Problem) -> None:
     what = "relaxation" if problem.normal.control == "displacement" else "creep"
     if err > TIME_ERROR_LIMIT:
         key = "time.dt" if not problem.tangential.frame_moves else \
-            ("grid.n" if problem.radius is None else "tangential.steps_per_cell")  # dt = dx / (v k) when sliding
+            ("grid.n" if problem.radius is None or problem.tangential.rolls  # rolling: one cell per step
+             else "tangential.steps_per_cell")  # dt = dx / (v k) when sliding
         raise ParameterError(key, f"time.dt = {dt:.4g} s with the {problem.time.scheme} scheme misses the {what} of "
                              f"this material and loading by about {100 * err:.0f} % (one-point estimate against the "
                              f"exact hereditary integral); {_time_step_suggestion(problem)}")
@@ -582,7 +583,7 @@ def _time_step_suggestion(problem: Problem) -> str:
         if trial is None:
             break
         if time_step_error(trial) <= TIME_WARNING_LIMIT:
-            if tan.frame_moves and problem.radius is None:  # dt = dx / v: a finer height file
+            if tan.frame_moves and (problem.radius is None or tan.rolls):  # dt = dx / v: a finer grid
                 return f"use grid.n = {problem.grid.n * factor} (time.dt = {trial.time.dt:.3g} s){linear}"
             if tan.frame_moves:
                 cell = problem.grid.spacing / tan.sliding_speed

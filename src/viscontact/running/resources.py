@@ -32,12 +32,16 @@ START_SECONDS = 0.7
 SETUP_TRANSFORMS = 20.0
 #: a step's fixed part [s] by tangential mode (the coupling passes of gross sliding and partial slip
 #: each add their own bookkeeping)
-STEP_SECONDS = {"none": 3.5e-3, "frictionless_sliding": 3.5e-3, "gross_sliding": 6e-3, "partial_slip": 8e-3}
+STEP_SECONDS = {"none": 3.5e-3, "frictionless_sliding": 3.5e-3, "gross_sliding": 6e-3, "partial_slip": 8e-3,
+                "rolling": 8e-3}
 #: transform pairs of a step by tangential mode on the whole grid (the check of the support window's
 #: solution, the coupling passes' products) and on the support window, counted there in whole-grid
-#: pairs times the window's share of the cells ((m/n)^2, :func:`window_cells`)
-FULL_TRANSFORMS = {"none": 1.2, "frictionless_sliding": 1.2, "gross_sliding": 7.0, "partial_slip": 10.0}
-WINDOW_TRANSFORMS = {"none": 8.0, "frictionless_sliding": 14.0, "gross_sliding": 18.0, "partial_slip": 18.0}
+#: pairs times the window's share of the cells ((m/n)^2, :func:`window_cells`); rolling under a held
+#: creepage counts as partial slip (not fitted: no shipped case measured it)
+FULL_TRANSFORMS = {"none": 1.2, "frictionless_sliding": 1.2, "gross_sliding": 7.0, "partial_slip": 10.0,
+                   "rolling": 10.0}
+WINDOW_TRANSFORMS = {"none": 8.0, "frictionless_sliding": 14.0, "gross_sliding": 18.0, "partial_slip": 18.0,
+                     "rolling": 18.0}
 #: a periodic grid's step in its own (unpadded, a quarter of the cells) transform pairs: that many
 #: times more of them, a rough surface's many patches taking more CG iterations
 PERIODIC_TRANSFORMS = 5.0
@@ -197,7 +201,7 @@ def estimate(problem: Problem, *, topography: bool | None = None, transform: flo
     per_record = record_bytes(problem)
     result = stream_bytes(problem, records) + len(problem.title) + LAYOUT_BYTES
     modes, per_component = problem.body.size()  # nu(t), layers: more histories and kernels
-    kernels = per_component * (4 if problem.tangential.mode in ("partial_slip", "gross_sliding") else 1)
+    kernels = per_component * (4 if problem.tangential.mode in ("partial_slip", "gross_sliding", "rolling") else 1)
     # carried by the state of a DC-FFT grid: the warm start's two products and, for a body of one
     # kernel per component, the response history (M + 1 fields,
     # :meth:`viscontact.bodies.compliance.Compliance.initial_response`)
@@ -205,13 +209,14 @@ def estimate(problem: Problem, *, topography: bool | None = None, transform: flo
 
     response = modes + 1 if per_component == 1 and modes <= RESPONSE_MODES else 0
     carried = 0 if problem.grid.periodic else (2 + response) * 8 * cells
-    slip = 8 * cells if problem.tangential.incremental_slip else 0  # the incremental slip's s_x
+    # the incremental slip's s_x, rolling's u_x
+    slip = 8 * cells if problem.tangential.incremental_slip or problem.tangential.rolls else 0
     solver = (2 * 2 * modes + WORK_FIELDS) * 8 * cells + 2 * (carried + slip) \
         + kernels * kernel_bytes(n, problem.grid.rows) + PADDED_TEMPORARIES * 4 * cells * 8
     if not problem.grid.periodic and problem.grid.dimension == 2:  # support windows: cropped self kernels
         from viscontact.bodies.compliance import WINDOWS_KEPT
 
-        self_kernels = 2 if problem.tangential.mode == "partial_slip" else 1
+        self_kernels = 2 if problem.tangential.mode in ("partial_slip", "rolling") else 1
         # mixed precision: each self kernel also has a complex64 spectrum, on the grid and the windows
         single_bytes = 2 * n * (n + 1) * 8 if problem.solver.mixed_precision else 0
         solver += (WINDOWS_KEPT + 1) * self_kernels * per_component * single_bytes

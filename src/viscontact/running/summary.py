@@ -30,7 +30,7 @@ __all__ = ["SETTLED", "UNITS", "format_summary", "print_summary", "steady_mu_app
 UNITS: dict[str, str] = {
     "t_end": "s", "load": "N", "delta_z": "m", "contact_radius": "m", "peak_pressure": "Pa", "mu_app": "1",
     "mu_app_steady": "1", "t_gross_sliding": "s", "friction_force": "N", "energy_last_cycle": "J",
-    "pull_off_force": "N", "t_pull_off": "s",
+    "pull_off_force": "N", "t_pull_off": "s", "creepage": "1", "stick_ratio": "1",
     "speed": "m/s", "deborah": "1", "run_time": "s",
 }
 #: how each quantity is named in the text
@@ -39,6 +39,7 @@ LABELS: dict[str, str] = {
     "contact radius sqrt(A/pi)", "peak_pressure": "peak pressure", "mu_app": "mu_app (last record)",
     "mu_app_steady": "mu_app (steady state)", "t_gross_sliding": "gross sliding from t", "friction_force":
     "friction force Q", "energy_last_cycle": "energy dissipated, last cycle",
+    "creepage": "creepage (last record)", "stick_ratio": "stick ratio (last record)",
 }
 #: the relative change of ``mu_app`` over the last quarter of sliding below which it is steady
 SETTLED = 0.01
@@ -71,8 +72,8 @@ def summary(ds: Any) -> dict[str, Any]:
     if kind == "run":
         out["values"] = _run_values(ds)
     elif kind == "steady":
-        out["rows"] = _rows(ds, ("speed", "deborah", "mu_app", "delta_z", "contact_radius", "peak_pressure",
-                                 "friction_force"))
+        rolling = ("creepage", "friction_force", "stick_ratio") if "creepage" in ds.variables else ("friction_force",)
+        out["rows"] = _rows(ds, ("speed", "deborah", "mu_app", "delta_z", "contact_radius", "peak_pressure", *rolling))
     else:
         out["rows"] = _rows(ds, (*_swept(ds), "mu_app", "t_gross_sliding", "error"))
         if not any(row.get("t_gross_sliding") for row in out["rows"]):  # steady, or sliding from t = 0
@@ -165,6 +166,8 @@ def _run_values(ds: Any) -> dict[str, Any]:
         values["t_gross_sliding"] = onset if math.isfinite(onset) else None
     if _defined(ds, "friction_force"):
         values["friction_force"] = _last(ds, "friction_force")
+    if "creepage" in ds.variables:  # rolling: its creepage and stick ratio
+        values["creepage"], values["stick_ratio"] = _last(ds, "creepage"), _last(ds, "stick_ratio")
     if "energy_per_cycle" in ds.variables and ds["energy_per_cycle"].shape[0]:
         values["energy_last_cycle"] = float(ds["energy_per_cycle"][-1])
     if "pull_off_force" in ds.attrs:  # an adhesive run (NaN: no tensile load in it)

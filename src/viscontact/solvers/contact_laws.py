@@ -11,6 +11,8 @@ with the instantaneous compliance J_inst plus the known hereditary displacement 
 * ``"partial_slip"`` (:class:`PartialSlip`): the normal problem alternated with the tangential one,
   q_x in [-mu_f p, mu_f p] with stick where the slip vanishes (seed Eqs. 9, 11; the bounded
   Polonsky & Keer CG).
+* ``"rolling"`` (:class:`viscontact.solvers.rolling.Rolling`): partial slip in the rolling frame,
+  the slip being the creepage plus the convected rate of u_x (Kalker 1990).
 
 How a law is chosen from the problem (the one place: change it here, nowhere else): the tangential
 mode gives the first phase (:func:`first_phase`), the phase gives the law's name
@@ -62,6 +64,7 @@ from viscontact.problem.problem import (
     PHASE_INDENTATION,
     PHASE_NAMES,
     PHASE_PARTIAL_SLIP,
+    PHASE_ROLLING,
     Problem,
     TangentialLoading,
 )
@@ -117,7 +120,9 @@ class StepSolution:
     [m], where the solve computed it in double precision (else None); ``slip``: partial slip's
     s_x - ``ctx.slip_x`` [m] at every point (the tangential solve's gradient: the slip, or with the
     incremental slip its change over the step), else None; ``interaction``: an adhesive law's
-    interaction zone (contact and cohesive zone, boolean), else None."""
+    interaction zone (contact and cohesive zone, boolean), else None; ``delta_x``: the step's rigid
+    tangential displacement [m] where the law found it (rolling under a held tangential force:
+    :mod:`viscontact.solvers.rolling`), else None (the context's)."""
 
     pressure: np.ndarray
     shear_x: np.ndarray
@@ -128,6 +133,7 @@ class StepSolution:
     pressure_product: np.ndarray | None = None
     slip: np.ndarray | None = None
     interaction: np.ndarray | None = None
+    delta_x: float | None = None
 
 
 @dataclass(frozen=True)
@@ -217,23 +223,25 @@ ADHESIVE_PARTIAL_SLIP_LAW = "adhesive_partial_slip"
 #: the law of each phase, by phase code (:data:`~viscontact.problem.problem.PHASE_NAMES`); the
 #: tangential mode gives the first phase (:func:`first_phase`)
 PHASE_LAWS: dict[int, str] = {PHASE_INDENTATION: "normal_contact", PHASE_PARTIAL_SLIP: "partial_slip",
-                              PHASE_GROSS_SLIDING: "normal_contact"}
+                              PHASE_GROSS_SLIDING: "normal_contact", PHASE_ROLLING: "rolling"}
 
 
 def first_phase(tangential: TangentialLoading) -> int:
-    """The phase of a run's first step: indentation (``"none"``), partial slip (``"partial_slip"``)
-    or gross sliding (the sliding modes)."""
-    return {"none": PHASE_INDENTATION, "partial_slip": PHASE_PARTIAL_SLIP}.get(tangential.mode, PHASE_GROSS_SLIDING)
+    """The phase of a run's first step: indentation (``"none"``), partial slip (``"partial_slip"``),
+    rolling (``"rolling"``, the run's only phase) or gross sliding (the sliding modes)."""
+    return {"none": PHASE_INDENTATION, "partial_slip": PHASE_PARTIAL_SLIP,
+            "rolling": PHASE_ROLLING}.get(tangential.mode, PHASE_GROSS_SLIDING)
 
 
 def law_name(problem: Problem, phase: int) -> str:
     """The name of the contact law of a step of ``phase`` of ``problem`` (:data:`PHASE_LAWS`; partial
-    slip without friction is the normal contact; with ``problem.adhesion``, :data:`ADHESIVE_LAW`, or
-    :data:`ADHESIVE_PARTIAL_SLIP_LAW` in partial slip with friction)."""
+    slip and rolling without friction are the normal contact: frictionless rolling is frictionless
+    sliding; with ``problem.adhesion``, :data:`ADHESIVE_LAW`, or :data:`ADHESIVE_PARTIAL_SLIP_LAW` in
+    partial slip with friction)."""
     if problem.adhesion is not None:
         friction = problem.tangential.effective_friction > 0
         return ADHESIVE_PARTIAL_SLIP_LAW if phase == PHASE_PARTIAL_SLIP and friction else ADHESIVE_LAW
-    if phase == PHASE_PARTIAL_SLIP and not problem.tangential.effective_friction > 0:
+    if phase in (PHASE_PARTIAL_SLIP, PHASE_ROLLING) and not problem.tangential.effective_friction > 0:
         return PHASE_LAWS[PHASE_INDENTATION]
     return PHASE_LAWS[phase]
 
@@ -362,23 +370,37 @@ class PartialSlip(ContactLaw):
         return self.friction * pressure
 
     def solve(self, ctx, pressure, shear, product):
-        sub, s = ctx.compliance, ctx.problem.solver
-        cross_z = sub.cross_displacement("z", "x", shear, ctx.first) if self.coupled else None
-        p, delta_z, it_n, u_z, product, interaction = self.normal(ctx, _plus(ctx.known_uz, cross_z), pressure,
-                                                                  product)
+        p, delta_z, it_n, u_z, product, interaction = self.solve_normal(ctx, pressure, shear, product)
+        q, slip, it_t = self.solve_tangential(ctx, p, shear, ctx.delta_x)
+        return StepSolution(p, q, float(delta_z), u_z, it_n + it_t, pressure_product=product, slip=slip,
+                            interaction=interaction)
+
+    def solve_normal(self, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray, product: np.ndarray | None
+                     ) -> tuple[np.ndarray, float, int, np.ndarray, np.ndarray | None, np.ndarray | None]:
+        """The pass's normal solve with the iterate's shear ``shear`` [Pa] in the coupling term
+        (:meth:`normal`'s tuple)."""
+        cross_z = ctx.compliance.cross_displacement("z", "x", shear, ctx.first) if self.coupled else None
+        solved = self.normal(ctx, _plus(ctx.known_uz, cross_z), pressure, product)
         if self.free_mean:
-            check_not_full_contact(p, ctx.t)
-        cross_x = sub.cross_displacement("x", "z", p, ctx.first) if self.coupled else None
-        bound = self.bound(p)
+            check_not_full_contact(solved[0], ctx.t)
+        return solved
+
+    def solve_tangential(self, ctx: StepContext, pressure: np.ndarray, shear: np.ndarray, delta_x: float
+                         ) -> tuple[np.ndarray, np.ndarray, int]:
+        """The bounded tangential solve for the pressure ``pressure`` [Pa] from ``shear`` [Pa], the
+        stuck points at u_x = ``delta_x`` [m] (+ ``ctx.slip_x``): (q_x [Pa], the slip, CG iterations)."""
+        sub, s = ctx.compliance, ctx.problem.solver
+        cross_x = sub.cross_displacement("x", "z", pressure, ctx.first) if self.coupled else None
+        bound = self.bound(pressure)
         op = sub.elastic_operator("x", ctx.first)
-        target = ctx.delta_x - _plus(ctx.known_ux, cross_x)
+        target = delta_x - _plus(ctx.known_ux, cross_x)
         if ctx.slip_x is not None:
             target += ctx.slip_x
         sol = windowed_bounded_cg(op, target, np.clip(shear, -bound, bound),
                                   -bound, bound, tolerance=s.tolerance, max_iterations=s.max_iterations,
-                                  what="tangential contact (partial slip)", mixed_precision=s.mixed_precision)
-        return StepSolution(p, sol.x, float(delta_z), u_z, it_n + sol.iterations, pressure_product=product,
-                            slip=sol.gradient, interaction=interaction)
+                                  what=f"tangential contact ({self.label or self.name})",
+                                  mixed_precision=s.mixed_precision)
+        return sol.x, sol.gradient, sol.iterations
 
     def finish(self, ctx, solution):
         if not self.coupled:

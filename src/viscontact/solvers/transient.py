@@ -37,7 +37,7 @@ from viscontact.numerics.allocator import tune_allocator
 from viscontact.numerics.history import History
 from viscontact.numerics.schemes import stable_step_limit
 from viscontact.physics.periodic import check_approach
-from viscontact.problem.problem import PHASE_GROSS_SLIDING, PHASE_PARTIAL_SLIP, FrameGaps, Problem
+from viscontact.problem.problem import PHASE_GROSS_SLIDING, PHASE_PARTIAL_SLIP, PHASE_ROLLING, FrameGaps, Problem
 from viscontact.problem.records import StepRecord
 from viscontact.solvers import adhesive_law  # noqa: F401 (registers the adhesive law)
 from viscontact.solvers.contact_laws import (
@@ -47,6 +47,7 @@ from viscontact.solvers.contact_laws import (
 )
 from viscontact.solvers.coupling import solve_coupled
 from viscontact.solvers.measure import measure
+from viscontact.solvers.rolling import convected, rigid_step, step_creepage
 from viscontact.solvers.sliding import Wake
 
 
@@ -104,6 +105,13 @@ class State:
     t_pull_off
         Under load control with adhesion: the time [s] of the first step no equilibrium carried (the
         pull-off, which ends the run: :func:`steps`); else None.
+    displacement_x
+        Rolling with friction: the total u_x [m] at the end of the last step at every point of the grid
+        (a frame field; convected by a cell as the frame moves: :mod:`viscontact.solvers.rolling`);
+        zeros before the first step, None in the other modes.
+    rigid_x
+        Rolling: the last step's rigid tangential displacement [m] (-creepage x dx; under a held
+        force the start of the next step's root find), 0 before the first.
     """
 
     step: int
@@ -129,6 +137,8 @@ class State:
     most_tensile_load: float = 0.0
     t_most_tensile: float = float("nan")
     t_pull_off: float | None = None
+    displacement_x: np.ndarray | None = None
+    rigid_x: float = 0.0
 
 
 def init(problem: Problem, compliance: Compliance | None = None) -> State:
@@ -142,7 +152,9 @@ def init(problem: Problem, compliance: Compliance | None = None) -> State:
                  pressure_previous=xp.zeros(shape), shear_previous=xp.zeros(shape),
                  t_gross_sliding=0.0 if phase == PHASE_GROSS_SLIDING else None,
                  response=compliance.initial_response(),
-                 slip_x=xp.zeros(shape) if problem.tangential.incremental_slip else None)
+                 slip_x=xp.zeros(shape) if problem.tangential.incremental_slip else None,
+                 displacement_x=xp.zeros(shape) if problem.tangential.rolls and
+                 problem.tangential.effective_friction > 0 else None)
 
 
 def validate(problem: Problem) -> None:
@@ -163,6 +175,11 @@ def validate(problem: Problem) -> None:
         raise ParameterError("tangential.sliding_speed", "give none with tangential.displacement_history: the "
                              "indenter never slides under a history (a vanished stick zone stops the run), got "
                              f"{tan.sliding_speed:g} m/s")
+    if tan.tangential_force is not None and problem.normal.control == "load":
+        limit = tan.friction_coefficient * min(problem.normal.history.values)
+        if not abs(tan.tangential_force) < limit:
+            raise ParameterError("tangential.tangential_force", f"|{tan.tangential_force:g}| N must be below mu_f W = "
+                                 f"{limit:g} N (the smallest load of the run): the contact would slide, not roll")
     if tan.mode == "partial_slip" and tan.displacement_history is None and not tan.displacement_rate > 0:
         raise ParameterError("tangential.displacement_rate", f"must be > 0 m/s for partial_slip, got {tan.displacement_rate}")
     limit = min(stable_step_limit(r, problem.time.scheme) for r in problem.body.stability_responses())
@@ -215,22 +232,27 @@ def _warm_start(compliance: Compliance, state: State, k: int) -> tuple[np.ndarra
 
 
 def _advance_frame(problem: Problem, compliance: Compliance, state: State, k: int, t: float) -> State:
-    """The state with the frame moved (gross sliding after the step at which it began: v dt per
-    step, the history shifted by a cell every steps_per_cell steps) or delta_x ramped or following its
-    history (partial slip)."""
+    """The state with the frame moved (gross sliding after the step at which it began, and rolling
+    after the first step: v dt per step, the history shifted by a cell every steps_per_cell steps,
+    rolling's u_x convected with it) or delta_x ramped or following its history (partial slip)."""
     tan, dt = problem.tangential, problem.time.dt
-    if state.phase == PHASE_GROSS_SLIDING and k > 0 and state.t_gross_sliding is not None \
-            and t > state.t_gross_sliding + 0.5 * dt:
+    sliding = (state.phase == PHASE_GROSS_SLIDING and state.t_gross_sliding is not None
+               and t > state.t_gross_sliding + 0.5 * dt)
+    if k > 0 and (sliding or state.phase == PHASE_ROLLING):
         histories, wake, substep = state.histories, state.wake, state.substep + 1
+        displacement_x = state.displacement_x
         if substep == tan.steps_per_cell:
             substep = 0
             histories, dropped = compliance.shifted(histories, 1)
+            if displacement_x is not None:
+                displacement_x = convected(displacement_x, problem.grid.periodic)
             if compliance.normal_history in dropped:
                 wake = wake.dropped(dropped[compliance.normal_history])
         wake = wake.ticked(compliance.responses[compliance.normal_history], dt)
         return replace(state, sliding_distance=state.sliding_distance + tan.sliding_speed * dt,
                        delta_x=state.delta_x + tan.sliding_speed * dt, substep=substep, histories=histories,
-                       wake=wake, response=state.response if histories is state.histories else None)
+                       wake=wake, response=state.response if histories is state.histories else None,
+                       displacement_x=displacement_x)
     if state.phase == PHASE_PARTIAL_SLIP:
         return replace(state, delta_x=tan.delta_x(t))
     return state
@@ -269,9 +291,16 @@ def step(problem: Problem, compliance: Compliance, state: State,
     # step, when the last one had none); incremental slip: they keep the slip of the last step
     origin = state.delta_x if state.slip_origin is None else state.slip_origin
     incremental = law.solves_shear and state.slip_x is not None
+    rolling = state.displacement_x is not None
+    if rolling:  # rolling with friction: the last step's u_x convected, and the step's rigid creep
+        reference_x = rigid_step(problem, k) if tan.creepage is not None else state.rigid_x
+        reference_slip = state.displacement_x
+    elif incremental:
+        reference_x, reference_slip = state.delta_x, state.slip_x
+    else:
+        reference_x, reference_slip = state.delta_x - origin, None
     ctx = StepContext(problem, compliance, k, t, first, device_gap, known_uz, known_ux,
-                      problem.normal.history(t), state.delta_x if incremental else state.delta_x - origin,
-                      state.slip_x if incremental else None, state.interaction)
+                      problem.normal.history(t), reference_x, reference_slip, state.interaction)
     adhesive = problem.adhesion is not None
     # adhesion: the last pressure (its tensions kept: the extrapolation is clipped at 0), its product and zone
     p0, p0_product = (state.pressure, state.pressure_product) if adhesive else _warm_start(compliance, state, k)
@@ -298,6 +327,9 @@ def step(problem: Problem, compliance: Compliance, state: State,
         # s_x at the end of the step: a stuck point keeps the last step's exactly (its change is zero
         # to the solve's tolerance), the others add the change the solve found
         slip_x = np.where(law.stuck(p, q), state.slip_x, state.slip_x + sol.slip)
+    rigid_x = ctx.delta_x if sol.delta_x is None else sol.delta_x
+    if rolling:  # the total u_x: the reference, the rigid displacement and the slip s dt
+        state = replace(state, displacement_x=ctx.slip_x + rigid_x + sol.slip, rigid_x=rigid_x)
     state = replace(state, step=k, t=t, phase=phase, t_gross_sliding=t_gross,
                     slip_origin=origin if n_contact else None, slip_x=slip_x,
                     histories=compliance.advanced(state.histories, {"z": p, "x": q}, t, first),
@@ -318,6 +350,8 @@ def step(problem: Problem, compliance: Compliance, state: State,
         state = replace(state, interaction=sol.interaction)
         if record.load < state.most_tensile_load:
             state = replace(state, most_tensile_load=record.load, t_most_tensile=t)
+    if tan.rolls:
+        record = replace(record, creepage=step_creepage(problem, k, rigid_x))
     return state, replace(record, wake_loss=_wake_loss(problem, compliance, state, p_host, record.mu_app, sol.delta_z))
 
 
