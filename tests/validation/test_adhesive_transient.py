@@ -186,13 +186,6 @@ def test_what_adhesion_does_not_support_is_refused_in_one_line(overrides, key):
     assert err.value.key == key and "\n" not in str(err.value), str(err.value)
 
 
-def test_steady_refuses_adhesion():
-    problem = Case.from_toml_text(CASE.read_text(), CASE.parent).to_problem()
-    with pytest.raises(ParameterError, match="^adhesion: .*viscontact steady") as err:
-        api.run_steady(problem)
-    assert "\n" not in str(err.value)
-
-
 def test_the_cohesive_zone_guard_warns_on_a_coarse_grid_naming_the_grid_that_resolves_it():
     """Between 2 and 4 cells across the cohesive zone (the smaller of the Dugdale zone with E* = 2 G(0)
     / (1 - nu) and the width over which the sphere's gap opens to h_0): one warning line; below 2,
