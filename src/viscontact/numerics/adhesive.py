@@ -183,8 +183,8 @@ def adhesive_contact(operator: Any, known_gap: np.ndarray, *, control: Literal["
     h0 = float(work_of_adhesion) / float(cohesive_stress)
     if interaction is None:
         interaction = (known_gap - value < h0) if control != "load" else np.zeros(known_gap.shape, dtype=bool)
-    zone = np.asarray(interaction, dtype=bool)
-    pressure = np.zeros_like(known_gap) if initial is None else np.asarray(initial, dtype=float)
+    zone = interaction.astype(bool, copy=False)
+    pressure = np.zeros_like(known_gap) if initial is None else initial.astype(float, copy=False)
     product = None if initial is None else initial_product
     settings = _Rounds(control, float(value), float(cohesive_stress), h0, cell_area, tolerance, max_iterations,
                        max_rounds, mixed_precision)
@@ -382,7 +382,7 @@ def adhesive_active_set(apply_k: Operator, known_gap: np.ndarray, *, control: Li
     sigma = float(cohesive_stress)
     h0 = float(work_of_adhesion) / sigma
     if initial is not None and np.any(initial != 0):
-        zone = np.asarray(initial != 0)
+        zone = initial != 0
         x = np.maximum(initial + np.where(zone, sigma, 0.0), 0.0)
     else:
         zone = known_gap - (known_gap.min() if control == "load" else value) < h0

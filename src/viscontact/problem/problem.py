@@ -460,16 +460,12 @@ def check_subsurface_body(depths, kind: Body | type) -> None:
 
 def check_adhesion_supported(problem: "Problem") -> None:
     """Refuse, in one line naming the key, what adhesion does not work with: a load history that pulls
-    before it first presses (no equilibrium carries a tension without contact), and (not yet)
-    ``solver.device = "gpu"``."""
+    before it first presses (no equilibrium carries a tension without contact)."""
     values = problem.normal.history.values
     pressed = next(i for i, v in enumerate(values) if v > 0)
     if problem.normal.control == "load" and min(values[:pressed + 1]) < 0:
         raise ParameterError("normal.history", f"a load history must press the indenter on (a load > 0 N) before it "
                              f"pulls: no equilibrium carries a tensile load before the first contact, got {values!r}")
-    if problem.solver.device != "cpu":
-        raise ParameterError("solver.device", f"'{problem.solver.device}' is not supported with [adhesion] yet: "
-                             "use 'cpu'")
 
 
 @dataclass(frozen=True)
