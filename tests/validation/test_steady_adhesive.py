@@ -78,10 +78,24 @@ def test_the_three_sets_give_the_majorise_minimise_solution_with_a_symmetric_ope
     assert np.all(sol.pressure[~sol.interaction] == 0) and np.all(sol.gap[~sol.interaction] >= W / SIGMA * (1 - 1e-6))
 
 
-def test_a_load_beyond_what_the_zone_carries_has_no_equilibrium():
+def test_a_load_beyond_what_the_zone_carries_has_no_equilibrium(tmp_path, capsys):
+    """A tensile load beyond the pull-off has no steady state: the solver's NoEquilibriumError, and
+    ``viscontact steady`` says so in one line naming the key (exit 2), writing nothing."""
+    from viscontact import cli
+
     problem = _case({"normal.control": "load", "normal.history": [[0.0, 2e-3], [1.0, -5e-3]]}).to_problem()
-    with pytest.raises(NoEquilibriumError):
+    with pytest.raises(ParameterError, match="^normal.history: no adhesive equilibrium carries the load -0.0036 N"):
         solve_steady(problem)
+    with pytest.raises(NoEquilibriumError):
+        adhesive_active_set(lambda p: p, problem.gap, control="load", value=-5e-3, cohesive_stress=SIGMA,
+                            work_of_adhesion=W, cell_area=problem.grid.cell_area)
+    out = tmp_path / "s.nc"
+    assert cli.main(["steady", str(CASE), "--out", str(out), "--quiet", "--set", 'normal.control="load"',
+                     "--set", "normal.history=[[0.0, 2e-3], [1.0, -5e-3]]", "--set", "grid.n=32",
+                     "--set", 'tangential.mode="frictionless_sliding"', "--set", "tangential.sliding_speed=2.5e-3"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("viscontact: error: normal.history: no adhesive equilibrium"), err
+    assert not out.exists()
 
 
 @pytest.mark.parametrize("control, value", [("displacement", 4e-6), ("load", 1e-3)])

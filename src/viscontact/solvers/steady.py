@@ -54,7 +54,7 @@ from viscontact.bodies.compliance import compliance_of
 from viscontact.bodies.compliance import Compliance
 from viscontact.errors import ParameterError
 from viscontact.numerics.active_set import solve_contact_active_set
-from viscontact.numerics.adhesive import adhesive_active_set
+from viscontact.numerics.adhesive import NoEquilibriumError, adhesive_active_set
 from viscontact.numerics.convolution import Convolver, FourierPreconditioner
 from viscontact.numerics.grid import Grid
 from viscontact.problem.problem import PHASE_GROSS_SLIDING, Problem
@@ -250,7 +250,8 @@ def _solve_adhesive(conv: Convolver, problem: Problem, value: float, cross_frict
     with q_x = mu_f max(p, 0) (no friction where the interface is in tension, as in the transient:
     :mod:`viscontact.solvers.adhesive_law`) whose displacement mu_f K_zx max(p, 0) enters as a fixed
     point where ``cross_friction`` mu_f != 0 (the coupling). Returns (p [Pa], delta [m], GMRES
-    iterations, u_z [m], the interaction zone), on the host."""
+    iterations, u_z [m], the interaction zone), on the host. A tensile load that no zone carries (beyond
+    the pull-off) raises :class:`~viscontact.errors.ParameterError` naming the normal key."""
     adhesion = problem.adhesion
 
     def apply_zz(p: np.ndarray) -> np.ndarray:
@@ -259,11 +260,15 @@ def _solve_adhesive(conv: Convolver, problem: Problem, value: float, cross_frict
     def cross(p: np.ndarray) -> np.ndarray:
         return cross_friction * conv.apply("zx", np.maximum(p, 0.0))
 
-    sol = adhesive_active_set(apply_zz, backend.to_device(problem.gap), control=problem.normal.control, value=value,
-                              cohesive_stress=adhesion.cohesive_stress, work_of_adhesion=adhesion.work_of_adhesion,
-                              cell_area=problem.grid.cell_area, initial=initial,
-                              cross=cross if cross_friction else None, tolerance=tolerance,
-                              max_iterations=problem.solver.max_iterations, preconditioner=preconditioner)
+    try:
+        sol = adhesive_active_set(apply_zz, backend.to_device(problem.gap), control=problem.normal.control,
+                                  value=value, cohesive_stress=adhesion.cohesive_stress,
+                                  work_of_adhesion=adhesion.work_of_adhesion, cell_area=problem.grid.cell_area,
+                                  initial=initial, cross=cross if cross_friction else None, tolerance=tolerance,
+                                  max_iterations=problem.solver.max_iterations, preconditioner=preconditioner)
+    except NoEquilibriumError as exc:  # a tensile load beyond the pull-off: the case asks for what cannot be
+        key = "normal.value" if len(problem.normal.history.times) == 1 else "normal.history"
+        raise ParameterError(key, f"{exc} (no steady sliding state: lower the tensile load)") from None
     u_z = sol.product + (cross(sol.pressure) if cross_friction else 0.0)
     return (backend.to_host(sol.pressure), sol.approach, sol.iterations, backend.to_host(u_z),
             backend.to_host(sol.interaction))
