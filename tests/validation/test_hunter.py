@@ -16,6 +16,7 @@ here n = 512 on +-2.2 relaxed half-widths, dx = 0.0272 a0). The package's contac
 so its edges (the outer faces of the first and last cell in contact) are known to within a cell: they
 are held to a cell (dx) and to 1 % of the contact width; mu_app to 1e-3 (measured 6e-4 at worst).
 """
+import itertools
 import math
 
 import numpy as np
@@ -63,7 +64,7 @@ def test_hunter_pressure_satisfies_the_hereditary_slope_condition(deborah):
     """The reference's pressure put back into the steady hereditary integral, by direct quadrature
     (no Chebyshev or Bessel algebra): w'(x) = -(1 - nu) [J0 H(x) + (J_inf - J0) int_0^inf e^-u
     H(x + L u) du], H = (1/pi) PV int p(s)/(x - s) ds (Cauchy-weighted quad), is -x/R at points
-    inside the contact (measured 1e-9 of a'/R); the pressure integrates to W and is >= 0 throughout."""
+    inside the contact (measured 1e-15 of a'/R); the pressure integrates to W and is >= 0 throughout."""
     ref = _hunter(deborah)
     lo, hi, length = ref.trailing_edge, ref.leading_edge, deborah * A0
 
@@ -89,7 +90,7 @@ def test_hunter_pressure_satisfies_the_hereditary_slope_condition(deborah):
 
     for frac in (0.3, 0.7):
         x = lo + frac * (hi - lo)
-        assert slope(x) == pytest.approx(-x / R, abs=1e-8 * hi / R)
+        assert slope(x) == pytest.approx(-x / R, abs=1e-10 * hi / R)
     load = scipy.integrate.quad(lambda s: float(ref.pressure(np.array([s]))[0]), lo, hi, limit=200)[0]
     assert load == pytest.approx(LOAD, rel=1e-9)
     assert ref.pressure(np.linspace(lo, hi, 2001)).min() >= 0.0
@@ -135,15 +136,15 @@ def test_steady_cylinder_converges_to_hunter(deborah):
         mu_errors.append(abs(mu / ref.mu_app - 1))
         edge_errors.append(max(abs(lo - ref.trailing_edge), abs(hi - ref.leading_edge)))
         assert edge_errors[-1] < dx
-    assert all(fine < coarse for coarse, fine in zip(mu_errors, mu_errors[1:])), mu_errors
+    assert all(fine < coarse for coarse, fine in itertools.pairwise(mu_errors)), mu_errors
     assert mu_errors[-1] < mu_errors[0] / 10, mu_errors
     assert edge_errors[-1] < edge_errors[0] / 3, edge_errors
 
 
 def test_shipped_roller_case_steady_state_is_hunters():
     """The shipped case ``polymer_roller_line_contact`` (v tau / a0 = 0.89, n = 1024 on +-8 mm, a0 =
-    36 cells), its steady state by ``run_steady``: mu_app within 1e-3 of Hunter's, the contact width
-    within a cell."""
+    36 cells), its steady state by ``run_steady``: mu_app within 1e-3 of Hunter's (measured 1.8e-4),
+    the contact width within a cell (measured 0.14 dx)."""
     case = vc.load_case(vc.shipped_case("polymer_roller_line_contact"))
     steady = vc.run_steady(case)
     m = case.material
