@@ -19,12 +19,12 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import viscontact as vc
-from viscontact.physics.reference import hertz_line_half_width, hunter_cylinder
+from viscontact.physics.reference import contact_modulus, hertz_line_half_width, hunter_cylinder
 
 case = vc.load_case(vc.shipped_case("polymer_roller_line_contact"))
 m = case.material
 tau, load, radius = m.retardation_time, case.normal.value, case.indenter.radius
-a0 = hertz_line_half_width(load, radius, 2 * m.shear_modulus_instantaneous / (1 - m.poisson_ratio))
+a0 = hertz_line_half_width(load, radius, contact_modulus(m.shear_modulus_instantaneous, m.poisson_ratio))
 
 
 def hunter(speed: float):
