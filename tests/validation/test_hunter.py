@@ -106,6 +106,22 @@ def test_hunter_tends_to_hertz_in_the_slow_and_fast_limits():
     assert mid.centre > 0.9 * A0 and mid.mu_app > 0.03
 
 
+def test_hunter_depends_on_the_dimensionless_groups_alone():
+    """Another load, radius, moduli and time with the same G(0)/G(inf) and v tau / a0 (the shipped
+    roller's W, R, G, tau): the same mu_app R / a0 and edges / a0 (measured 4e-16); mu_app R / a0 peaks
+    at 1.527 near v tau / a0 = 4.27 (between its values at 3 and 6)."""
+    load, radius, g0, tau = 2000.0, 0.02, 2.0e7, 1.0e-3
+    a0 = hertz_line_from_load(load, radius, g0, NU, 1.0).radius
+    for deborah in (0.5, 4.27):
+        ref, other = _hunter(deborah), hunter_cylinder(load, radius, g0, g0 * G_INF / G0, tau, NU, deborah * a0 / tau)
+        assert other.mu_app * radius / a0 == pytest.approx(ref.mu_app * R / A0, rel=1e-8)
+        assert (other.trailing_edge / a0, other.leading_edge / a0) == pytest.approx(
+            (ref.trailing_edge / A0, ref.leading_edge / A0), rel=1e-8)
+    peak = _hunter(4.27).mu_app
+    assert peak * R / A0 == pytest.approx(1.5274, abs=1e-4)
+    assert peak > max(_hunter(3.0).mu_app, _hunter(6.0).mu_app)
+
+
 # --- the package's steady line-contact solver against it ------------------------------------------
 
 @pytest.mark.parametrize("deborah", DEBORAHS)

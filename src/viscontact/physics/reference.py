@@ -775,8 +775,9 @@ def hunter_cylinder(load: float, cylinder_radius: float, shear_modulus_instantan
     slow speeds (z ~ 1e5) neither overflow nor lose the series (~12 sqrt(z) terms).
 
     Limits: v tau -> 0 and v tau -> inf give Hertz's line contact (:func:`hertz_line_from_load`) with
-    G(inf) and G(0), mu_app -> 0; in between the contact shifts ahead (c > 0) and mu_app peaks
-    (0.0365 at v tau / a0 = 3 for G(0)/G(inf) = 10, a0 the Hertz half-width with G(0)).
+    G(inf) and G(0), mu_app -> 0; in between the contact shifts ahead (c > 0). mu_app R / a0 and the
+    edges over a0 (a0 the Hertz half-width with G(0)) depend on v tau / a0 and G(0)/G(inf) alone;
+    for G(0)/G(inf) = 10, mu_app R / a0 peaks at 1.527 at v tau / a0 = 4.27.
 
     Parameters: ``load`` W [N/m], ``cylinder_radius`` R [m], the moduli [Pa], ``retardation_time``
     tau [s], ``poisson_ratio`` nu [-], ``speed`` v > 0 [m/s]. Returns a :class:`HunterCylinder`.
