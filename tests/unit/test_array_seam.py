@@ -314,6 +314,8 @@ def _transient(mode: str):
             x, y = base.grid.mesh()
             base = dataclasses.replace(base, gap=(x**2 + y**2) / (2 * SEED_RADIUS), radius=None)
         return dataclasses.replace(base, tangential=tangential, time=time)
+    if mode.startswith("adhesive"):
+        return _adhesive_transient(mode)
     material = seed_material()
     if mode == "creep":
         return sphere_problem(material, 32, 2.5 * SEED_A0, t_end=10 * SEED_TAU / 20)
@@ -353,12 +355,31 @@ def _transient(mode: str):
     return dataclasses.replace(sliding, material=seed_material(poisson_ratio=0.25), bulk_modulus=5e6)
 
 
+def _adhesive_transient(mode: str):
+    """The shipped adhesive case (n = 32): its approach-dwell-retraction (displacement control, past the
+    jump-off), under load control to the pull-off, gross sliding with the coupling (nu = 0.3), partial
+    slip, and on a periodic grid."""
+    held = {"normal.history": [[0.0, 4e-6], [1.0, 4e-6]], "tangential.sliding_speed": 2.5e-3, "time.dt": None}
+    overrides = {
+        "adhesive_retraction": {},
+        "adhesive_load": {"normal.control": "load",
+                          "normal.history": [[0.0, 0.0], [0.1, 2e-3], [0.6, 2e-3], [1.4, -5e-3]]},
+        "adhesive_sliding": {**held, "tangential.mode": "gross_sliding", "tangential.friction_coefficient": 0.3,
+                             "material.poisson_ratio": 0.3, "time.t_end": 0.1},
+        "adhesive_partial_slip": {**held, "tangential.mode": "partial_slip", "tangential.friction_coefficient": 0.5,
+                                  "tangential.displacement_rate": 1e-4, "time.t_end": 0.2},
+        "adhesive_periodic": {"grid.periodic": True, "time.t_end": 1.0},
+    }[mode]
+    return load_case(shipped_case("adhesive_pdms_retraction")).with_overrides({"grid.n": 32, **overrides}).to_problem()
+
+
 @pytest.mark.parametrize("mode", ["creep", "displacement", "frictionless_sliding", "gross_sliding", "strong_coupling",
                                   "partial_slip", "partial_slip_incremental", "rough_periodic",
                                   "rough_periodic_incremental", "layer", "layer_on_elastic", "bulk_modulus",
                                   "sub_cell_sphere", "sub_cell_surface", "sub_cell_periodic", "rolling",
                                   "rolling_force", "line_creep", "line_gross_sliding",
-                                  "line_partial_slip_incremental"])
+                                  "line_partial_slip_incremental", "adhesive_retraction", "adhesive_load",
+                                  "adhesive_sliding", "adhesive_partial_slip", "adhesive_periodic"])
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_the_transient_on_the_device_equals_numpy(backend, mode, monkeypatch):
     problem = _solved_to_round_off(_transient(mode), backend)
@@ -368,7 +389,7 @@ def test_the_transient_on_the_device_equals_numpy(backend, mode, monkeypatch):
     monkeypatch.setattr(contact_laws.NormalContact, "solve_direct",
                         lambda self, ctx, p: direct_solves.append(ctx.k) or solve_direct(self, ctx, p))
     ours = list(steps(problem, compliance=compliance_of(problem, backend=backend)))
-    assert len(ours) == problem.time.n_steps
+    assert len(ours) == (len(reference) if mode == "adhesive_load" else problem.time.n_steps)  # (the pull-off ends it)
     _assert_same_records([r for _, r in ours], [r for _, r in reference], backend, problem.grid.spacing)
     final = ours[-1][0]
     assert not isinstance(final.pressure, np.ndarray)  # the state stayed on the device
@@ -376,6 +397,10 @@ def test_the_transient_on_the_device_equals_numpy(backend, mode, monkeypatch):
     if problem.tangential.slides and not problem.grid.periodic:
         assert final.wake.strips  # the frame moved and history left it (on the host)
     assert bool(direct_solves) == (mode == "strong_coupling")  # its steps ran the direct solve
+    if problem.adhesion is not None:  # the interaction zone stayed on the device, and the run pulled on the body
+        assert not isinstance(final.interaction, np.ndarray) and min(r.adhesive_force for _, r in ours) < 0
+    if mode == "adhesive_load":
+        assert len(ours) < problem.time.n_steps  # it came off before the end of the history
     if mode.startswith(("partial_slip", "rough_periodic", "line_partial_slip")):
         assert {r.phase for _, r in ours} == {1, 2} and max(r.stick_ratio for _, r in ours) > 0.5
         carried = [state.slip_x for state, r in ours if r.phase == 1]
@@ -419,12 +444,13 @@ def test_the_steady_active_set_moves_no_field_to_the_device(body, monkeypatch):
     from viscontact import steady
     from viscontact.solvers import steady_periodic
     from viscontact.bodies import compliance
+    from viscontact.numerics import active_set
     from viscontact.solvers.steady import solve_steady
 
     problem = _steady(body)
     monkeypatch.setattr(compliance, "array_backend", lambda device: emulated_device.BACKEND)
     solves = []
-    for module in (steady, steady_periodic):
+    for module in (steady, steady_periodic, active_set):  # (the adhesive rounds call it from active_set)
         def counted(apply_k, gap, _solve=module.solve_contact_active_set, **kw):
             with emulated_device.transfers() as moved:
                 out = _solve(apply_k, gap, **kw)
@@ -505,6 +531,11 @@ def _steady(body: str):
         return load_case(shipped_case("rough_periodic_sliding")).with_overrides({"grid.n": 32}).to_problem()
     if body == "coarse_start":
         return sphere_problem(seed_material(), 128, 2.5 * SEED_A0, **sliding)
+    if body == "adhesive":  # gross sliding with the coupling (nu = 0.3), started from the coarse grid's
+        return load_case(shipped_case("adhesive_pdms_retraction")).with_overrides({
+            "grid.n": 128, "normal.history": [[0.0, 4e-6], [1.0, 4e-6]], "tangential.mode": "gross_sliding",
+            "tangential.friction_coefficient": 0.3, "material.poisson_ratio": 0.3, "tangential.sliding_speed": 2.5e-3,
+            "time.dt": None}).to_problem()
     if body == "gross_sliding":
         return sphere_problem(seed_material(), 32, 2.5 * SEED_A0, **{**sliding, "mode": "gross_sliding"}, friction=0.5)
     problem = sphere_problem(seed_material(), 32, 2.5 * SEED_A0, **sliding)
@@ -546,19 +577,20 @@ def test_the_steady_rolling_state_on_the_device_equals_numpy(backend, held, peri
 
 
 @pytest.mark.parametrize("body", ["half_space", "coarse_start", "gross_sliding", "rough_periodic", "layer",
-                                  "bulk_modulus", "line"])
+                                  "bulk_modulus", "line", "adhesive"])
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_the_steady_state_on_the_device_equals_numpy(backend, body, monkeypatch):
     from viscontact import steady
     from viscontact.solvers import steady_periodic
     from viscontact.bodies import compliance
+    from viscontact.numerics import active_set
     from viscontact.solvers.steady import solve_steady
 
     problem = _solved_to_round_off(_steady(body), backend)
     reference = solve_steady(problem)
     monkeypatch.setattr(compliance, "array_backend", lambda device: backend)  # solver.device -> the device
     gaps = []
-    for module in (steady, steady_periodic):
+    for module in (steady, steady_periodic, active_set):  # (the adhesive rounds call it from active_set)
         solve = module.solve_contact_active_set
         monkeypatch.setattr(module, "solve_contact_active_set",
                             lambda apply_k, gap, _solve=solve, **kw: gaps.append(gap) or _solve(apply_k, gap, **kw))

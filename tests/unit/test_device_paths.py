@@ -75,13 +75,15 @@ def _stopped_run(case, out: Path, after: int) -> None:
 @pytest.mark.filterwarnings("ignore::viscontact.errors.ViscontactWarning")  # small grids on the "gpu", a wake
 @pytest.mark.parametrize("devices", [("cpu", "gpu"), ("gpu", "cpu")])
 @pytest.mark.parametrize("name, sets", [("seed_table1_v0.8", {"grid.n": 32, "tangential.steps_per_cell": 4}),
-                                        ("fretting_zener", {"grid.n": 32})])
+                                        ("fretting_zener", {"grid.n": 32}),
+                                        ("adhesive_pdms_retraction", {"grid.n": 32})])
 def test_a_run_checkpointed_on_one_device_resumes_on_the_other(gpu, monkeypatch, tmp_path, capsys, devices,
                                                                name, sets):
     """``--resume`` with the other ``solver.device`` than the run that wrote the checkpoint was refused
     as "written for a different case or output settings" (the device was in the fingerprint), which
     left a run checkpointed on a GPU that is gone no way on. It resumes: sliding (the wake's columns
-    on the host, the histories shifted) and fretting (the incremental slip), on the emulation with
+    on the host, the histories shifted), fretting (the incremental slip) and adhesion (the interaction
+    zone; its pull-off attributes), on the emulation with
     the CPU's window sides equal to the uninterrupted CPU run bit for bit."""
     import xarray as xr
 
@@ -107,6 +109,8 @@ def test_a_run_checkpointed_on_one_device_resumes_on_the_other(gpu, monkeypatch,
         assert resumed.attrs["complete"] == 1 and resumed.sizes == whole.sizes and "resumed" in resumed.attrs["history"]
         for var in whole.data_vars:
             np.testing.assert_array_equal(resumed[var].values, whole[var].values, err_msg=var)
+        if "pull_off_force" in whole.attrs:
+            assert resumed.attrs["pull_off_force"] == whole.attrs["pull_off_force"] < 0
 
 
 # --- the resource checks: the CPU run's estimates refuse no GPU run ---------------------------------

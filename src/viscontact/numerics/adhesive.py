@@ -183,8 +183,8 @@ def adhesive_contact(operator: Any, known_gap: np.ndarray, *, control: Literal["
     h0 = float(work_of_adhesion) / float(cohesive_stress)
     if interaction is None:
         interaction = (known_gap - value < h0) if control != "load" else np.zeros(known_gap.shape, dtype=bool)
-    zone = np.asarray(interaction, dtype=bool)
-    pressure = np.zeros_like(known_gap) if initial is None else np.asarray(initial, dtype=float)
+    zone = interaction.astype(bool, copy=False)
+    pressure = np.zeros_like(known_gap) if initial is None else initial.astype(float, copy=False)
     product = None if initial is None else initial_product
     settings = _Rounds(control, float(value), float(cohesive_stress), h0, cell_area, tolerance, max_iterations,
                        max_rounds, mixed_precision)
@@ -338,3 +338,86 @@ def _moved(zone: np.ndarray, gap: np.ndarray, h0: float, band: float) -> tuple[n
     """(the cells that join the zone, those that leave it) at ``gap`` [m], range ``h0`` [m]: below
     (1 - band) h0, above (1 + band) h0."""
     return ~zone & (gap < (1.0 - band) * h0), zone & (gap > (1.0 + band) * h0)
+
+
+#: relative change of the normal-tangential cross displacement [of its largest value] below which the
+#: rounds of :func:`adhesive_active_set` count it settled
+CROSS_TOLERANCE = 1e-9
+
+
+def adhesive_active_set(apply_k: Operator, known_gap: np.ndarray, *, control: Literal["load", "displacement"],
+                        value: float, cohesive_stress: float, work_of_adhesion: float, cell_area: float,
+                        initial: np.ndarray | None = None, cross: Operator | None = None,
+                        tolerance: float = 1e-10, max_iterations: int = 2000, max_rounds: int = 200,
+                        preconditioner: Operator | None = None, what: str = "steady adhesive contact"
+                        ) -> AdhesiveSolution:
+    """The Maugis-Dugdale problem of the module docstring with a non-symmetric operator K (the
+    effective steady kernel of sliding, :mod:`viscontact.solvers.steady`): three sets, the contact
+    (gap 0, p >= -sigma_0 unknown), the cohesive zone (0 < gap < h_0 = w / sigma_0, p = -sigma_0)
+    and the free surface (p = 0).
+
+    With the interaction zone I (contact and cohesive zone) fixed, x = p + sigma_0 1_I is the
+    solution of a plain contact problem, x >= 0, K x + (h_k - sigma_0 K 1_I) - delta >= 0,
+    complementarity (under load control sum x dA = W + sigma_0 |I|), solved by the primal-dual
+    active set with GMRES of :func:`viscontact.numerics.active_set.solve_contact_active_set`; then
+    the cells whose gap fell below h_0 join I and those whose gap rose above it leave, and the next
+    round starts from x, until the zone stays (a fixed point; a non-symmetric K has no energy to
+    decrease, so no monotone majorise-minimise: a zone still moving after ``max_rounds`` raises
+    :class:`~viscontact.errors.ConvergenceError`).
+
+    ``cross``: p [Pa] -> the displacement [m] of the tangential traction that p carries (gross
+    sliding, q_x = mu_f max(p, 0): mu_f K_zx max(p, 0)), added to the known gap from the last
+    round's p, the rounds going on until it changes by less than :data:`CROSS_TOLERANCE` of its
+    largest value. ``initial``: a pressure [Pa] to start from (its non-zero cells the first zone);
+    None: the zone where the rigid gap h_k - delta (under load control, h_k - min h_k) is below h_0.
+    ``what`` names the problem in a :class:`~viscontact.errors.ConvergenceError`.
+
+    Raises
+    ------
+    NoEquilibriumError
+        Under load control, when the zone cannot carry the load (sigma_0 |I| < -W).
+    """
+    from viscontact.numerics.active_set import solve_contact_active_set
+
+    sigma = float(cohesive_stress)
+    h0 = float(work_of_adhesion) / sigma
+    if initial is not None and np.any(initial != 0):
+        zone = initial != 0
+        x = np.maximum(initial + np.where(zone, sigma, 0.0), 0.0)
+    else:
+        zone = known_gap - (known_gap.min() if control == "load" else value) < h0
+        x = np.zeros_like(known_gap)
+    moved = np.zeros_like(zone)
+    displaced = np.zeros_like(known_gap)
+    krylov = 0
+    for rounds in range(1, max_rounds + 1):
+        tension = np.where(zone, sigma, 0.0)
+        shift = apply_k(tension)
+        shifted = known_gap - shift + displaced
+        total = value
+        if control == "load":
+            capacity = sigma * cell_area * float(np.count_nonzero(zone))
+            if value + capacity <= 0.0:
+                raise NoEquilibriumError(value, -capacity)
+            total = value + capacity
+        x, approach, iterations, _ = solve_contact_active_set(
+            apply_k, shifted, control=control, value=total, cell_area=cell_area,
+            initial=x if np.any(x > 0) else None, tolerance=tolerance, max_iterations=max_iterations,
+            preconditioner=preconditioner, what=what)
+        krylov += iterations
+        product = apply_k(x)
+        gap = np.maximum(product + shifted - approach, 0.0)
+        pressure = x - tension
+        settled = True
+        if cross is not None:
+            new = cross(pressure)
+            settled = float(np.abs(new - displaced).max()) <= CROSS_TOLERANCE * max(float(np.abs(new).max()), 1e-300)
+            displaced = new
+        joins, leaves = _moved(zone, gap, h0, RANGE_HYSTERESIS)
+        moved = joins | leaves
+        if settled and not moved.any():
+            return AdhesiveSolution(pressure, gap, float(approach), zone, krylov, rounds, product - shift)
+        zone = (zone | joins) & ~leaves
+    raise ConvergenceError(f"{what} interaction zone", max_rounds, float(np.count_nonzero(moved)), 0.0,
+                           hint="cells still joining or leaving the zone (or the normal-tangential coupling "
+                                "still changing)")

@@ -686,3 +686,140 @@ def hertz_axis_stresses(depth: np.ndarray | float, contact_radius: float, peak_p
         ratio = np.where(z > 0, z * np.arctan(1.0 / np.where(z > 0, z, 1.0)), 0.0)
     sigma_r = peak_pressure * (-(1 + poisson_ratio) * (1 - ratio) + 0.5 / (1 + z**2))
     return sigma_r, -peak_pressure / (1 + z**2)
+
+
+# --- Hunter (1961): a rigid cylinder sliding (rolling) steadily on a standard linear solid ----------
+
+@dataclass(frozen=True)
+class HunterCylinder:
+    """The steady contact of a rigid cylinder moving at constant speed on a standard linear solid in
+    plane strain (:func:`hunter_cylinder`): the isolated cylinder, no images, frictionless.
+
+    Attributes: ``trailing_edge`` -b and ``leading_edge`` a' [m] of the contact (the cylinder moves
+    towards +x, so the leading edge is the one at +x), ``load`` W [N/m], ``mu_app`` = int p x dx / (R W)
+    [-] (the resistance F_T / W: the pressure on the cylinder's slope x / R), ``coefficients`` f_n [Pa]
+    (n = 0, 1, ...) of the pressure p = sum_n f_n sin(n theta) on x = c + h cos(theta)."""
+
+    trailing_edge: float
+    leading_edge: float
+    load: float
+    mu_app: float
+    coefficients: np.ndarray
+
+    @property
+    def centre(self) -> float:
+        """c = (a' - b) / 2 [m], the contact's centre (ahead of the axis: c > 0)."""
+        return 0.5 * (self.leading_edge + self.trailing_edge)
+
+    @property
+    def half_width(self) -> float:
+        """h = (a' + b) / 2 [m], the contact's half-width."""
+        return 0.5 * (self.leading_edge - self.trailing_edge)
+
+    def pressure(self, x: np.ndarray) -> np.ndarray:
+        """p(x) = sum_n f_n sin(n theta), cos(theta) = (x - c) / h, inside the contact; 0 outside [Pa]."""
+        x = np.asarray(x, dtype=float)
+        t = (x - self.centre) / self.half_width
+        inside = np.abs(t) < 1.0
+        theta = np.arccos(np.clip(t[inside], -1.0, 1.0))
+        out = np.zeros_like(x)
+        n = np.arange(self.coefficients.size)
+        out[inside] = np.sin(np.multiply.outer(theta, n)) @ self.coefficients
+        return out
+
+
+def hunter_cylinder(load: float, cylinder_radius: float, shear_modulus_instantaneous: float,
+                    shear_modulus_long_term: float, retardation_time: float, poisson_ratio: float,
+                    speed: float) -> HunterCylinder:
+    """Hunter's (1961) isolated rigid cylinder moving steadily on a standard linear solid.
+
+    S. C. Hunter, "The rolling contact of a rigid cylinder with a viscoelastic half space", J. Appl.
+    Mech. 28 (1961) 611-617, poses the problem (frictionless, plane strain, one retardation time) and
+    reduces it to a singular integral equation over the contact (-b, a') whose solution involves the
+    modified Bessel functions of the contact's half-width; the equations below are re-derived here
+    (not transcribed) and solved in closed form up to one numerical root, the contact's half-width.
+
+    The body: J(t) = J_0 + (J_inf - J_0)(1 - exp(-t/tau)) with J = 1/G [1/Pa] (``retardation_time``
+    tau [s], G(0) = ``shear_modulus_instantaneous``, G(inf) = ``shear_modulus_long_term`` [Pa]) and a
+    constant nu: the compliance of the contact is (1 - nu) J(t) / 2 (1/E* elastic). The cylinder
+    (radius R [m], gap x^2/2R, load W [N/m]) moves at v [m/s] towards +x; a material point now at x
+    was at x + xi a time xi/v ago, L = v tau [m]. With H(x) = (1/pi) PV int p(s)/(x - s) ds [Pa], the
+    surface slope is (Johnson, *Contact Mechanics*, 1985, Eq. 2.25b, and the hereditary integral)
+
+        w'(x) = -(1 - nu) [ J_0 H(x) + (J_inf - J_0) Psi(x) ],  Psi(x) = int_0^inf exp(-u) H(x + L u) du,
+
+    and in the contact w' = -x/R. Since Psi - L Psi' = H, the operator (1 - L d/dx) turns this into a
+    first-order differential relation for H inside the contact,
+
+        J_inf H - L J_0 H' = (x - L) / ((1 - nu) R),
+
+    so H(x) = A x + B + C exp(lambda x) there, with A = G(inf) / ((1 - nu) R) (relaxed Hertz),
+    B = -A L (1 - G(inf)/G(0)), lambda = G(0) / (G(inf) L), and C a constant: Hunter's airfoil
+    equation with an exponential right-hand side. On x = c + h t = c + h cos(theta) the pressure
+    bounded (zero) at both edges is p = sum_{n>=1} f_n sin(n theta) = sqrt(1 - t^2) sum f_n U_{n-1}(t),
+    f_n the Chebyshev coefficients of the right-hand side (the finite Hilbert transform maps
+    sqrt(1 - t^2) U_{n-1} to T_n; Muskhelishvili's bounded solution). With exp(lambda (c + h t)) =
+    exp(lambda c) [I_0(z) + 2 sum_n I_n(z) T_n(t)], z = lambda h, and K = C exp(lambda c):
+
+        f_0 = A c + B + K I_0(z) = 0           (the solvability condition: p bounded at both edges),
+        f_1 = A h + 2 K I_1(z),   f_n = 2 K I_n(z) (n >= 2),
+        W = (pi h / 2) f_1,   int p x dx = c W + (pi h^2 / 4) f_2,   mu_app = int p x dx / (R W).
+
+    Given h, the load and the solvability condition give A c + B and K in closed form; the constant
+    C lost by (1 - L d/dx) is fixed by the slope condition at the leading edge a' = c + h (a homogeneous
+    term exp(x/L) in w' + x/R vanishes iff it vanishes there), which needs H ahead of the contact only:
+    there H = sum_n f_n r^n, r = t - sqrt(t^2 - 1) (t > 1), and Psi(a') = int_0^inf exp(-s^2) 2 s
+    H(a' + L s^2) ds is one smooth quadrature (scipy.integrate.quad). That leading-edge equation in
+    h is solved by Brent's method between the instantaneous and the relaxed Hertz half-widths.
+    Ratios I_n(z) / I_0(z) come from the exponentially scaled Bessel functions (scipy.special.ive), so
+    slow speeds (z ~ 1e5) neither overflow nor lose the series (~12 sqrt(z) terms).
+
+    Limits: v tau -> 0 and v tau -> inf give Hertz's line contact (:func:`hertz_line_from_load`) with
+    G(inf) and G(0), mu_app -> 0; in between the contact shifts ahead (c > 0). mu_app R / a0 and the
+    edges over a0 (a0 the Hertz half-width with G(0)) depend on v tau / a0 and G(0)/G(inf) alone;
+    for G(0)/G(inf) = 10, mu_app R / a0 peaks at 1.527 at v tau / a0 = 4.27.
+
+    Parameters: ``load`` W [N/m], ``cylinder_radius`` R [m], the moduli [Pa], ``retardation_time``
+    tau [s], ``poisson_ratio`` nu [-], ``speed`` v > 0 [m/s]. Returns a :class:`HunterCylinder`.
+    """
+    from scipy.integrate import quad
+    from scipy.optimize import brentq
+    from scipy.special import ive
+
+    g0, g_inf = float(shear_modulus_instantaneous), float(shear_modulus_long_term)
+    if not (g0 >= g_inf > 0.0 and speed > 0.0 and retardation_time > 0.0):
+        raise ValueError("hunter_cylinder needs G(0) >= G(inf) > 0, a speed > 0 and a retardation time > 0")
+    length = speed * retardation_time
+    slope_scale = (1.0 - poisson_ratio) * cylinder_radius
+    a_coef = g_inf / slope_scale
+    b_coef = -a_coef * length * (1.0 - g_inf / g0)
+    lam = g0 / (g_inf * length)
+
+    def coefficients(h: float) -> tuple[float, np.ndarray]:
+        z = lam * h
+        ratio = ive(np.arange(int(60 + 12 * np.sqrt(z)) + 1), z) / ive(0, z)  # I_n(z) / I_0(z)
+        linear = (a_coef * h - 2.0 * load / (np.pi * h)) / (2.0 * ratio[1])  # A c + B, from the load
+        f = -2.0 * linear * ratio  # 2 K I_n, K = -(A c + B) / I_0
+        f[0] = 0.0
+        f[1] += a_coef * h
+        return (linear - b_coef) / a_coef, f
+
+    def leading_edge_residual(h: float) -> float:
+        c, f = coefficients(h)
+        n = np.arange(f.size)
+
+        def ahead(s: float) -> float:  # H(a' + L s^2) s exp(-s^2) 2
+            t = 1.0 + length * s * s / h
+            return 2.0 * s * np.exp(-s * s) * float(f @ (t - np.sqrt(t * t - 1.0)) ** n)
+
+        psi = quad(ahead, 0.0, np.inf, limit=400, epsabs=1e-13 * float(np.abs(f).sum()), epsrel=1e-12)[0]
+        slope = (1.0 / g0) * f.sum() + (1.0 / g_inf - 1.0 / g0) * psi  # H(a') = sum f_n
+        return (slope - (c + h) / slope_scale) * slope_scale / h
+
+    e_star0 = contact_modulus(g0, poisson_ratio)
+    a0 = hertz_line_half_width(load, cylinder_radius, e_star0)
+    a_inf = a0 * np.sqrt(g0 / g_inf)
+    h = brentq(leading_edge_residual, 0.95 * a0, 1.05 * a_inf, xtol=1e-14 * a0, rtol=1e-13)
+    c, f = coefficients(h)
+    moment = c * load + np.pi * h * h / 4.0 * f[2]
+    return HunterCylinder(float(c - h), float(c + h), float(load), float(moment / (cylinder_radius * load)), f)

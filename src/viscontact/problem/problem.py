@@ -537,8 +537,7 @@ def check_line_contact_supported(problem: "Problem") -> None:
 
 def check_adhesion_supported(problem: "Problem") -> None:
     """Refuse, in one line naming the key, what adhesion does not work with: a load history that pulls
-    before it first presses (no equilibrium carries a tension without contact), and (not yet)
-    ``solver.device = "gpu"`` and rolling."""
+    before it first presses (no equilibrium carries a tension without contact), and (not yet) rolling."""
     if problem.tangential.rolls:
         raise ParameterError("tangential.mode", "'rolling' is not supported with [adhesion] yet: an adhesive "
                              "rolling law is missing; roll without [adhesion], or slide (gross_sliding, partial_slip)")
@@ -547,9 +546,6 @@ def check_adhesion_supported(problem: "Problem") -> None:
     if problem.normal.control == "load" and min(values[:pressed + 1]) < 0:
         raise ParameterError("normal.history", f"a load history must press the indenter on (a load > 0 N) before it "
                              f"pulls: no equilibrium carries a tensile load before the first contact, got {values!r}")
-    if problem.solver.device != "cpu":
-        raise ParameterError("solver.device", f"'{problem.solver.device}' is not supported with [adhesion] yet: "
-                             "use 'cpu'")
 
 
 @dataclass(frozen=True)

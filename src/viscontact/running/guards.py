@@ -218,7 +218,7 @@ def grid_suggestion(est: ContactEstimate, n: int, half_width: float) -> tuple[in
 
 
 def _check_adhesion(problem: Problem, transient: bool) -> None:
-    """With ``[adhesion]``: refuse the steady solver (not supported yet), and a grid whose cells are
+    """With ``[adhesion]``: refuse the steady solver on a periodic grid (not supported yet), and a grid whose cells are
     too coarse for the cohesive zone (:func:`cohesive_zone_estimate`) or for the contact radius
     (:func:`contact_estimate`) where that is smaller: fewer than :data:`ADHESION_MIN_CELLS` across is
     refused, fewer than :data:`ADHESION_WARN_CELLS` warned about, each with the grid.n that gives
@@ -226,9 +226,9 @@ def _check_adhesion(problem: Problem, transient: bool) -> None:
     adhesion = problem.adhesion
     if adhesion is None:
         return
-    if not transient:
-        raise ParameterError("adhesion", "is not supported by `viscontact steady` yet: adhesive contact is solved by "
-                             "the transient (`viscontact run`: indentation, frictionless or gross sliding)")
+    if not transient and problem.grid.periodic:
+        raise ParameterError("adhesion", "is not supported by `viscontact steady` on a periodic grid yet: run the "
+                             "transient (`viscontact run`), or the steady state on a non-periodic grid")
     grid = problem.grid
     est = contact_estimate(problem)
     length, what = cohesive_zone_estimate(problem, est)

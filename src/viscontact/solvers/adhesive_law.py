@@ -69,7 +69,7 @@ def solve_adhesive_normal(ctx: StepContext, known_uz: np.ndarray, pressure: np.n
     control = problem.normal.control
     if control == "load" and ctx.value <= 0 and (zone is None or not zone.any()):
         p = np.zeros_like(known)
-        return p, float(known.min()), 0, known_uz.copy(), np.zeros_like(p), np.zeros(p.shape, dtype=bool)
+        return p, float(known.min()), 0, known_uz.copy(), np.zeros_like(p), np.zeros_like(p, dtype=bool)
     op = ctx.compliance.elastic_operator("z", ctx.first)
     sol = adhesive_contact(op, known, control=control, value=ctx.value,
                            cohesive_stress=adhesion.cohesive_stress, work_of_adhesion=adhesion.work_of_adhesion,

@@ -35,6 +35,11 @@ What makes it fast:
 
 For gross sliding (q_x = mu_f p) the operator is K_zz + mu_f K_zx.
 
+With ``[adhesion]`` (a Maugis-Dugdale surface) the contact, the cohesive zone and the free surface
+are found by :func:`viscontact.numerics.adhesive.adhesive_active_set` on K_zz (the same active set on
+x = p + sigma_0 1_I for each interaction zone I, the zone moved to a fixed point), with q_x = mu_f
+max(p, 0) whose displacement mu_f K_zx max(p, 0) enters the gap as a fixed point (:func:`_solve_adhesive`).
+
 The fields are those of the compliance's array backend (:mod:`viscontact.numerics.arrays`); the record comes
 back to the host, measured by :func:`viscontact.solvers.measure.measure` as a transient step is.
 """
@@ -49,6 +54,7 @@ from viscontact.bodies.compliance import compliance_of
 from viscontact.bodies.compliance import Compliance
 from viscontact.errors import ParameterError
 from viscontact.numerics.active_set import solve_contact_active_set
+from viscontact.numerics.adhesive import NoEquilibriumError, adhesive_active_set
 from viscontact.numerics.convolution import Convolver, FourierPreconditioner
 from viscontact.problem.problem import PHASE_GROSS_SLIDING, Problem
 from viscontact.problem.records import StepRecord
@@ -213,9 +219,15 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
 
         if initial is None and grid.n >= 2 * COARSEST and grid.n % 2 == 0:
             initial = backend.to_device(coarse_start(problem, v))
-        elif initial is None:
+        elif initial is None and problem.adhesion is None:
             initial = _symmetric_guess(conv, problem, value, coupled, mu,
                                        steady_preconditioner(compliance, kernels, v, problem.solver.workers, True))
+        if problem.adhesion is not None:
+            p, delta, krylov, u_z, interaction = _solve_adhesive(conv, problem, value, mu if coupled else 0.0, initial,
+                                                                 tolerance, precondition, backend)
+            return measure(problem, p, mu * np.maximum(p, 0.0), u_z, delta_z=delta, value=value, gap=problem.gap,
+                           step=0, t=problem.time.t_end, phase=PHASE_GROSS_SLIDING, sliding_distance=float("inf"),
+                           iterations=krylov, where=f" at v = {v:.4g} m/s", interaction=interaction)
         p, delta, krylov, _ = solve_contact_active_set(apply_k, backend.to_device(problem.gap),
                                                        control=problem.normal.control, value=value,
                                                        cell_area=grid.cell_area, initial=initial, tolerance=tolerance,
@@ -225,6 +237,38 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
     return measure(problem, p, mu * p, u_z, delta_z=delta, value=value, gap=problem.gap, step=0, t=problem.time.t_end,
                    phase=PHASE_GROSS_SLIDING, sliding_distance=float("inf"), iterations=krylov,
                    where=f" at v = {v:.4g} m/s")
+
+
+def _solve_adhesive(conv: Convolver, problem: Problem, value: float, cross_friction: float,
+                    initial: np.ndarray | None, tolerance: float, preconditioner: FourierPreconditioner,
+                    backend) -> tuple[np.ndarray, float, int, np.ndarray, np.ndarray]:
+    """The steady Maugis-Dugdale contact (``[adhesion]``) on the effective steady kernel K_zz:
+    :func:`~viscontact.numerics.adhesive.adhesive_active_set` (contact, cohesive zone and free surface),
+    with q_x = mu_f max(p, 0) (no friction where the interface is in tension, as in the transient:
+    :mod:`viscontact.solvers.adhesive_law`) whose displacement mu_f K_zx max(p, 0) enters as a fixed
+    point where ``cross_friction`` mu_f != 0 (the coupling). Returns (p [Pa], delta [m], GMRES
+    iterations, u_z [m], the interaction zone), on the host. A tensile load that no zone carries (beyond
+    the pull-off) raises :class:`~viscontact.errors.ParameterError` naming the normal key."""
+    adhesion = problem.adhesion
+
+    def apply_zz(p: np.ndarray) -> np.ndarray:
+        return conv.apply("zz", p)
+
+    def cross(p: np.ndarray) -> np.ndarray:
+        return cross_friction * conv.apply("zx", np.maximum(p, 0.0))
+
+    try:
+        sol = adhesive_active_set(apply_zz, backend.to_device(problem.gap), control=problem.normal.control,
+                                  value=value, cohesive_stress=adhesion.cohesive_stress,
+                                  work_of_adhesion=adhesion.work_of_adhesion, cell_area=problem.grid.cell_area,
+                                  initial=initial, cross=cross if cross_friction else None, tolerance=tolerance,
+                                  max_iterations=problem.solver.max_iterations, preconditioner=preconditioner)
+    except NoEquilibriumError as exc:  # a tensile load beyond the pull-off: the case asks for what cannot be
+        key = "normal.value" if len(problem.normal.history.times) == 1 else "normal.history"
+        raise ParameterError(key, f"{exc} (no steady sliding state: lower the tensile load)") from None
+    u_z = sol.product + (cross(sol.pressure) if cross_friction else 0.0)
+    return (backend.to_host(sol.pressure), sol.approach, sol.iterations, backend.to_host(u_z),
+            backend.to_host(sol.interaction))
 
 
 def speed_sweep(problem: Problem, speeds: Sequence[float]) -> list[StepRecord]:
