@@ -24,6 +24,12 @@ frictionless: with nu = 0.5, or without ``solver.coupling``, the tangential prob
 it). Where the normal and tangential problems couple (nu < 0.5) the two are alternated, the normal
 one with the known displacement K_zx q, until both change by less than ``solver.coupling_tolerance``.
 A frictionless rolling is a frictionless sliding (Hunter 1961).
+
+On a periodic grid (a row of indenters, one per period) the steady operators are exact in Fourier
+space, each mode through the complex compliance at -k_x V (the compliance's periodic
+``steady_convolver``, :mod:`viscontact.solvers.steady_periodic`), the material difference wraps
+around the period as the transient's frame does, and the normal problem of the coupling is the
+periodic steady one (zero-mean displacements).
 """
 from __future__ import annotations
 
