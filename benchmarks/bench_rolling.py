@@ -1,9 +1,10 @@
 """Steady rolling benchmark: one rolling state and a traction-creepage curve of 20 creepages on the
 shipped case ``rolling_polymer_roller`` (a Zener rubber, V = a0/tau), against one steady sliding
-state of the same contact. Prints a table.
+state of the same contact; then the same in line contact on the shipped ``polymer_roller_line_contact``
+(a Zener polymer, 2000 N/m, rolling at its sliding speed 0.5 m/s, v tau / a0 = 0.89). Prints two tables.
 
-    .venv/bin/python benchmarks/bench_rolling.py                 # n = 128 and 256
-    .venv/bin/python benchmarks/bench_rolling.py --n 64 128
+    .venv/bin/python benchmarks/bench_rolling.py                 # n = 128 and 256; line: 1024 and 4096
+    .venv/bin/python benchmarks/bench_rolling.py --n 64 128 --line-n 1024
 
 The curve: ``viscontact.run_steady(case, creepages=...)`` (what ``viscontact steady --creepages``
 does, without writing the file), 20 braking creepages log-spaced from 1e-4 to 0.05, each started from
@@ -37,9 +38,28 @@ def measure(n: int) -> dict[str, float]:
     return out
 
 
+def measure_line(n: int) -> dict[str, float]:
+    """One steady rolling state (creepage -5e-3) and the 20-point curve of the line contact on n cells
+    (the first call of each size builds the steady kernels)."""
+    case = vc.load_case(vc.shipped_case("polymer_roller_line_contact")).with_overrides({
+        "grid.n": n, "tangential.mode": "rolling", "tangential.rolling_speed": 0.5, "tangential.creepage": -5e-3,
+        "tangential.displacement_rate": None, "tangential.slip": None, "tangential.sliding_speed": None})
+    creepages = list(-np.logspace(-4, np.log10(0.05), 20))
+    out: dict[str, float] = {}
+    for name, call in (("state", lambda: vc.run_steady(case)),
+                       ("curve", lambda: vc.run_steady(case, creepages=creepages))):
+        start = time.perf_counter()
+        result = call()
+        out[name] = time.perf_counter() - start
+        if name == "curve":
+            out["saturation"] = float(result["traction_ratio"][-1])
+    return out
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--n", type=int, nargs="+", default=[128, 256])
+    parser.add_argument("--line-n", type=int, nargs="*", default=[1024, 4096])
     args = parser.parse_args()
     warnings.simplefilter("ignore")
     print(f"{'n':>5} {'one state [s]':>14} {'20-point curve [s]':>19} {'one sliding state [s]':>22} "
@@ -47,6 +67,11 @@ def main() -> None:
     for n in args.n:
         m = measure(n)
         print(f"{n:>5} {m['state']:>14.1f} {m['curve']:>19.1f} {m['sliding']:>22.1f} {m['saturation']:>17.3f}")
+    if args.line_n:
+        print(f"\nline contact\n{'n':>5} {'one state [s]':>14} {'20-point curve [s]':>19} {'F/(mu W) at 0.05':>17}")
+    for n in args.line_n:
+        m = measure_line(n)
+        print(f"{n:>5} {m['state']:>14.2f} {m['curve']:>19.2f} {m['saturation']:>17.3f}")
 
 
 if __name__ == "__main__":

@@ -546,14 +546,19 @@ def _steady(body: str):
     return problem
 
 
+@pytest.mark.parametrize("periodic", [False, True], ids=["dc_fft", "periodic"])
 @pytest.mark.parametrize("held", [{"creepage": -3e-3}, {"tangential_force": 0.02}], ids=["creepage", "force"])
 @pytest.mark.parametrize("backend", BACKENDS)
-def test_the_steady_rolling_state_on_the_device_equals_numpy(backend, held, monkeypatch):
-    """Coupled (nu = 0.3): the steady normal and tangential problems alternate on the device."""
+def test_the_steady_rolling_state_on_the_device_equals_numpy(backend, held, periodic, monkeypatch):
+    """Coupled (nu = 0.3): the steady normal and tangential problems alternate on the device (on a
+    periodic grid with the periodic steady operators and normal solver)."""
     from viscontact.bodies import compliance
+    from viscontact.numerics.grid import Grid
     from viscontact.solvers.steady_rolling import solve_steady_rolling
 
     base = sphere_problem(seed_material(), 32, 2.5 * SEED_A0, t_end=SEED_TAU, dt=SEED_TAU / 20)
+    if periodic:
+        base = dataclasses.replace(base, grid=Grid(32, 2.5 * SEED_A0, periodic=True))
     problem = _solved_to_round_off(dataclasses.replace(base, tangential=TangentialLoading(
         "rolling", 0.5, rolling_speed=0.8 * SEED_A0 / SEED_TAU, **held)), backend)
     reference = solve_steady_rolling(problem)

@@ -103,3 +103,19 @@ def test_rolling_with_adhesion_is_refused_in_one_line():
     with pytest.raises(ParameterError) as info:
         Case.from_toml_text(text).to_problem()
     assert info.value.key == "tangential.mode" and "adhesion" in str(info.value)
+
+
+@pytest.mark.parametrize("indenter", [
+    '[indenter]\nshape = "sphere"\nradius = 0.01\n[indenter.roughness]\nhurst = 0.8\nrms_height = 1e-7\n',
+    '[indenter]\nshape = "self_affine"\nhurst = 0.8\nrms_slope = 0.1\n'])
+def test_rolling_on_a_rough_surface_is_refused_in_one_line(indenter):
+    """A rough gap stays fixed in the indenter's frame, where the asperities of a rolling surface pass
+    through the contact: rolling on it would model asperities sliding at the rolling speed."""
+    text = BASE.replace('[indenter]\nshape = "sphere"\nradius = 0.01\n', indenter) + ROLLING
+    if "self_affine" in indenter:
+        text = text.replace("[grid]\n", "[grid]\nperiodic = true\n")
+    with pytest.raises(ParameterError) as info:
+        Case.from_toml_text(text).to_problem()
+    assert info.value.key == "tangential.mode" and "rough" in str(info.value)
+    smooth = Case.from_toml_text(BASE + ROLLING).to_problem()  # a smooth sphere rolls
+    assert smooth.tangential.rolls

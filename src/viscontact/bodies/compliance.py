@@ -410,11 +410,12 @@ class Compliance:
 
         L_m = v lambda_m, each term with its own spectrum (J_0, J_m, lambda_m) and the F_m of its own
         kernel shape (:attr:`steady_shapes`, all modes in one pass: :mod:`viscontact.physics.steady_kernels`);
-        ``apply("zz", p)`` is u_z [m] of p [Pa]. DC-FFT grids; a periodic steady state is exact in
-        Fourier space (:meth:`steady_spectrum`).
+        ``apply("zz", p)`` is u_z [m] of p [Pa]. On a periodic grid the steady operator is exact in
+        Fourier space: a :class:`~viscontact.physics.periodic.PeriodicConvolver` of the component
+        spectra K^_term phi*_term(-k_x v) (:meth:`steady_spectrum`), and no real-space kernels.
         """
         if self.periodic:
-            raise NotImplementedError("a periodic steady state is exact in Fourier space: steady_spectrum")
+            return self._periodic_steady_convolver(speed, components), {}
         n, rows = self.grid.n, self.grid.rows
         kernels: dict[str, Array] = {}
         for term in self.terms:
@@ -441,6 +442,15 @@ class Compliance:
         symbol (``symmetric``: of its symmetric part), or None where this compliance knows none (then
         :func:`viscontact.solvers.steady.steady_preconditioner` takes that of the effective kernel)."""
         return None
+
+    def _periodic_steady_convolver(self, speed: float, components: Sequence[str]) -> PeriodicConvolver:
+        """The periodic steady operators by component (``zz``, ``xx``, ``xz``, ``zx``: displacement,
+        traction) at ``speed`` [m/s], each the sum over its terms of K^_term phi*_term(-k_x v)
+        (:func:`viscontact.physics.steady_kernels.steady_operator_spectrum`, as :meth:`steady_spectrum`)."""
+        spectra = {name: steady_operator_spectrum(self.grid, speed, [
+            (self.convolver.spectra[t.kernel], self.responses[t.history]) for t in self._terms(name[0], name[1])])
+            for name in components}
+        return PeriodicConvolver(self.grid.n, spectra, self.convolver.workers, None, self.xp, self.fft)
 
     def steady_spectrum(self, speed: float, friction: float = 0.0) -> Array:
         """Spectrum (n, n//2 + 1) of the steady operator p -> u_z [m per Pa] on a periodic grid: the sum

@@ -81,8 +81,8 @@ class HalfSpace(Compliance):
         """K(d) = J_0 IC(d) + sum_m J_m F_m(d) with L_m = v lambda_m (see :mod:`viscontact.solvers.steady`),
         all modes in one pass (:class:`~viscontact.physics.steady_kernels.SteadyKernelBuilder`, kept for
         the next speed); ``apply("zz", p)`` is u_z [m] of p [Pa]."""
-        if self.periodic:
-            raise NotImplementedError("a periodic steady state is exact in Fourier space: viscontact.solvers.steady_periodic")
+        if self.periodic:  # exact in Fourier space
+            return super().steady_convolver(speed, components)
         comps = tuple(components)
         builder = self._steady_builders.get(comps)
         if builder is None:

@@ -596,6 +596,11 @@ class Problem:
                                  f"{self.normal.history.values!r}")
         if self.adhesion is not None:
             check_adhesion_supported(self)
+        if self.tangential.rolls and self.surface_topography:
+            raise ParameterError("tangential.mode", "'rolling' is not supported on a rough or measured surface yet: "
+                                 "the gap is fixed in the indenter's frame, where rolling carries the asperities "
+                                 "through the contact with the surfaces (a convected gap is missing); roll a smooth "
+                                 "indenter, or slide (gross_sliding, partial_slip)")
         if np.shape(self.gap) != grid_shape:
             raise ParameterError("gap", f"must be an array of the grid's shape {grid_shape}, got shape "
                                  f"{np.shape(self.gap)}")

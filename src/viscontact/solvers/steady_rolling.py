@@ -24,11 +24,18 @@ frictionless: with nu = 0.5, or without ``solver.coupling``, the tangential prob
 it). Where the normal and tangential problems couple (nu < 0.5) the two are alternated, the normal
 one with the known displacement K_zx q, until both change by less than ``solver.coupling_tolerance``.
 A frictionless rolling is a frictionless sliding (Hunter 1961).
+
+On a periodic grid (a row of indenters, one per period) the steady operators are exact in Fourier
+space, each mode through the complex compliance at -k_x V (the compliance's periodic
+``steady_convolver``, :mod:`viscontact.solvers.steady_periodic`), the material difference wraps
+around the period as the transient's frame does, and the normal problem of the coupling is the
+periodic steady one (zero-mean displacements).
 """
 from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import replace
+from functools import partial
 
 import numpy as np
 
@@ -46,9 +53,12 @@ from viscontact.solvers.steady import steady_preconditioner
 MAX_ROUNDS = 200
 
 
-def material_difference(displacement: np.ndarray) -> np.ndarray:
+def material_difference(displacement: np.ndarray, periodic: bool = False) -> np.ndarray:
     """u(x) - u(x + dx) [m] along x (axis 1): the change of a steady displacement over one cell of
-    the material's passage; 0 in the last column (the leading edge of the grid)."""
+    the material's passage; 0 in the last column (the leading edge of the grid), or wrapping around
+    on a ``periodic`` grid (as the transient's :func:`~viscontact.solvers.rolling.convected`)."""
+    if periodic:
+        return displacement - np.roll(displacement, -1, axis=1)
     out = np.zeros_like(displacement)
     out[:, :-1] = displacement[:, :-1] - displacement[:, 1:]
     return out
@@ -63,7 +73,8 @@ def rolling_components(problem: Problem) -> list[str]:
 
 def solve_tangential(apply_xx, pressure: np.ndarray, known_x: np.ndarray, friction: float, cell_area: float, *,
                      creep: float | None, force: float | None, initial: np.ndarray | None = None,
-                     tolerance: float = 1e-10, max_iterations: int = 2000) -> tuple[np.ndarray, float, np.ndarray, int]:
+                     tolerance: float = 1e-10, max_iterations: int = 2000, periodic: bool = False
+                     ) -> tuple[np.ndarray, float, np.ndarray, int]:
     """The steady tangential problem of rolling for the pressure ``pressure`` [Pa] (module docstring).
 
     Parameters
@@ -79,6 +90,8 @@ def solve_tangential(apply_xx, pressure: np.ndarray, known_x: np.ndarray, fricti
     initial
         A traction [Pa] whose stick set (|q| < mu_f p in contact) starts the active set (default:
         the whole contact sticks).
+    periodic
+        Whether the grid is periodic (the material difference wraps around: :func:`material_difference`).
 
     Returns
     -------
@@ -95,7 +108,8 @@ def solve_tangential(apply_xx, pressure: np.ndarray, known_x: np.ndarray, fricti
     else:
         stick = contact & (np.abs(initial) < bound)
         side = np.where(contact & ~stick, np.sign(initial), 0.0)
-    known_slip = material_difference(known_x)
+    difference = partial(material_difference, periodic=periodic)
+    known_slip = difference(known_x)
     c = 0.0 if creep is None else float(creep)
     q = np.zeros_like(pressure) if initial is None else np.where(contact, np.clip(initial, -bound, bound), 0.0)
     krylov = 0
@@ -103,14 +117,14 @@ def solve_tangential(apply_xx, pressure: np.ndarray, known_x: np.ndarray, fricti
     for _ in range(MAX_ROUNDS):
         fixed = side * bound  # the slipping points at their bound
         if stick.any() or creep is None:
-            q_stick, c, its = _solve_stick_set(apply_xx, stick, fixed, known_slip, q, c,
+            q_stick, c, its = _solve_stick_set(apply_xx, difference, stick, fixed, known_slip, q, c,
                                                force if creep is None else None, cell_area,
                                                tolerance, max_iterations, contact)
             krylov += its
             q = fixed + q_stick
         else:
             q = fixed
-        slip = material_difference(apply_xx(q)) + known_slip + c
+        slip = difference(apply_xx(q)) + known_slip + c
         leave = stick & (np.abs(q) > bound)
         join = contact & ~stick & (side * slip > 0)
         if not leave.any() and not join.any():
@@ -126,17 +140,17 @@ def solve_tangential(apply_xx, pressure: np.ndarray, known_x: np.ndarray, fricti
                            hint="the stick set did not settle")
 
 
-def _solve_stick_set(apply_xx, stick: np.ndarray, fixed: np.ndarray, known_slip: np.ndarray, q: np.ndarray,
-                     creep: float, force: float | None, cell_area: float, tolerance: float, max_iterations: int,
+def _solve_stick_set(apply_xx, difference, stick: np.ndarray, fixed: np.ndarray, known_slip: np.ndarray,
+                     q: np.ndarray, creep: float, force: float | None, cell_area: float, tolerance: float, max_iterations: int,
                      contact: np.ndarray) -> tuple[np.ndarray, float, int]:
     """One round's linear solve (GMRES) of the stick set ``stick``: s = 0 there, with the slipping points
-    at ``fixed`` [Pa]. Under a held ``force`` [N] (else None: ``creep`` [m] held) the bordered system of
+    at ``fixed`` [Pa]; ``difference`` is :func:`material_difference` on the grid. Under a held ``force`` [N] (else None: ``creep`` [m] held) the bordered system of
     (q on the set, the rigid creep) with the force as its last row (scaled to a slip: ``row`` [m/Pa],
     the mean material difference of a unit traction over the contact). Returns (q_x on the set [Pa],
     zeros elsewhere; the rigid creep [m]; GMRES iterations), starting from ``q`` and ``creep``."""
     idx = np.flatnonzero(stick)
     m = idx.size
-    rhs = -(known_slip + material_difference(apply_xx(fixed))).ravel()[idx]
+    rhs = -(known_slip + difference(apply_xx(fixed))).ravel()[idx]
 
     def full(v: np.ndarray) -> np.ndarray:
         out = np.zeros_like(fixed)
@@ -144,12 +158,12 @@ def _solve_stick_set(apply_xx, stick: np.ndarray, fixed: np.ndarray, known_slip:
         return out
 
     def slip_of(v: np.ndarray) -> np.ndarray:
-        return material_difference(apply_xx(full(v))).ravel()[idx]
+        return difference(apply_xx(full(v))).ravel()[idx]
 
     if force is None:
         sol = gmres(slip_of, rhs - creep, q.ravel()[idx], rtol=tolerance, max_iterations=max_iterations)
     else:
-        row = float(np.mean(np.abs(material_difference(apply_xx(contact.astype(float)))[contact]))) or 1.0
+        row = float(np.mean(np.abs(difference(apply_xx(contact.astype(float)))[contact]))) or 1.0
         per_point = max(m, 1)
 
         def entry(value) -> np.ndarray:  # the one-element border, in the fields' library
@@ -168,15 +182,12 @@ def _solve_stick_set(apply_xx, stick: np.ndarray, fixed: np.ndarray, known_slip:
 
 
 def check_steady_rolling(problem: Problem, speed: float | None = None) -> None:
-    """A steady rolling state needs ``tangential.mode = "rolling"`` at a speed > 0 m/s on a DC-FFT
-    (non-periodic) grid (:class:`~viscontact.errors.ParameterError` otherwise)."""
+    """A steady rolling state needs ``tangential.mode = "rolling"`` at a speed > 0 m/s
+    (:class:`~viscontact.errors.ParameterError` otherwise)."""
     if not problem.tangential.rolls:
         raise ParameterError("tangential.mode", f"must be 'rolling' for a steady rolling state, got "
                              f"{problem.tangential.mode!r}")
     check_speed(problem.tangential.rolling_speed if speed is None else speed)
-    if problem.grid.periodic:
-        raise ParameterError("grid.periodic", "true is not supported by the steady rolling solver yet: run the "
-                             "transient (viscontact run) or use a DC-FFT grid")
 
 
 def solve_steady_rolling(problem: Problem, speed: float | None = None, *, creepage: float | None = None,
@@ -214,23 +225,20 @@ def solve_steady_rolling(problem: Problem, speed: float | None = None, *, creepa
     krylov = 0
     q = to_device(initial.shear_x) if initial is not None else None
     creep = None if xi is None else xi * grid.spacing
-    precondition = steady_preconditioner(compliance, kernels, v, settings.workers)
+    normal_with = _normal_solver(problem, compliance, conv, kernels, v, value, tolerance)
+    periodic = grid.periodic
     for _ in range(settings.max_coupling_iterations if coupled else 1):
         known_x = conv.apply("xz", p) if coupled else np.zeros_like(p)
         if mu > 0:
             q, c, _, its = solve_tangential(lambda f: conv.apply("xx", f), p, known_x, mu, grid.cell_area,
                                                creep=creep, force=force, initial=q, tolerance=tolerance,
-                                               max_iterations=settings.max_iterations)
+                                               max_iterations=settings.max_iterations, periodic=periodic)
             krylov += its
         else:
             q, c = np.zeros_like(p), creep
         if not coupled or mu == 0:
             break
-        cross = conv.apply("zx", q)
-        p_new, delta, _, _ = solve_contact_active_set(
-            lambda f: conv.apply("zz", f), gap + cross, control=problem.normal.control, value=value,
-            cell_area=grid.cell_area, initial=p, tolerance=tolerance, max_iterations=settings.max_iterations,
-            preconditioner=precondition, what="steady rolling (normal)")
+        p_new, delta = normal_with(gap + conv.apply("zx", q), p)
         change = float(np.abs(p_new - p).sum()) / max(float(np.abs(p_new).sum()), 1e-300)
         p = p_new
         if change < settings.coupling_tolerance:
@@ -241,7 +249,7 @@ def solve_steady_rolling(problem: Problem, speed: float | None = None, *, creepa
     if mu > 0 and coupled:  # the tangential state of the final pressure
         q, c, _, its = solve_tangential(lambda f: conv.apply("xx", f), p, conv.apply("xz", p), mu, grid.cell_area,
                                            creep=creep, force=force, initial=q, tolerance=tolerance,
-                                           max_iterations=settings.max_iterations)
+                                           max_iterations=settings.max_iterations, periodic=periodic)
         krylov += its
     u_z = to_host(conv.apply("zz", p) + (conv.apply("zx", q) if coupled else 0.0))
     p, q = to_host(p), to_host(q)
@@ -250,6 +258,39 @@ def solve_steady_rolling(problem: Problem, speed: float | None = None, *, creepa
                      phase=PHASE_ROLLING, stick=stick, sliding_distance=float("inf"), iterations=krylov,
                      where=f" at V = {v:.4g} m/s")
     return replace(record, creepage=float(xi) if xi is not None else c / grid.spacing)
+
+
+def _normal_solver(problem: Problem, compliance: Compliance, conv, kernels: dict[str, np.ndarray], speed: float,
+                   value: float, tolerance: float):
+    """The steady normal problem of the coupled alternation: (gap h0 + K_zx q [m], the last pressure
+    [Pa]) -> (p [Pa], delta_z [m]) with the steady K_zz at ``speed`` [m/s] and the held normal
+    ``value``: the active set of :mod:`viscontact.solvers.steady` on a DC-FFT grid, or that of
+    :func:`~viscontact.solvers.steady_periodic.solve_periodic_steady` (zero-mean displacements) on a
+    periodic one."""
+    settings, grid, backend = problem.solver, problem.grid, compliance.backend
+    if grid.periodic:
+        from viscontact.solvers.steady_periodic import solve_periodic_steady
+
+        spectrum = compliance.steady_spectrum(speed)
+
+        def periodic(gap: np.ndarray, initial: np.ndarray) -> tuple[np.ndarray, float]:
+            state = solve_periodic_steady(compliance.convolver, problem.material, grid, gap, speed=speed,
+                                          control=problem.normal.control, value=value, initial=initial,
+                                          tolerance=tolerance, max_iterations=settings.max_iterations,
+                                          spectrum=spectrum, to_host=backend.to_host)
+            return backend.to_device(state.pressure), state.delta_z
+
+        return periodic
+    precondition = steady_preconditioner(compliance, kernels, speed, settings.workers)
+
+    def dc_fft(gap: np.ndarray, initial: np.ndarray) -> tuple[np.ndarray, float]:
+        p, delta, _, _ = solve_contact_active_set(
+            lambda f: conv.apply("zz", f), gap, control=problem.normal.control, value=value,
+            cell_area=grid.cell_area, initial=initial, tolerance=tolerance, max_iterations=settings.max_iterations,
+            preconditioner=precondition, what="steady rolling (normal)")
+        return p, delta
+
+    return dc_fft
 
 
 def creepage_sweep(problem: Problem, creepages: Sequence[float], speed: float | None = None) -> list[StepRecord]:
