@@ -646,7 +646,7 @@ class LayerSection(_Section):
 class AdhesionSection(_Section):
     """Adhesion of the surface (absent: none): a Maugis-Dugdale law, a tension ``cohesive_stress``
     wherever the gap is open but below w / cohesive_stress (Maugis 1992), or an exponential law, a
-    tension (w / range) exp(-gap / range) across every open gap (Needleman 1987). With it, a load
+    tension (w / range) exp(-gap / range) across every open gap (Muser 2014). With it, a load
     history may be tensile and an approach history may go below zero (retraction to pull-off and
     beyond)."""
 

@@ -3,9 +3,9 @@ majorise-minimise rounds of :mod:`viscontact.numerics.adhesive` with the tension
 
 The law (on each cell): a tension sigma(g) = (w / rho) exp(-g / rho) [Pa] across an open gap g >= 0,
 of peak w / rho at contact and work of separation int_0^inf sigma dg = w [J/m^2] (the Dupre work of
-adhesion); the range rho [m] sets its reach. It is the exponential cohesive law of Needleman (1987,
-J. Appl. Mech. 54, 525; its normal part) and Xu & Needleman (1993), used for adhesive spheres by
-Greenwood (1997, Proc. R. Soc. Lond. A 453, 1277, beside the Lennard-Jones law) and Feng (2000). With
+adhesion); the range rho [m] sets its reach: the adhesive potential -w exp(-g / rho) of the
+exponential interaction used by Muser (2014, Beilstein J. Nanotechnol. 5, 419) for single-asperity
+adhesion with a finite range. With
 the elastic operator K (p -> u_z) and the known gap h_k [m], g = K p + h_k - delta, the state makes the
 energy
 
@@ -20,14 +20,17 @@ x = p + sigma(g_k) >= 0, complementary to the gap (Polonsky & Keer,
 :func:`~viscontact.numerics.support_window.windowed_cg`, load control included). Each round therefore
 never increases Pi (the majorise-minimise descent: Pi(p_k+1) <= M(p_k+1 | p_k) <= M(p_k | p_k) =
 Pi(p_k)), the guarantee the Maugis-Dugdale rounds have; unlike them the tension changes continuously,
-so the rounds end on a residual, max |sigma(g_k+1) - sigma(g_k)| <= :data:`ROUND_FACTOR` (the solve's tolerance) w / rho,
-the last round solved to the full tolerance, after at most ``max_rounds`` rounds
-(:class:`~viscontact.errors.ConvergenceError` beyond). Linearised about a stable equilibrium the
-rounds contract by the largest eigenvalue of K diag(sigma / rho) (< 1 where the equilibrium is
+so the rounds end on a residual, max |sigma(g_k+1) - sigma(g_k)| <= :data:`ROUND_FACTOR` (the solve's
+tolerance) w / rho, the last round solved to the full tolerance, after at most ``max_rounds`` rounds
+(:class:`~viscontact.errors.ConvergenceError` beyond). Linearised about a stable equilibrium (on its open
+cells) the rounds contract by the largest eigenvalue of K diag(sigma / rho) (< 1 where the equilibrium is
 stable, positive: a monotone approach), which tends to 1 at a jump or a pull-off. Under load control a
 round whose tension field cannot carry the load, W + sum sigma(g_k) dA <= 0, has no majorant
-minimiser (the indenter would fly off): the pull-off, :class:`~viscontact.numerics.adhesive.NoEquilibriumError`,
-as for the Maugis-Dugdale law.
+minimiser (the indenter would fly off): the pull-off,
+:class:`~viscontact.numerics.adhesive.NoEquilibriumError`, as for the Maugis-Dugdale law. (Under a tensile
+load Pi itself is unbounded below, the indenter pulled off to infinity: the descent says the rounds
+never climb, not that they stay at a local equilibrium; near the pull-off they may drift off, and the
+capacity test ends them.)
 """
 from __future__ import annotations
 
@@ -124,8 +127,8 @@ def exponential_contact(operator: Any, known_gap: np.ndarray, *, control: Litera
             total, b = value + capacity, shift - known_gap
         else:
             b = shift + value - known_gap
-        sol = windowed_cg(op, b, x, total=total, cell_area=cell_area,
-                          tolerance=tolerance if tight else max(tolerance, min(LOOSE_TOLERANCE, LOOSE_FACTOR * residual)),
+        loose = max(tolerance, min(LOOSE_TOLERANCE, LOOSE_FACTOR * residual))
+        sol = windowed_cg(op, b, x, total=total, cell_area=cell_area, tolerance=tolerance if tight else loose,
                           max_iterations=max_iterations, what=f"exponential adhesive contact ({control} control)",
                           mixed_precision=mixed_precision)
         x = sol.x

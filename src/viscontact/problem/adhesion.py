@@ -6,7 +6,7 @@ gap >= 0, complementarity). With :class:`AdhesionSettings` a tension acts across
 ``law = "maugis_dugdale"`` (Maugis 1992, J. Colloid Interface Sci. 150, 243) a constant tension
 ``cohesive_stress`` sigma_0 [Pa] wherever 0 < gap < h_0 = w / sigma_0, nothing beyond, the Dupre
 work of adhesion w = sigma_0 h_0 [J/m^2]. Solved by :mod:`viscontact.numerics.adhesive`. For
-``law = "exponential"`` (the normal part of Needleman's 1987 cohesive law, J. Appl. Mech. 54, 525) a
+``law = "exponential"`` (the exponential interaction of Muser 2014, Beilstein J. Nanotechnol. 5, 419) a
 tension sigma(g) = (w / rho) exp(-g / rho) across every open gap g, of peak w / rho and work of
 separation w, with the ``range`` rho [m]. Solved by :mod:`viscontact.numerics.adhesive_exponential`.
 """
