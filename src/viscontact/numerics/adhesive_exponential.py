@@ -108,7 +108,7 @@ def exponential_contact(operator: Any, known_gap: np.ndarray, *, control: Litera
     peak = w / rho
     load_control = control == "load"
     if initial is not None:
-        contact = np.zeros(known_gap.shape, dtype=bool) if interaction is None else interaction.astype(bool)
+        contact = np.zeros_like(known_gap, dtype=bool) if interaction is None else interaction.astype(bool)
         tension = np.where(contact, peak, np.clip(-initial, 0.0, peak))
         x = np.maximum(initial + tension, 0.0)
     else:
