@@ -140,6 +140,15 @@ def test_the_keys_of_another_law_are_refused_in_one_line(overrides, key):
     assert err.value.key == key and "\n" not in str(err.value), str(err.value)
 
 
+@pytest.mark.parametrize("args, key", [((W, 1e4, "exponential", 1e-6), "adhesion.cohesive_stress"),
+                                       ((W, 1e4, "maugis_dugdale", 1e-6), "adhesion.range"),
+                                       ((W, None, "exponential", 0.0), "adhesion.range")])
+def test_the_settings_refuse_the_other_laws_parameter(args, key):
+    with pytest.raises(ParameterError) as err:
+        AdhesionSettings(*args)
+    assert err.value.key == key
+
+
 def test_the_steady_solver_refuses_the_exponential_law_in_one_line():
     from viscontact.running import api
 

@@ -45,13 +45,16 @@ class AdhesionSettings:
     decay_length: float | None = None
 
     def __post_init__(self) -> None:
-        """Raises :class:`~viscontact.errors.ParameterError` naming the ``adhesion.`` key: w or sigma_0 not
-        a finite number > 0, an unknown law."""
+        """Raises :class:`~viscontact.errors.ParameterError` naming the ``adhesion.`` key: w, sigma_0 or rho
+        (``range``) not a finite number > 0, an unknown law, the other law's parameter given."""
         if self.law not in ADHESION_LAWS:
             raise ParameterError("adhesion.law",
                                  f"must be one of {', '.join(map(repr, ADHESION_LAWS))}, got {self.law!r}")
         own = ("cohesive_stress", " Pa", "cohesive_stress") if self.law == "maugis_dugdale" else \
             ("decay_length", " m", "range")
+        other = ("decay_length", "range") if self.law == "maugis_dugdale" else ("cohesive_stress", "cohesive_stress")
+        if getattr(self, other[0]) is not None:
+            raise ParameterError(f"adhesion.{other[1]}", f"not a key of adhesion.law = {self.law!r}")
         for attribute, unit, key in (("work_of_adhesion", " J/m^2", "work_of_adhesion"), own):
             value = getattr(self, attribute)
             if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
