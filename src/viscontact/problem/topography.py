@@ -59,6 +59,8 @@ def rms_slopes(gap: np.ndarray, spacing: float, periodic: bool) -> tuple[float, 
     interior = float(np.sqrt(np.mean(dx**2) + (np.mean(dy**2) if dy.size else 0.0))) / spacing
     if not periodic or interior == 0:
         return interior, 1.0
+    if not dy.size:  # a line: its one seam, across x
+        return interior, float(np.sqrt(np.mean((gap[:, 0] - gap[:, -1])**2) / np.mean(dx**2)))
     seams = np.concatenate([gap[:, 0] - gap[:, -1], gap[0] - gap[-1]])
     step = float(np.sqrt((np.mean(dx**2) + np.mean(dy**2)) / 2))
     return interior, float(np.sqrt(np.mean(seams**2))) / step
