@@ -57,6 +57,11 @@ its q = 0 sample is extrapolated from the two smallest rings: measured against a
 Hankel-quadrature kernel the error is a near-constant offset of ~1e-4 of the self-coefficient
 (a rigid shift of the displacement under load control) falling as P^-3.6.
 
+On a line grid (``grid.dimension = 1``, plane strain; periodic grids only) a load uniform along y
+has its Fourier transform at q_y = 0, so the plane-strain compliance is M(q_x, 0): c = +-1,
+M_xx = A_ee, and the anti-plane part does not enter; the lattice is the row of wavevectors (q_x, 0)
+and the cell footprint one sinc (:func:`_lattice_compliance`, :func:`_fourier_part`).
+
 Periodic (:func:`periodic_spectra`): no smoothing. The half-space part c_high/k is the exact
 periodic half-space kernel of the layer material (:func:`viscontact.physics.periodic.periodic_influence_coefficients`,
 Ewald, zero mean); the rest, M - c_high/k, decays as exp(-2kh) and is sampled on the periodic grid
@@ -324,13 +329,14 @@ def _rotate(spectral: _Spectral, cosine: np.ndarray, k_unique: np.ndarray, inver
     return {name: out[name] for name in components}
 
 
-def _lattice_compliance(spectral: _Spectral, size: int, spacing: float, components: tuple[str, ...]
-                        ) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
+def _lattice_compliance(spectral: _Spectral, size: int, spacing: float, components: tuple[str, ...],
+                        dimension: int = 2) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
     """M on the wavevectors of a size x size transform with cells ``spacing`` [m] (fft order,
-    q = 0 excluded: returned as 0), solving once per distinct i^2 + j^2 (no sort). Returns
-    (M by component, q_x, |q|)."""
+    q = 0 excluded: returned as 0), solving once per distinct i^2 + j^2 (no sort); with
+    ``dimension = 1`` on the (1, size) wavevectors (q_x, 0) of a line (plane strain: a load uniform
+    along y sees the compliance at q_y = 0). Returns (M by component, q_x, |q|)."""
     idx = np.rint(scipy.fft.fftfreq(size) * size).astype(np.int64)
-    keys = idx[None, :] ** 2 + idx[:, None] ** 2
+    keys = idx[None, :] ** 2 + (idx[:, None] ** 2 if dimension == 2 else np.zeros((1, 1), dtype=np.int64))
     present = np.zeros(int(keys.max()) + 1, dtype=bool)
     present[keys] = True
     present[0] = False
@@ -476,13 +482,18 @@ def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: 
                              "needs refinement, thicker than the domain a larger box; change grid.n or half_width")
     ds = dx / refine
     spectral = spectral or _layer_spectral(layer)
-    m, qx, k = _lattice_compliance(spectral, fine, ds, components)
+    m, qx, k = _lattice_compliance(spectral, fine, ds, components, grid.dimension)
     q1 = 2 * np.pi / (fine * ds)
     nonzero = k > 0
     m = {name: v[nonzero] for name, v in m.items()}
     kk, cx = k[nonzero], qx[nonzero]
-    qy = np.broadcast_to(2 * np.pi * scipy.fft.fftfreq(fine, ds)[:, None], k.shape)
-    footprint = np.sinc(qx * dx / (2 * np.pi)) * np.sinc(qy * dx / (2 * np.pi)) * dx**2
+    area = grid.cell_area  # dx^2, or dx on a line: one sinc per direction of the cell
+    if grid.dimension == 2:
+        qy = np.broadcast_to(2 * np.pi * scipy.fft.fftfreq(fine, ds)[:, None], k.shape)
+        footprint = np.sinc(qx * dx / (2 * np.pi)) * np.sinc(qy * dx / (2 * np.pi)) * dx**2
+    else:
+        footprint = np.sinc(qx * dx / (2 * np.pi)) * area
+    fold = (refine, cells, refine, cells) if grid.dimension == 2 else (1, 1, refine, cells)
     decay = np.exp(-kk * big_h)
     high, uniform = spectral.high, spectral.uniform
     out = {}
@@ -496,7 +507,7 @@ def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: 
         spec = full * footprint
         tail = 0.0
         if low is None:
-            spec[0, 0] = uniform[name] * dx**2  # the periodic half-space kernels have zero mean
+            spec[0, 0] = uniform[name] * area  # the periodic half-space kernels have zero mean
         else:
             # bounded at q = 0 with an angle-independent part M0 + m1 |k| (orders 1, 2 average out
             # over the four axis wavevectors): M0 extrapolated from the rings q1, 2 q1; the -m1/(2 pi r^3)
@@ -506,11 +517,11 @@ def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: 
             spec[0, 0] = (2 * ring1 - ring2) * dx**2
             tail = (ring2 - ring1) / q1 * _LATTICE_ZETA3 * dx**2 / (2 * np.pi * (cells * dx) ** 3)
         if shifts is None:
-            folded = spec.reshape(refine, cells, refine, cells).sum(axis=(0, 2))
-            out[name] = scipy.fft.ifft2(folded).real / dx**2 + tail
+            folded = spec.reshape(fold).sum(axis=(0, 2))
+            out[name] = scipy.fft.ifft2(folded).real / area + tail
             continue
-        out[name] = np.stack([scipy.fft.ifft2((spec * np.exp(1j * qx * xi)).reshape(refine, cells, refine, cells)
-                                              .sum(axis=(0, 2))).real / dx**2 + tail for xi in shifts])
+        out[name] = np.stack([scipy.fft.ifft2((spec * np.exp(1j * qx * xi)).reshape(fold)
+                                              .sum(axis=(0, 2))).real / area + tail for xi in shifts])
     return out
 
 
@@ -588,7 +599,7 @@ def unit_kernels(grid: Grid, layer: Layer, components: tuple[str, ...] = COMPONE
     grid, the periodic n x n kernels in wrap-around order (:func:`periodic_spectra`)."""
     if grid.periodic:
         spectra = periodic_spectra(grid, layer, components, spectral=spectral)
-        return {c: scipy.fft.irfft2(spectra[c], s=(grid.n, grid.n)) * layer.shear_modulus for c in components}
+        return {c: scipy.fft.irfft2(spectra[c], s=grid.shape) * layer.shear_modulus for c in components}
     kernels = influence_coefficients(grid, layer, components, spectral=spectral)
     return {c: kernels[c] * layer.shear_modulus for c in components}
 
