@@ -89,7 +89,6 @@ def _line_case(**grid) -> dict:
 
 
 @pytest.mark.parametrize("change, key", [
-    ({"layer": {"thickness": 1e-4}}, "layer"),
     ({"indenter": {"shape": "sphere"}}, "indenter.shape"),
     ({"indenter": {"shape": "cylinder", "length": 0.02}}, "indenter.shape"),
     ({"indenter": {"shape": "cone", "half_angle": 70.3}}, "indenter.shape"),

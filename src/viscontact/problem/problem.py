@@ -460,15 +460,10 @@ def check_subsurface_body(depths, kind: Body | type) -> None:
 
 def check_line_contact_supported(problem: "Problem") -> None:
     """Refuse, in one line naming the key, what a line contact (``grid.dimension = 1``, plane strain)
-    does not work with yet: a layer on a base on a non-periodic line (its DC-FFT kernels are those
-    of a 3-D layer; the periodic ones are plane strain) and an analytic shape other than the
-    infinite cylinder and the strip punch (:meth:`~viscontact.problem.shapes.Shape.line_profile`; a
+    does not work with: an analytic shape other than the infinite cylinder and the strip punch (:meth:`~viscontact.problem.shapes.Shape.line_profile`; a
     gap without a shape, e.g. a ``surface`` file of one row, is taken as it is)."""
     if problem.grid.dimension != 1:
         return
-    if problem.layer is not None and not problem.grid.periodic:
-        raise ParameterError("layer", "a layer on a base in line contact (grid.dimension = 1) needs grid.periodic = "
-                             "true yet: the non-periodic plane-strain layer kernels are missing")
     if problem.shape is not None and not problem.shape.line_profile():
         raise ParameterError("indenter.shape", f"'{problem.shape.name}' is not a line contact's indenter "
                              "(grid.dimension = 1): use shape = 'cylinder' without a length (an infinite "
