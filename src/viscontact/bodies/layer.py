@@ -615,7 +615,7 @@ def influence_coefficients(grid: Grid, layer: Layer, components: tuple[str, ...]
     transform (ParameterError beyond it). ``spectral``: another compliance than the layer's (the
     parts of :func:`elastic_base_terms`).
     """
-    n, dx = grid.n, grid.spacing
+    n = grid.n
     spectral = spectral or _layer_spectral(layer)
     if not layer.tangential_bounded and "xx" in components:
         raise ParameterError("layer.interface", "a frictionless interface leaves the tangential compliance "
