@@ -460,8 +460,10 @@ def check_subsurface_body(depths, kind: Body | type) -> None:
 
 def check_line_contact_supported(problem: "Problem") -> None:
     """Refuse, in one line naming the key, what a line contact (``grid.dimension = 1``, plane strain)
-    does not work with: an analytic shape other than the infinite cylinder and the strip punch (:meth:`~viscontact.problem.shapes.Shape.line_profile`; a
-    gap without a shape, e.g. a ``surface`` file of one row, is taken as it is)."""
+    does not work with: an analytic shape other than the infinite cylinder and the strip punch
+    (:meth:`~viscontact.problem.shapes.Shape.line_profile`; a gap without a shape, e.g. a ``surface``
+    file of one row, is taken as it is). Periodic lines, layers, adhesion, rough profiles and
+    subsurface stresses run on a line as on the square grid."""
     if problem.grid.dimension != 1:
         return
     if problem.shape is not None and not problem.shape.line_profile():
