@@ -886,16 +886,13 @@ class Case(_Section):
 
     def gap(self, grid: Grid) -> np.ndarray:
         """Undeformed gap h0(x, y) [m] on ``grid``: an analytic shape's (:meth:`~viscontact.problem.shapes.Shape.gap`:
-        (x^2 + y^2)/(2R) for a smooth sphere), else the heights (z up; a shape's with roughness)
+        (x^2 + y^2)/(2R) for a smooth sphere), else the heights (z up; a shape's with roughness; on a
+        line grid a profile: a self-affine one or a line scan)
         shifted so that the highest point touches first at delta_z = 0; a .npy ``surface`` file holds
         the gap itself, shifted so that its lowest point is 0."""
         from viscontact.problem.topography import check_surface, gap_from_heights, read_heights
 
         ind = self.indenter
-        if grid.dimension == 1 and (ind.shape in ("self_affine", "topography") or ind.roughness is not None):
-            raise ParameterError("indenter.shape" if ind.roughness is None else "indenter.roughness",
-                                 "a rough surface is not supported in line contact (grid.dimension = 1) yet: "
-                                 "give a smooth indenter or a .npy 'surface' of shape (1, grid.n)")
         shape = ind.analytic_shape()
         if shape is not None:  # its heights are in m by construction: no slope check (walls: problem.shapes)
             if ind.roughness is None:
