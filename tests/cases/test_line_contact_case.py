@@ -45,6 +45,8 @@ def test_the_command_line_runs_steadies_and_plots_a_line(tmp_path, capsys):
     with xr.open_dataset(tmp_path / "r.nc") as ds:
         assert ds.sizes["y"] == 1 and ds.sizes["x"] == 256 and ds.attrs["grid_dimension"] == 1
     assert cli.main(["steady", case, "--out", str(tmp_path / "s.nc"), "--force", *small]) == 0
+    table = capsys.readouterr().out  # the steady table's column is the half-width A/2, not a radius
+    assert "contact_half_width [m]" in table and "contact_radius" not in table
     assert cli.main(["plot", str(tmp_path / "r.nc"), "--out", str(tmp_path / "figs")]) == 0
     names = {p.name for p in (tmp_path / "figs").iterdir()}
     assert "pressure_profiles.png" in names and not any("map" in name or name.endswith(".gif") for name in names)

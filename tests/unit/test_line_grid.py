@@ -89,10 +89,6 @@ def _line_case(**grid) -> dict:
 
 
 @pytest.mark.parametrize("change, key", [
-    ({"grid": {"periodic": True}}, "grid.periodic"),
-    ({"layer": {"thickness": 1e-4}}, "layer"),
-    ({"output": {"subsurface_depths": [1e-4]}}, "output.subsurface_depths"),
-    ({"indenter": {"shape": "self_affine", "hurst": 0.8, "rms_height": 1e-6}}, "indenter.shape"),
     ({"indenter": {"shape": "sphere"}}, "indenter.shape"),
     ({"indenter": {"shape": "cylinder", "length": 0.02}}, "indenter.shape"),
     ({"indenter": {"shape": "cone", "half_angle": 70.3}}, "indenter.shape"),

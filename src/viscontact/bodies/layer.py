@@ -57,6 +57,15 @@ its q = 0 sample is extrapolated from the two smallest rings: measured against a
 Hankel-quadrature kernel the error is a near-constant offset of ~1e-4 of the self-coefficient
 (a rigid shift of the displacement under load control) falling as P^-3.6.
 
+On a line grid (``grid.dimension = 1``, plane strain) a load uniform along y has its Fourier
+transform at q_y = 0, so the plane-strain compliance is M(q_x, 0): c = +-1, M_xx = A_ee, and the
+anti-plane part does not enter; the lattice is the row of wavevectors (q_x, 0) and the cell
+footprint one sinc (:func:`_lattice_compliance`, :func:`_fourier_part`). The non-periodic line's
+closed-form part is the strips' (:func:`_line_near`: the half-space strip kernels with their datum,
+and the depth-smoothed line loads -(1/pi) ln(sqrt(x^2 + H^2)/b), -(1/pi) arctan(x/H)); its remainder's
+real-space tail is m1/(pi x^2)-like, the images' sum near the origin -m1 pi/(3 P^2) removed, on a
+box of at least :data:`LINE_BOX` domain widths.
+
 Periodic (:func:`periodic_spectra`): no smoothing. The half-space part c_high/k is the exact
 periodic half-space kernel of the layer material (:func:`viscontact.physics.periodic.periodic_influence_coefficients`,
 Ewald, zero mean); the rest, M - c_high/k, decays as exp(-2kh) and is sampled on the periodic grid
@@ -107,7 +116,7 @@ from viscontact.bodies.compliance import ComplianceTerm
 from viscontact.errors import ParameterError
 from viscontact.numerics.exponentials import CreepSpectrum, linear_combination
 from viscontact.numerics.grid import Grid
-from viscontact.physics.kernels import rectangle_influence
+from viscontact.physics.kernels import rectangle_influence, strip_influence
 from viscontact.physics.materials import Material
 from viscontact.physics.periodic import periodic_influence_coefficients
 from viscontact.physics.reference import contact_modulus
@@ -119,6 +128,10 @@ if TYPE_CHECKING:  # the case's [layer], as the problem holds it (a layer above:
 BASES = ("rigid", "elastic")
 INTERFACES = ("bonded", "frictionless")
 COMPONENTS = ("zz", "xx", "xz", "zx")
+#: the least box of a line grid's non-periodic remainder, in domain widths (:func:`_box_cells`):
+#: measured against the periodic line kernel (h = 0.3 of the half-width), the self-coefficient's
+#: offset 1.6e-3 / 3.3e-5 / 6.3e-7 at boxes of 4 / 16 / 64
+LINE_BOX = 64
 #: sum over the square lattice Z^2 without 0 of 1/|m|^3 = 4 zeta(3/2) beta(3/2)
 _LATTICE_ZETA3 = 9.033621683100950
 
@@ -324,21 +337,24 @@ def _rotate(spectral: _Spectral, cosine: np.ndarray, k_unique: np.ndarray, inver
     return {name: out[name] for name in components}
 
 
-def _lattice_compliance(spectral: _Spectral, size: int, spacing: float, components: tuple[str, ...]
-                        ) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
+def _lattice_compliance(spectral: _Spectral, size: int, spacing: float, components: tuple[str, ...],
+                        dimension: int = 2) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
     """M on the wavevectors of a size x size transform with cells ``spacing`` [m] (fft order,
-    q = 0 excluded: returned as 0), solving once per distinct i^2 + j^2 (no sort). Returns
-    (M by component, q_x, |q|)."""
+    q = 0 excluded: returned as 0), solving once per distinct i^2 + j^2 (|i| on a line; no sort); with
+    ``dimension = 1`` on the (1, size) wavevectors (q_x, 0) of a line (plane strain: a load uniform
+    along y sees the compliance at q_y = 0). Returns (M by component, q_x, |q|)."""
     idx = np.rint(scipy.fft.fftfreq(size) * size).astype(np.int64)
-    keys = idx[None, :] ** 2 + idx[:, None] ** 2
+    # the key of a wavevector: i^2 + j^2 on a map, |i| on a line (|q| = dq sqrt(key), or dq key)
+    keys = idx[None, :] ** 2 + idx[:, None] ** 2 if dimension == 2 else np.abs(idx)[None, :]
+    radius = np.sqrt if dimension == 2 else np.asarray
     present = np.zeros(int(keys.max()) + 1, dtype=bool)
     present[keys] = True
     present[0] = False
     lookup = np.cumsum(present) - 1
     dq = 2 * np.pi / (size * spacing)
-    k_unique = dq * np.sqrt(np.flatnonzero(present).astype(float))
+    k_unique = dq * radius(np.flatnonzero(present).astype(float))
     qx = np.broadcast_to(dq * idx[None, :].astype(float), keys.shape)
-    k = dq * np.sqrt(keys.astype(float))
+    k = dq * radius(keys.astype(float))
     k_safe = np.where(keys == 0, 1.0, k)
     m = _rotate(spectral, qx / k_safe, k_unique, np.where(keys == 0, 0, lookup[keys]), components)
     for name in m:
@@ -453,6 +469,57 @@ def _half_space_near(ox: np.ndarray, oy: np.ndarray, cell: float, layer: Layer, 
     return out
 
 
+def _line_coefficient(coefficients: dict[str, dict[int, float]], name: str) -> float:
+    """The 1/|k| coefficient [1/Pa] of component ``name`` on a line (q = (k, 0): cos(theta_q) = sgn k,
+    every angular order's factor 1, the odd one's i sgn k written as in :func:`_angular`)."""
+    return float(sum(coefficients[name].values()))
+
+
+def _line_near(ox: np.ndarray, grid: Grid, layer: Layer, big_h: float, components: tuple[str, ...],
+               coefficients: dict[str, dict[int, float]], spectral: _Spectral | None = None) -> dict[str, np.ndarray]:
+    """The closed-form part [m/Pa] of a line grid's non-periodic kernels (plane strain) at x offsets
+    ``ox`` [m]: the half-space strip kernels of the layer material over G (datum b = ``grid.datum_distance``,
+    :func:`viscontact.physics.kernels.strip_influence`: c_high/|k|) plus (c_low - c_high) times the
+    strip integral of the depth-smoothed line load, whose real-space forms are
+
+        e^{-|k|H}/|k|          ->  -(1/pi) ln(sqrt(x^2 + H^2) / b)   (even: zz, xx),
+        i sgn(k) e^{-|k|H}/|k| ->  -(1/pi) arctan(x / H)             (odd: xz, zx),
+
+    integrated over the cell in closed form (the even one with b, so that on a rigid base the datum
+    cancels: the layer's displacement is then relative to the base)."""
+    spectral = spectral or _layer_spectral(layer)
+    half, datum = grid.spacing / 2, grid.datum_distance
+    ox = np.asarray(ox, dtype=float)
+    hs = strip_influence(ox, half, layer.poisson_ratio, datum, components) if spectral.half_space else None
+
+    def even(s: np.ndarray) -> np.ndarray:  # int -(1/pi) ln(sqrt(s^2 + H^2)/b) ds
+        return -(s * np.log((s * s + big_h * big_h) / datum**2) - 2 * s + 2 * big_h * np.arctan(s / big_h)) / (2 * np.pi)
+
+    def odd(s: np.ndarray) -> np.ndarray:  # int -(1/pi) arctan(s/H) ds
+        return -(s * np.arctan(s / big_h) - 0.5 * big_h * np.log(s * s + big_h * big_h)) / np.pi
+
+    out = {}
+    for name in components:
+        kern = hs[name] / layer.shear_modulus if hs is not None else np.zeros(ox.shape)
+        delta = _line_coefficient(coefficients, name) - _line_coefficient(spectral.high, name)
+        if delta != 0.0:
+            primitive = odd if name in ("xz", "zx") else even
+            kern = kern + delta * (primitive(ox + half) - primitive(ox - half))
+        out[name] = kern
+    return out
+
+
+def _near(grid: Grid, ox: np.ndarray, oy: np.ndarray, layer: Layer, big_h: float, components: tuple[str, ...],
+          coefficients: dict[str, dict[int, float]], spectral: _Spectral) -> dict[str, np.ndarray]:
+    """The closed-form part of the non-periodic kernels at offsets (ox, oy) [m]: the square cells'
+    (:func:`_half_space_near`) or a line's strips (:func:`_line_near`, oy = 0)."""
+    if grid.dimension == 1:
+        shape = np.broadcast(np.asarray(ox), np.asarray(oy)).shape
+        return {c: np.broadcast_to(v, shape) for c, v in
+                _line_near(np.broadcast_to(ox, shape), grid, layer, big_h, components, coefficients, spectral).items()}
+    return _half_space_near(ox, oy, grid.spacing, layer, big_h, components, coefficients, spectral=spectral)
+
+
 def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: float, cells: int,
                   low: dict[str, dict[int, float]] | None, max_fine: int,
                   shifts: np.ndarray | None = None, spectral: _Spectral | None = None) -> dict[str, np.ndarray]:
@@ -470,19 +537,26 @@ def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: 
     dx = grid.spacing
     refine = _refinement(grid, layer, big_h)
     fine = cells * refine
+    if grid.dimension == 1:  # one row: the same number of samples as a max_fine^2 map
+        max_fine = max_fine**2
     if fine > max_fine:
         raise ParameterError("layer.thickness", f"{layer.thickness:.4g} m needs a {fine}^2 transform for the layer "
                              f"kernels (limit {max_fine}^2) with cells of {dx:.4g} m: thinner than the cells "
                              "needs refinement, thicker than the domain a larger box; change grid.n or half_width")
     ds = dx / refine
     spectral = spectral or _layer_spectral(layer)
-    m, qx, k = _lattice_compliance(spectral, fine, ds, components)
+    m, qx, k = _lattice_compliance(spectral, fine, ds, components, grid.dimension)
     q1 = 2 * np.pi / (fine * ds)
     nonzero = k > 0
     m = {name: v[nonzero] for name, v in m.items()}
     kk, cx = k[nonzero], qx[nonzero]
-    qy = np.broadcast_to(2 * np.pi * scipy.fft.fftfreq(fine, ds)[:, None], k.shape)
-    footprint = np.sinc(qx * dx / (2 * np.pi)) * np.sinc(qy * dx / (2 * np.pi)) * dx**2
+    area = grid.cell_area  # dx^2, or dx on a line: one sinc per direction of the cell
+    if grid.dimension == 2:
+        qy = np.broadcast_to(2 * np.pi * scipy.fft.fftfreq(fine, ds)[:, None], k.shape)
+        footprint = np.sinc(qx * dx / (2 * np.pi)) * np.sinc(qy * dx / (2 * np.pi)) * dx**2
+    else:
+        footprint = np.sinc(qx * dx / (2 * np.pi)) * area
+    fold = (refine, cells, refine, cells) if grid.dimension == 2 else (1, 1, refine, cells)
     decay = np.exp(-kk * big_h)
     high, uniform = spectral.high, spectral.uniform
     out = {}
@@ -496,27 +570,36 @@ def _fourier_part(grid: Grid, layer: Layer, components: tuple[str, ...], big_h: 
         spec = full * footprint
         tail = 0.0
         if low is None:
-            spec[0, 0] = uniform[name] * dx**2  # the periodic half-space kernels have zero mean
+            spec[0, 0] = uniform[name] * area  # the periodic half-space kernels have zero mean
         else:
             # bounded at q = 0 with an angle-independent part M0 + m1 |k| (orders 1, 2 average out
             # over the four axis wavevectors): M0 extrapolated from the rings q1, 2 q1; the -m1/(2 pi r^3)
             # tail's periodic images add -m1 Z/(2 pi P^3) near the origin, removed below
-            ring1 = 0.25 * (full[0, 1] + full[0, -1] + full[1, 0] + full[-1, 0]).real
-            ring2 = 0.25 * (full[0, 2] + full[0, -2] + full[2, 0] + full[-2, 0]).real
-            spec[0, 0] = (2 * ring1 - ring2) * dx**2
-            tail = (ring2 - ring1) / q1 * _LATTICE_ZETA3 * dx**2 / (2 * np.pi * (cells * dx) ** 3)
+            if grid.dimension == 2:
+                ring1 = 0.25 * (full[0, 1] + full[0, -1] + full[1, 0] + full[-1, 0]).real
+                ring2 = 0.25 * (full[0, 2] + full[0, -2] + full[2, 0] + full[-2, 0]).real
+                spec[0, 0] = (2 * ring1 - ring2) * dx**2
+                tail = (ring2 - ring1) / q1 * _LATTICE_ZETA3 * dx**2 / (2 * np.pi * (cells * dx) ** 3)
+            else:  # a line: m1 |k| is -m1/(pi x^2) in real space, its images -m1 pi/(3 P^2) near the origin
+                ring1 = 0.5 * (full[0, 1] + full[0, -1]).real
+                ring2 = 0.5 * (full[0, 2] + full[0, -2]).real
+                spec[0, 0] = (2 * ring1 - ring2) * area
+                tail = (ring2 - ring1) / q1 * np.pi * area / (3 * (cells * dx) ** 2)
         if shifts is None:
-            folded = spec.reshape(refine, cells, refine, cells).sum(axis=(0, 2))
-            out[name] = scipy.fft.ifft2(folded).real / dx**2 + tail
+            folded = spec.reshape(fold).sum(axis=(0, 2))
+            out[name] = scipy.fft.ifft2(folded).real / area + tail
             continue
-        out[name] = np.stack([scipy.fft.ifft2((spec * np.exp(1j * qx * xi)).reshape(refine, cells, refine, cells)
-                                              .sum(axis=(0, 2))).real / dx**2 + tail for xi in shifts])
+        out[name] = np.stack([scipy.fft.ifft2((spec * np.exp(1j * qx * xi)).reshape(fold)
+                                              .sum(axis=(0, 2))).real / area + tail for xi in shifts])
     return out
 
 
 def _box_cells(grid: Grid, layer: Layer, big_h: float, box: int) -> int:
-    """Cells per side of the periodic box of the non-periodic remainder: ``box`` domain widths, at
+    """Cells per side of the periodic box of the non-periodic remainder: ``box`` domain widths (on a
+    line at least :data:`LINE_BOX`: one row is cheap, and the images' offset falls as box^-2.8), at
     least 8 max(H, h)."""
+    if grid.dimension == 1:
+        box = max(box, LINE_BOX)
     return max(box * grid.n, 2 * int(np.ceil(4 * max(big_h, layer.thickness) / grid.spacing)))
 
 
@@ -532,7 +615,7 @@ def influence_coefficients(grid: Grid, layer: Layer, components: tuple[str, ...]
     transform (ParameterError beyond it). ``spectral``: another compliance than the layer's (the
     parts of :func:`elastic_base_terms`).
     """
-    n, dx = grid.n, grid.spacing
+    n = grid.n
     spectral = spectral or _layer_spectral(layer)
     if not layer.tangential_bounded and "xx" in components:
         raise ParameterError("layer.interface", "a frictionless interface leaves the tangential compliance "
@@ -540,14 +623,16 @@ def influence_coefficients(grid: Grid, layer: Layer, components: tuple[str, ...]
     big_h = _smoothing_depth(grid, layer, depth)
     low = spectral.low
     off = grid.offsets()
-    ox, oy = np.meshgrid(off, off, indexing="xy")
-    out = _half_space_near(ox, oy, dx, layer, big_h, components, low, spectral=spectral)
+    ox, oy = np.meshgrid(off, grid.row_offsets(), indexing="xy")
+    out = {c: np.array(v) for c, v in _near(grid, ox, oy, layer, big_h, components, low, spectral).items()}
     cells = _box_cells(grid, layer, big_h, box)
     remainder = _fourier_part(grid, layer, components, big_h, cells, low, max_fine, spectral=spectral)
     idx = np.concatenate([np.arange(0, n + 1), np.arange(cells - n + 1, cells)])
+    rows = idx if grid.dimension == 2 else np.zeros(1, dtype=int)
     for name in components:
-        out[name] = out[name] + remainder[name][np.ix_(idx, idx)]
-        out[name][n, :] = 0.0
+        out[name] = out[name] + remainder[name][np.ix_(rows, idx)]
+        if grid.dimension == 2:
+            out[name][n, :] = 0.0
         out[name][:, n] = 0.0
     return out
 
@@ -588,7 +673,7 @@ def unit_kernels(grid: Grid, layer: Layer, components: tuple[str, ...] = COMPONE
     grid, the periodic n x n kernels in wrap-around order (:func:`periodic_spectra`)."""
     if grid.periodic:
         spectra = periodic_spectra(grid, layer, components, spectral=spectral)
-        return {c: scipy.fft.irfft2(spectra[c], s=(grid.n, grid.n)) * layer.shear_modulus for c in components}
+        return {c: scipy.fft.irfft2(spectra[c], s=grid.shape) * layer.shear_modulus for c in components}
     kernels = influence_coefficients(grid, layer, components, spectral=spectral)
     return {c: kernels[c] * layer.shear_modulus for c in components}
 
@@ -616,13 +701,13 @@ def steady_shapes(grid: Grid, layer: Layer, components: tuple[str, ...] = ("zz",
     low = spectral.low
     cells = _box_cells(grid, layer, big_h, box)
     g = layer.shear_modulus
-    rows = np.concatenate([np.arange(0, n + 1), np.arange(cells - n + 1, cells)])
+    rows = np.concatenate([np.arange(0, n + 1), np.arange(cells - n + 1, cells)]) if grid.dimension == 2 \
+        else np.zeros(1, dtype=int)
     cols = np.concatenate([np.arange(cells - n + 1, cells), np.arange(0, cells // 2)])
     out = {}
     for comp in components:
         def point(ox: np.ndarray, oy: np.ndarray, comp: str = comp) -> dict[str, np.ndarray]:
-            return {comp: g * _half_space_near(ox, oy, grid.spacing, layer, big_h, (comp,), low,
-                                               spectral=spectral)[comp]}
+            return {comp: g * _near(grid, ox, oy, layer, big_h, (comp,), low, spectral)[comp]}
 
         def smooth(shifts: np.ndarray, comp: str = comp) -> np.ndarray:
             box_values = _fourier_part(grid, layer, (comp,), big_h, cells, low, max_fine, shifts, spectral)[comp]

@@ -645,23 +645,34 @@ class LayerSection(_Section):
 
 class AdhesionSection(_Section):
     """Adhesion of the surface (absent: none): a Maugis-Dugdale law, a tension ``cohesive_stress``
-    wherever the gap is open but below w / cohesive_stress (Maugis 1992). With it, a load history may
-    be tensile and an approach history may go below zero (retraction to pull-off and beyond)."""
+    wherever the gap is open but below w / cohesive_stress (Maugis 1992), or an exponential law, a
+    tension (w / range) exp(-gap / range) across every open gap (Muser 2014). With it, a load
+    history may be tensile and an approach history may go below zero (retraction to pull-off and
+    beyond)."""
 
     work_of_adhesion: float = _num(unit="J/m^2", gt=0, description="Dupre work of adhesion w [J/m^2], > 0")
-    law: Literal["maugis_dugdale"] = Field("maugis_dugdale", description="traction-separation law: "
-                                           "'maugis_dugdale' (a tension cohesive_stress wherever 0 < gap < "
-                                           "work_of_adhesion / cohesive_stress)")
+    law: Literal["maugis_dugdale", "exponential"] = Field(
+        "maugis_dugdale", description="traction-separation law: 'maugis_dugdale' (a tension cohesive_stress "
+        "wherever 0 < gap < work_of_adhesion / cohesive_stress) or 'exponential' (a tension "
+        "(work_of_adhesion / range) exp(-gap / range) wherever gap > 0)")
     cohesive_stress: float | None = _num(None, unit="Pa", gt=0, description="sigma_0 [Pa] of the Maugis-Dugdale "
                                          "law, > 0 (required with law = 'maugis_dugdale')")
+    range: float | None = _num(None, unit="m", gt=0, description="rho [m] of the exponential law, the gap over "
+                               "which its tension falls by e, > 0 (required with law = 'exponential')")
 
     @model_validator(mode="after")
     def _law_needs(self) -> AdhesionSection:
-        if self.law == "maugis_dugdale" and self.cohesive_stress is None:
-            raise ParameterError("adhesion.cohesive_stress", "required (> 0 Pa) with adhesion.law = 'maugis_dugdale'")
+        own, other = ("cohesive_stress", "range") if self.law == "maugis_dugdale" else ("range", "cohesive_stress")
+        unit = " Pa" if own == "cohesive_stress" else " m"
+        if getattr(self, own) is None:
+            raise ParameterError(f"adhesion.{own}", f"required (> 0{unit}) with adhesion.law = {self.law!r}")
+        if getattr(self, other) is not None:
+            raise ParameterError(f"adhesion.{other}", f"not a key of adhesion.law = {self.law!r}")
         return self
 
     def build(self) -> AdhesionSettings:
+        if self.law == "exponential":
+            return AdhesionSettings(self.work_of_adhesion, None, self.law, self.range)
         return AdhesionSettings(self.work_of_adhesion, self.cohesive_stress, self.law)
 
 
@@ -875,16 +886,13 @@ class Case(_Section):
 
     def gap(self, grid: Grid) -> np.ndarray:
         """Undeformed gap h0(x, y) [m] on ``grid``: an analytic shape's (:meth:`~viscontact.problem.shapes.Shape.gap`:
-        (x^2 + y^2)/(2R) for a smooth sphere), else the heights (z up; a shape's with roughness)
+        (x^2 + y^2)/(2R) for a smooth sphere), else the heights (z up; a shape's with roughness; on a
+        line grid a profile: a self-affine one or a line scan)
         shifted so that the highest point touches first at delta_z = 0; a .npy ``surface`` file holds
         the gap itself, shifted so that its lowest point is 0."""
         from viscontact.problem.topography import check_surface, gap_from_heights, read_heights
 
         ind = self.indenter
-        if grid.dimension == 1 and (ind.shape in ("self_affine", "topography") or ind.roughness is not None):
-            raise ParameterError("indenter.shape" if ind.roughness is None else "indenter.roughness",
-                                 "a rough surface is not supported in line contact (grid.dimension = 1) yet: "
-                                 "give a smooth indenter or a .npy 'surface' of shape (1, grid.n)")
         shape = ind.analytic_shape()
         if shape is not None:  # its heights are in m by construction: no slope check (walls: problem.shapes)
             if ind.roughness is None:

@@ -120,7 +120,7 @@ class AdhesiveSolution:
 
 
 @dataclass(frozen=True)
-class _FullDomain:
+class FullDomain:
     """A plain action p -> K p as the operator :func:`windowed_cg` takes: no window, no single
     precision, no direct sums."""
 
@@ -179,7 +179,7 @@ def adhesive_contact(operator: Any, known_gap: np.ndarray, *, control: Literal["
     ConvergenceError
         When the zone still moves after ``max_rounds`` subproblems, or a solve does not converge.
     """
-    op = operator if hasattr(operator, "apply") else _FullDomain(operator, preconditioner)
+    op = operator if hasattr(operator, "apply") else FullDomain(operator, preconditioner)
     h0 = float(work_of_adhesion) / float(cohesive_stress)
     if interaction is None:
         interaction = (known_gap - value < h0) if control != "load" else np.zeros(known_gap.shape, dtype=bool)

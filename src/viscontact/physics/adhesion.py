@@ -11,7 +11,9 @@ positive in compression and negative in tension [N]; the approach delta [m] is p
   Greenwood 1997, J. Colloid Interface Sci. 192, 326): a constant tension sigma_0 over a ring
   a < r < c around the contact, whose range w / sigma_0 sets the Maugis parameter lambda; lambda -> 0
   is DMT, lambda -> infinity JKR;
-* Kendall (1971, J. Phys. D 4, 1186): the pull-off force of a flat punch.
+* Kendall (1971, J. Phys. D 4, 1186): the pull-off force of a flat punch;
+* the JKR line contact of a cylinder in plane strain (Barquins 1988; Chaudhury et al. 1996), per unit
+  length: :func:`jkr_line_load`, :func:`jkr_line_pull_off`.
 
 The Maugis-Dugdale curve is given parametrically by m = c/a (:func:`maugis_dugdale`): for each m
 the dimensionless contact radius A is the positive root of a quadratic (Maugis 1992, Eq. 6.17), so
@@ -155,3 +157,25 @@ def maugis_dugdale_pull_off(sphere_radius: float, contact_modulus: float, work_o
     best = minimize_scalar(value, bounds=(lo, hi), method="bounded", options={"xatol": 1e-10})
     m = 1.0 + np.exp(best.x if best.fun <= values[i] else grid[i])
     return maugis_dugdale(m, sphere_radius, contact_modulus, work_of_adhesion, cohesive_stress)
+
+
+def jkr_line_load(half_width: np.ndarray | float, cylinder_radius: float, contact_modulus: float,
+                  work_of_adhesion: float) -> np.ndarray:
+    """JKR line contact (a rigid cylinder of radius R on a half-space in plane strain; Barquins 1988,
+    J. Adhesion 26, 1; Chaudhury, Weaver, Hui & Kramer 1996, J. Appl. Phys. 80, 30): the load per unit
+    length P(a) = pi E* a^2 / (4R) - sqrt(2 pi E* w a) [N/m] at contact half-widths a [m].
+
+    Hertz's line load pi E* a^2/(4R) less the load of a strip punch, P1 = sqrt(2 pi E* w a), whose edge
+    singularity p ~ P1 / (pi sqrt(2a (a - |x|))) has the stress intensity K_I = P1 / sqrt(pi a) and
+    the energy release rate K_I^2 / (2 E*) = w (the crack criterion at each edge)."""
+    a = np.asarray(half_width, dtype=float)
+    return np.pi * contact_modulus * a**2 / (4.0 * cylinder_radius) - np.sqrt(2.0 * np.pi * contact_modulus
+                                                                              * work_of_adhesion * a)
+
+
+def jkr_line_pull_off(cylinder_radius: float, contact_modulus: float, work_of_adhesion: float) -> tuple[float, float]:
+    """(pull-off load [N/m], half-width [m]) of the JKR line contact under load control: dP/da = 0 at
+    a_c = (2 w R^2 / (pi E*))^(1/3), where P_c = -(3/4) pi E* a_c^2 / R = -3 (pi E* R w^2 / 16)^(1/3)
+    (:func:`jkr_line_load`)."""
+    a_c = (2.0 * work_of_adhesion * cylinder_radius**2 / (np.pi * contact_modulus)) ** (1.0 / 3.0)
+    return -3.0 * (np.pi * contact_modulus * cylinder_radius * work_of_adhesion**2 / 16.0) ** (1.0 / 3.0), float(a_c)

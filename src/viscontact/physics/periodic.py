@@ -144,6 +144,8 @@ def periodic_influence_coefficients(grid: Grid, poisson_ratio: float, components
         Ewald parameter alpha dx (any value > 0 gives the same result to round-off).
     """
     components = tuple(components)
+    if grid.dimension == 1:
+        return line_periodic_influence_coefficients(grid, poisson_ratio, components)
     n, dx = grid.n, grid.spacing
     alpha = screening / dx
     # long part: Fourier series over all |Q| < ~2 alpha EWALD_RANGE, folded onto the grid's modes
@@ -179,6 +181,47 @@ def periodic_influence_coefficients(grid: Grid, poisson_ratio: float, components
     return kernels
 
 
+def line_periodic_influence_coefficients(grid: Grid, poisson_ratio: float,
+                                         components: Iterable[str] = COMPONENTS) -> dict[str, np.ndarray]:
+    """Periodic plane-strain influence coefficients on a line grid (``grid.dimension = 1``): shape
+    (1, n) in FFT wrap-around order, at unit shear modulus, zero mean; each a uniformly loaded strip
+    of width dx repeated with the period L = 2 half_width, the displacement taken at cell centres.
+
+    A load uniform along y is plane strain, so the compliance of the line is the half-space's of the
+    module docstring at Q = (k, 0): G^_zz = G^_xx = (1 - nu)/|k| (stiffness E* |k| / 2), G^_xz =
+    -G^_zx = (1 - 2 nu) i k / (2 k^2) (Johnson 1985, Eqs. 2.18-2.19 transformed). The sum over the
+    aliases q_s = k + 2 pi s/dx of G^(q_s) F(q_s), F(q) = 2 sin(q dx/2)/q, is in closed form: with
+    t = k dx / (2 pi) in (0, 1/2] and sin(q_s dx/2) = (-1)^s sin(pi t),
+
+        S_zz(k) = 2 (1 - nu) sin(pi t) (dx/2pi)^2 [beta(t) + beta(1 - t)],
+        beta(x) = sum_{s>=0} (-1)^s/(x + s)^2 = [psi_1(x/2) - psi_1((x + 1)/2)]/4   (trigamma psi_1),
+        S_xz(k) = (1 - 2 nu) i (dx^2/4) cot(pi t)       (sum_s (-1)^s/(t + s)^2 = pi^2 cos(pi t)/sin^2(pi t)),
+
+    and the kernel is K_j = (1/L) sum_m S(k_m) exp(i k_m x_j) over k_m = 2 pi m / L, the q = 0 term
+    dropped (zero-mean convention of the module docstring). In real space these are the periodic
+    Flamant and Cerruti line loads, -((1 - nu)/pi) ln|2 sin(pi x/L)| and -((1 - 2 nu)/4)(sgn x - 2x/L)
+    for |x| < L, integrated over a cell (tested against that quadrature)."""
+    from scipy.special import polygamma  # imported where used (see _spectral)
+
+    components = tuple(components)
+    n, dx = grid.n, grid.spacing
+    t = np.arange(1, n // 2 + 1) / n
+    alternating = (polygamma(1, t / 2) - polygamma(1, (t + 1) / 2)
+                   + polygamma(1, (1 - t) / 2) - polygamma(1, (2 - t) / 2)) / 4
+    even = np.concatenate([[0.0], 2 * np.sin(np.pi * t) * (dx / (2 * np.pi))**2 * alternating])
+    odd = np.concatenate([[0.0], (dx**2 / 4) / np.tan(np.pi * t)]) * 1j
+    if n % 2 == 0:
+        odd[-1] = 0.0  # the Nyquist mode of an odd kernel
+    nu = poisson_ratio
+    spectra = {"zz": (1 - nu) * even, "xx": (1 - nu) * even, "xz": (1 - 2 * nu) * odd, "zx": -(1 - 2 * nu) * odd}
+    out = {}
+    for c in components:
+        if c not in spectra:
+            raise ValueError(f"unknown kernel component {c!r}; expected one of {COMPONENTS}")
+        out[c] = scipy.fft.irfft(spectra[c] / dx, n)[None, :]
+    return out
+
+
 def check_approach(approach: float, gap: np.ndarray, key: str = "normal.value") -> None:
     """Raise :class:`~viscontact.errors.ParameterError` unless the approach [m] is below the mean of
     the undeformed gap [m]: with zero-mean displacements, mean(g) = mean(h0) - delta_z > 0 (module
@@ -203,9 +246,11 @@ class PeriodicConvolver(Convolver):
         """From periodic kernels on the n x n grid in wrap-around order, numpy arrays or fields of ``xp``
         (moved there first)."""
         kernels = {k: xp.asarray(v) for k, v in kernels.items()}
-        centred = {k: xp.roll(xp.tile(v, (2, 2)), (n - 1, n - 1), axis=(0, 1)) for k, v in kernels.items()}
-        threads = fft_keywords(fft, workers, n * n)
-        return cls(n, {k: fft.rfft2(v, **threads) for k, v in kernels.items()}, workers, centred, xp, fft)
+        rows = next(iter(kernels.values())).shape[0]  # n, or 1 on a line grid
+        centred = {k: xp.roll(xp.tile(v, (2 if rows > 1 else 1, 2)), (rows - 1, n - 1), axis=(0, 1))
+                   for k, v in kernels.items()}
+        threads = fft_keywords(fft, workers, rows * n)
+        return cls(n, {k: fft.rfft2(v, **threads) for k, v in kernels.items()}, workers, centred, xp, fft, rows=rows)
 
     @classmethod
     def for_grid(cls, grid: Grid, poisson_ratio: float, workers: int = -1,
@@ -222,8 +267,8 @@ class PeriodicConvolver(Convolver):
 
     def inverse(self, spectrum: np.ndarray) -> np.ndarray:
         """Inverse real FFT (n, n) of a (n, n // 2 + 1) spectrum (which it may overwrite)."""
-        return self.fft.irfft2(spectrum, s=(self.n, self.n), overwrite_x=True,
-                               **fft_keywords(self.fft, self.workers, self.n * self.n))
+        return self.fft.irfft2(spectrum, s=self.shape, overwrite_x=True,
+                               **fft_keywords(self.fft, self.workers, self.rows * self.n))
 
     def apply(self, name: str, field: np.ndarray, *, single: bool = False) -> np.ndarray:
         """sum_j K_name(x_i - x_j) field_j over the period (unpadded transforms; float32 when ``single``)."""

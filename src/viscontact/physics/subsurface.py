@@ -73,10 +73,11 @@ class SectionStresses:
 
 def _plane_mode_stresses(kx: np.ndarray, ky: np.ndarray, z: float, nu: float, p_hat: np.ndarray,
                          tx_hat: np.ndarray | None, ty_hat: np.ndarray | None,
-                         periodic: bool = False) -> dict[str, np.ndarray]:
+                         periodic: bool = False, line: bool = False) -> dict[str, np.ndarray]:
     """Stress spectra at depth z [m] of surface traction spectra (module docstring); a shear spectrum
     ``None`` is a zero traction, its terms left out; ``periodic``: the q = 0 mode is the mean traction
-    of a periodic surface, not the limit of an isolated load's."""
+    of a periodic surface, not the limit of an isolated load's; ``line``: tractions uniform along y
+    (plane strain, q_y = 0), whose isolated load's q = 0 limit is that along e = x."""
     k = np.hypot(kx, ky)
     zero = k == 0
     k_safe = np.where(zero, 1.0, k)
@@ -116,8 +117,9 @@ def _plane_mode_stresses(kx: np.ndarray, ky: np.ndarray, z: float, nu: float, p_
         p0 = p_hat[zero]
         tx0, ty0 = (0.0 * p0 if t is None else t[zero] for t in (tx_hat, ty_hat))
         in_plane = -nu / (1 - nu) * p0 if periodic else -(1 + 2 * nu) * p0 / 2
-        for name, value in (("zz", -p0), ("xz", -tx0), ("yz", -ty0), ("xx", in_plane),
-                            ("yy", in_plane), ("xy", 0.0 * p0)):
+        along, across = (-p0, -2 * nu * p0) if line and not periodic else (in_plane, in_plane)
+        for name, value in (("zz", -p0), ("xz", -tx0), ("yz", -ty0), ("xx", along),
+                            ("yy", across), ("xy", 0.0 * p0)):
             out[name][zero] = value
     return out
 
@@ -138,16 +140,16 @@ def _take(spectra: list[np.ndarray | None], index) -> list[np.ndarray | None]:
 
 def _symmetric_mode_stresses(qx: np.ndarray, qy: np.ndarray, z: float, nu: float,
                              spectra: list[np.ndarray | None],
-                             periodic: bool, nyquist: float | None) -> dict[str, np.ndarray]:
+                             periodic: bool, nyquist: float | None, line: bool = False) -> dict[str, np.ndarray]:
     """:func:`_plane_mode_stresses` on the half plane ``qx`` (>= 0) x ``qy`` with each Nyquist wavevector
     component (+-``nyquist``, one mode of the transform) the average of its two signs: the spectra
     stay Hermitian, the stresses real and mirror-symmetric with the load."""
-    fields = _plane_mode_stresses(qx[None, :], qy[:, None], z, nu, *spectra, periodic=periodic)
+    fields = _plane_mode_stresses(qx[None, :], qy[:, None], z, nu, *spectra, periodic=periodic, line=line)
     if nyquist is None:
         return fields
     if qx[-1] == nyquist:
         other = _plane_mode_stresses(-qx[None, -1:], qy[:, None], z, nu, *_take(spectra, np.s_[:, -1:]),
-                                     periodic=periodic)
+                                     periodic=periodic, line=line)
         for c in fields:
             fields[c][:, -1:] = 0.5 * (fields[c][:, -1:] + other[c])
     row = qy == -nyquist
@@ -163,6 +165,13 @@ IMAGE_DISTANCE = 20.0
 #: the largest padded transform side :func:`automatic_padding` chooses (spectra of up to 3 x 4096 x
 #: 2049 complex values: 400 MB)
 MAX_PADDED = 4096
+#: on a line grid, the padded period is at least this many times the deepest depth and the domain's
+#: half-width: a line load's images, a period D apart, add sigma_xx ~ -(2 pi/3) W z / D^2 at depth z,
+#: (pi^2/3) a z / D^2 of Hertz's p0 (1.4 % measured at a = 0.3 half_width, z = 0.2 half_width, D = 4
+#: half_width); at D = 60 max(z, half_width) below 0.1 % of p0 for any contact on the grid
+LINE_IMAGE_DISTANCE = 60.0
+#: the largest padded transform a line grid's :func:`automatic_padding` chooses (one row: 16 MiB a spectrum)
+MAX_PADDED_LINE = 1 << 20
 
 
 def automatic_padding(grid: Grid, deepest: float, *, warn: bool = True) -> int:
@@ -177,6 +186,9 @@ def automatic_padding(grid: Grid, deepest: float, *, warn: bool = True) -> int:
     :class:`~viscontact.errors.ViscontactWarning` giving the depth that remains within 0.1 %).
     """
     width = 2.0 * grid.half_width
+    if grid.dimension == 1:  # a line's transforms are one row: pad far (LINE_IMAGE_DISTANCE)
+        reach = LINE_IMAGE_DISTANCE * max(deepest, grid.half_width)
+        return min(max(2, int(np.ceil(reach / width - 1e-9))), max(2, MAX_PADDED_LINE // grid.n))
     padding = max(2, int(np.ceil(IMAGE_DISTANCE * deepest / width - 1e-9)))
     cap = max(2, MAX_PADDED // grid.n)
     if padding > cap and warn:
@@ -204,8 +216,9 @@ def working_bytes(grid: Grid, deepest: float, tractions: int = 3) -> int:
         raise ValueError(f"tractions: the number of given surface tractions, 1 to 3; got {tractions}")
     m = grid.n if grid.periodic else automatic_padding(grid, deepest, warn=False) * grid.n
     half = m // 2 + 1
-    spectrum = 16 * m * half
-    chunk = 16 * half * min(m, max(1, _CHUNK // half))
+    rows = m if grid.dimension == 2 else 1  # a line's spectra: one row
+    spectrum = 16 * rows * half
+    chunk = 16 * half * min(rows, max(1, _CHUNK // half))
     temporaries = PRESSURE_CHUNK_TEMPORARIES if tractions == 1 else CHUNK_TEMPORARIES
     return max((tractions + 1) * spectrum, tractions * spectrum + temporaries * chunk)
 
@@ -218,7 +231,10 @@ def section_stresses(grid: Grid, poisson_ratio: float, depths: np.ndarray | list
     Parameters
     ----------
     grid
-        The surface grid; ``pressure`` etc. have shape (n, n) indexed [y, x] [Pa]. On a periodic grid
+        The surface grid; ``pressure`` etc. have shape ``grid.shape``, (n, n) indexed [y, x] [Pa]. On a
+        line grid (``grid.dimension = 1``, (1, n)) the tractions are uniform along y and the field is
+        plane strain (the modes q = (q_x, 0) only: sigma_yy = nu (sigma_xx + sigma_zz), no xy, yz
+        shear; the McEwen (1949) field under Hertz's line pressure, Johnson 1985 Eq. 4.49). On a periodic grid
         (``grid.periodic``) the tractions are one period of a periodic surface load and the stresses
         are periodic: unpadded transforms over the period, the mean tractions carried to every depth
         (at depth the field tends to sigma_zz = -mean p, sigma_xz = -mean q_x, sigma_xx = sigma_yy =
@@ -260,9 +276,11 @@ def section_stresses(grid: Grid, poisson_ratio: float, depths: np.ndarray | list
         m = padding * n
     # real tractions: half spectra along x (the stresses are real, their spectra Hermitian); a shear
     # not given (None) is zero: neither transformed nor carried through the stresses' terms
-    spectra = [None if t is None else scipy.fft.rfft2(t, s=(m, m), workers=workers)
+    line = grid.dimension == 1
+    rows = 1 if line else m  # a line's tractions: one row, uniform along y (q_y = 0)
+    spectra = [None if t is None else scipy.fft.rfft2(t, s=(rows, m), workers=workers)
                for t in (pressure, shear_x, shear_y)]
-    qy = 2.0 * np.pi * scipy.fft.fftfreq(m, dx)
+    qy = np.zeros(1) if line else 2.0 * np.pi * scipy.fft.fftfreq(m, dx)
     qx = 2.0 * np.pi * scipy.fft.rfftfreq(m, dx)
     footprint = np.sinc(qx[None, :] * dx / (2 * np.pi)) * np.sinc(qy[:, None] * dx / (2 * np.pi))
     for sp in spectra:  # in place: a product would hold six spectra at once
@@ -270,15 +288,15 @@ def section_stresses(grid: Grid, poisson_ratio: float, depths: np.ndarray | list
             sp *= footprint
     del footprint
     # value at y = 0: the transform's row 0 is y_0 = grid.y[0]
-    phase_y = np.exp(1j * qy * (0.0 - grid.y[0]))[:, None] / m
+    phase_y = np.exp(1j * qy * (0.0 - grid.y[0]))[:, None] / rows
     out = {c: np.empty((depths.size, n)) for c in STRESS_COMPONENTS}
-    rows = max(1, _CHUNK // qx.size)  # q_y rows at a time: the temporaries stay ~ _CHUNK values each
+    chunk = max(1, _CHUNK // qx.size)  # q_y rows at a time: the temporaries stay ~ _CHUNK values each
     for i, z in enumerate(depths):
         sums = {c: np.zeros(qx.size, dtype=complex) for c in STRESS_COMPONENTS}
-        for j in range(0, m, rows):
-            part = slice(j, j + rows)
+        for j in range(0, rows, chunk):
+            part = slice(j, j + chunk)
             fields = _symmetric_mode_stresses(qx, qy[part], float(z), poisson_ratio, _take(spectra, part),
-                                              grid.periodic, np.pi / dx if m % 2 == 0 else None)
+                                              grid.periodic, np.pi / dx if m % 2 == 0 else None, line)
             for c in STRESS_COMPONENTS:
                 sums[c] += np.sum(fields[c] * phase_y[part], axis=0)
         for c in STRESS_COMPONENTS:

@@ -512,23 +512,12 @@ def check_subsurface_body(depths, kind: Body | type) -> None:
 
 def check_line_contact_supported(problem: "Problem") -> None:
     """Refuse, in one line naming the key, what a line contact (``grid.dimension = 1``, plane strain)
-    does not work with yet: a periodic grid, a layer on a base (its kernels are those of a 3-D
-    layer), subsurface stresses (those of a 3-D half-space), adhesion, and an analytic shape other
-    than the infinite cylinder and the strip punch (:meth:`~viscontact.problem.shapes.Shape.line_profile`;
-    a gap without a shape, e.g. a ``surface`` file of one row, is taken as it is)."""
+    does not work with: an analytic shape other than the infinite cylinder and the strip punch
+    (:meth:`~viscontact.problem.shapes.Shape.line_profile`; a gap without a shape, e.g. a ``surface``
+    file of one row, is taken as it is). Periodic lines, layers, adhesion, rough profiles and
+    subsurface stresses run on a line as on the square grid."""
     if problem.grid.dimension != 1:
         return
-    if problem.grid.periodic:
-        raise ParameterError("grid.periodic", "true is not supported in line contact (grid.dimension = 1) yet: "
-                             "periodic plane-strain kernels are missing; use grid.periodic = false")
-    if problem.layer is not None:
-        raise ParameterError("layer", "a layer on a base is not supported in line contact (grid.dimension = 1) yet: "
-                             "its plane-strain kernels are missing")
-    if problem.output.subsurface_depths:
-        raise ParameterError("output.subsurface_depths", "subsurface stresses are not supported in line contact "
-                             "(grid.dimension = 1) yet: those computed are a 3-D half-space's")
-    if problem.adhesion is not None:
-        raise ParameterError("adhesion", "is not supported in line contact (grid.dimension = 1) yet")
     if problem.shape is not None and not problem.shape.line_profile():
         raise ParameterError("indenter.shape", f"'{problem.shape.name}' is not a line contact's indenter "
                              "(grid.dimension = 1): use shape = 'cylinder' without a length (an infinite "

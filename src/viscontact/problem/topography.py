@@ -59,6 +59,8 @@ def rms_slopes(gap: np.ndarray, spacing: float, periodic: bool) -> tuple[float, 
     interior = float(np.sqrt(np.mean(dx**2) + (np.mean(dy**2) if dy.size else 0.0))) / spacing
     if not periodic or interior == 0:
         return interior, 1.0
+    if not dy.size:  # a line: its one seam, across x
+        return interior, float(np.sqrt(np.mean((gap[:, 0] - gap[:, -1])**2) / np.mean(dx**2)))
     seams = np.concatenate([gap[:, 0] - gap[:, -1], gap[0] - gap[-1]])
     step = float(np.sqrt((np.mean(dx**2) + np.mean(dy**2)) / 2))
     return interior, float(np.sqrt(np.mean(seams**2))) / step
@@ -101,17 +103,20 @@ def self_affine_heights(grid: Grid, *, hurst: float, rms_height: float | None = 
                         rms_slope: float | None = None, long_cutoff: float | None = None,
                         short_cutoff: float | None = None, seed: int = 0,
                         key: str = "indenter") -> np.ndarray:
-    """A periodic self-affine surface on the grid's period, heights [m] indexed [y, x].
+    """A periodic self-affine surface on the grid's period, heights [m] indexed [y, x], of shape
+    ``grid.shape``: on a line grid (``grid.dimension = 1``) a self-affine profile along x (a 1-D
+    Fourier synthesis, PSD C(q) ~ q^(-1-2H)).
 
     Parameters
     ----------
     grid
-        The grid; its domain is the period (2 half_width)^2.
+        The grid; its domain is the period (2 half_width)^2, or 2 half_width on a line.
     hurst
         Hurst exponent H, 0 < H <= 1.
     rms_height, rms_slope
         Exactly one of: root-mean-square height [m] or gradient [-] (SurfaceTopography's
-        ``rms_gradient``: |grad h| by forward differences). The realisation is scaled to it exactly, so
+        ``rms_gradient``: |grad h| by forward differences; on a line its ``rms_slope_from_profile``,
+        |dh/dx| by periodic forward differences). The realisation is scaled to it exactly, so
         that seeds differ in their random phases and amplitudes, not in their rms.
     long_cutoff, short_cutoff
         Roll-off and cut-off wavelengths [m] (defaults: the period, and two cells).
@@ -145,20 +150,39 @@ def self_affine_heights(grid: Grid, *, hurst: float, rms_height: float | None = 
     # draw, a cut-off within a mode of the grid's Nyquist wavelength, on the grid itself)
     points = grid.n if short_cutoff is None else 2 * math.ceil(period / short_cutoff) + 2
     points = min(points, grid.n)
-    topography = fourier_synthesis((points, points), (period, period), hurst=hurst, rms_height=rms_height,
-                                   rms_slope=rms_slope, long_cutoff=long_cutoff, short_cutoff=short_cutoff,
-                                   periodic=True, unit="m", rng=seed)
-    if points < grid.n:
-        topography = topography.interpolate_fourier((grid.n, grid.n))
-    heights = topography.heights()
+    line = grid.dimension == 1
+    topography = fourier_synthesis((points,) * grid.dimension, (period,) * grid.dimension, hurst=hurst,
+                                   rms_height=rms_height, rms_slope=rms_slope, long_cutoff=long_cutoff,
+                                   short_cutoff=short_cutoff, periodic=True, unit="m", rng=seed)
+    if line:  # SurfaceTopography's interpolate_fourier is for maps: the profile's Fourier series here
+        heights = _fourier_interpolated(topography.heights(), grid.n)
+        slope = np.sqrt(np.mean((np.roll(heights, -1) - heights) ** 2)) / grid.spacing
+    else:
+        if points < grid.n:
+            topography = topography.interpolate_fourier((grid.n, grid.n))
+        heights = topography.heights()
     realised = np.sqrt(np.mean((heights - heights.mean()) ** 2)) if rms_height is not None \
-        else topography.rms_gradient()
-    return np.ascontiguousarray(heights.T) * (amplitude / realised)
+        else slope if line else topography.rms_gradient()
+    return np.ascontiguousarray(heights.T).reshape(grid.shape) * (amplitude / realised)
+
+
+def _fourier_interpolated(profile: np.ndarray, n: int) -> np.ndarray:
+    """A periodic profile of m <= n points [m] on n points by its Fourier series (zero padding of the
+    spectrum; an even m's Nyquist mode split between +-k, as SurfaceTopography's ``interpolate_fourier``
+    does on a map)."""
+    m = profile.size
+    if m == n:
+        return np.asarray(profile, dtype=float)
+    spectrum = np.fft.rfft(profile)
+    if m % 2 == 0:
+        spectrum[-1] /= 2
+    return np.fft.irfft(spectrum, n) * (n / m)
 
 
 def read_heights(path: str | Path, grid: Grid, *, resample: bool = False, physical_sizes: tuple | None = None,
                  unit: str | None = None, key: str = "indenter.file") -> np.ndarray:
-    """Heights [m] of a measured topography file on the grid, indexed [y, x].
+    """Heights [m] of a measured topography file on the grid, indexed [y, x]: a 2-D map, or on a line
+    grid (``grid.dimension = 1``) a line scan (a profile along x, SurfaceTopography's ``dim == 1``).
 
     Parameters
     ----------
@@ -166,13 +190,15 @@ def read_heights(path: str | Path, grid: Grid, *, resample: bool = False, physic
         Any file ``SurfaceTopography.read_topography`` reads.
     grid
         The grid. Without ``resample`` the file must hold grid.n x grid.n points over
-        (2 half_width)^2 (relative tolerance 1e-6); its point (i, j) lands on cell (j, i).
+        (2 half_width)^2 (relative tolerance 1e-6); its point (i, j) lands on cell (j, i). A line
+        scan: grid.n points over 2 half_width, point i on cell (0, i).
     resample
         Interpolate (cubic B-spline) the file's heights at the grid's cell centres, the centres of the two
         point sets coinciding. A periodic topography wraps around; a non-periodic one must cover
         the grid.
     physical_sizes, unit
-        Passed to ``read_topography`` for files that do not carry them.
+        Passed to ``read_topography`` for files that do not carry them (on a line grid only the
+        width, the first of ``physical_sizes``, is passed).
     key
         The case-file key named in error messages.
     """
@@ -182,6 +208,8 @@ def read_heights(path: str | Path, grid: Grid, *, resample: bool = False, physic
     if not path.is_file():
         raise ParameterError(key, f"{path} is not a regular file (a folder, FIFO, device or link loop): give a "
                              "topography file" if os.path.lexists(path) else f"no such file: {path}")
+    if physical_sizes is not None:
+        physical_sizes = tuple(physical_sizes)[:grid.dimension]
     extra = {k: v for k, v in (("physical_sizes", physical_sizes), ("unit", unit)) if v is not None}
     try:
         topography = SurfaceTopography.read_topography(str(path), **extra)
@@ -195,7 +223,11 @@ def read_heights(path: str | Path, grid: Grid, *, resample: bool = False, physic
         elif "already fixed by file" in message:
             message = "the file gives its own size and unit: remove indenter.physical_size_m and indenter.unit"
         raise ParameterError(key, f"cannot read {path} as a topography: {message[:300]}") from None
-    if topography.dim != 2 or len(topography.nb_grid_pts) != 2 or len(topography.physical_sizes) != 2:
+    if grid.dimension == 1:
+        if topography.dim != 1:
+            raise ParameterError(key, f"{path} holds a {topography.dim}-D map; a line contact (grid.dimension = 1) "
+                                 "needs a line scan (a profile along x)")
+    elif topography.dim != 2 or len(topography.nb_grid_pts) != 2 or len(topography.physical_sizes) != 2:
         raise ParameterError(key, f"{path} holds a line scan or gives one physical size "
                              f"({topography.physical_sizes}); a 2-D map with its width and height is needed "
                              "(a text map: '# Width:' and '# Height:' header lines)")
@@ -204,28 +236,31 @@ def read_heights(path: str | Path, grid: Grid, *, resample: bool = False, physic
     if topography.has_undefined_data:
         raise ParameterError(key, f"{path} has undefined (missing) points; fill them before use")
     topography = topography.to_unit("m")
-    heights = np.asarray(topography.heights(), dtype=float).T  # [y, x]
+    heights = np.asarray(topography.heights(), dtype=float).T.reshape(-1, topography.nb_grid_pts[0])  # [y, x]
     if not np.all(np.isfinite(heights)):
         raise ParameterError(key, f"{path} must hold finite heights")
-    (nx, ny), (lx, ly) = topography.nb_grid_pts, topography.physical_sizes
+    points, sizes = tuple(topography.nb_grid_pts), tuple(topography.physical_sizes)
     period = 2 * grid.half_width
-    same_points = (nx, ny) == (grid.n, grid.n)
-    same_size = abs(lx - period) <= 1e-6 * period and abs(ly - period) <= 1e-6 * period
+    same_points = points == (grid.n,) * grid.dimension
+    same_size = all(abs(length - period) <= 1e-6 * period for length in sizes)
     if same_points and same_size:
         return np.ascontiguousarray(heights)
-    described = (f"{path} holds {nx} x {ny} points over {lx:.6g} m x {ly:.6g} m; the grid has "
-                 f"{grid.n} x {grid.n} points over {period:.6g} m x {period:.6g} m")
+    described = (f"{path} holds {' x '.join(map(str, points))} points over "
+                 f"{' x '.join(f'{length:.6g} m' for length in sizes)}; the grid has "
+                 f"{' x '.join([str(grid.n)] * grid.dimension)} points over "
+                 f"{' x '.join([f'{period:.6g} m'] * grid.dimension)}")
     if not resample:
         raise ParameterError(key, f"{described}: set resample = true to interpolate onto the grid")
-    return _resample(heights, (lx, ly), topography.is_periodic, grid, key, described)
+    return _resample(heights, sizes, topography.is_periodic, grid, key, described)
 
 
 def _resample(heights: np.ndarray, sizes: tuple[float, float], periodic: bool, grid: Grid, key: str,
               described: str) -> np.ndarray:
     """Cubic B-spline interpolation (periodic or mirrored at the ends) of heights [y, x], sample
-    spacing sizes/points, at the grid's cell centres."""
+    spacing sizes/points, at the grid's cell centres; on a line grid, of the profile (1, nx) of
+    length ``sizes[0]``."""
     ny, nx = heights.shape
-    lx, ly = sizes
+    lx, ly = sizes if len(sizes) == 2 else (sizes[0], sizes[0] / nx)
     sx, sy = lx / nx, ly / ny
     # cell centres in the file's frame (samples at i * s), the centres of both point sets coinciding
     x = grid.x + (lx - sx) / 2
@@ -233,7 +268,7 @@ def _resample(heights: np.ndarray, sizes: tuple[float, float], periodic: bool, g
     if not periodic and (x.min() < 0 or x.max() > lx - sx or y.min() < 0 or y.max() > ly - sy):
         # the grid's outermost cell centres, grid.half_width (1 - 1/n) from its centre, must lie within
         # the file's outermost samples, (l - s) / 2 from its centre
-        widest = min(lx - sx, ly - sy) / (2 * (1 - 1 / grid.n))
+        widest = (min(lx - sx, ly - sy) if grid.dimension == 2 else lx - sx) / (2 * (1 - 1 / grid.n))
         raise ParameterError(key, f"{described}: the surface is not periodic and its outermost samples do not reach "
                              f"the grid's outermost cell centres; grid.half_width <= {widest:.6g} m keeps them inside")
     ratio = max(sx, sy) / grid.spacing

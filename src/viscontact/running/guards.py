@@ -60,6 +60,10 @@ __all__ = ["ContactEstimate", "check_material", "check_problem", "check_sliding_
 #: cells across the adhesive cohesive zone (or the contact radius, when smaller) below which a run is
 #: refused / warned about (:func:`_check_adhesion`): the cell-by-cell law knows the zone's edge to a cell
 ADHESION_MIN_CELLS, ADHESION_WARN_CELLS = 2.0, 4.0
+#: the exponential law's tension at the domain's edge (the rigid gap's rise there), as a fraction of its
+#: peak, above which a warning says the grid cuts off its tail (the Derjaguin force of a sphere loses
+#: that fraction: int 2 pi r sigma dr = 2 pi R w e^(-g_edge / rho))
+EXPONENTIAL_EDGE_FRACTION = 0.01
 #: estimated relative errors of the peak pressure above which a run is refused / warned about
 ERROR_LIMIT, WARNING_LIMIT = 0.10, 0.05
 #: the same for the one-point estimate of the time discretisation (:func:`time_step_error`). It
@@ -229,7 +233,17 @@ def _check_adhesion(problem: Problem, transient: bool) -> None:
     if not transient and problem.grid.periodic:
         raise ParameterError("adhesion", "is not supported by `viscontact steady` on a periodic grid yet: run the "
                              "transient (`viscontact run`), or the steady state on a non-periodic grid")
+    if not transient and adhesion.law != "maugis_dugdale":
+        raise ParameterError("adhesion.law", f"{adhesion.law!r} is not supported by `viscontact steady` yet: run the "
+                             "transient (`viscontact run`), or law = 'maugis_dugdale'")
     grid = problem.grid
+    if adhesion.law == "exponential" and not grid.periodic:
+        rise = float(grid.edge_values(problem.gap).min() - problem.gap.min())
+        if math.exp(-rise / adhesion.range) > EXPONENTIAL_EDGE_FRACTION:
+            warn_caller(f"grid.half_width: the exponential tension at the domain's edge (the gap {rise:.3g} m above "
+                        f"its least, {rise / adhesion.range:.2g} ranges) is {math.exp(-rise / adhesion.range):.2g} "
+                        f"of its peak, cut off outside the grid; widen the domain to a rise of "
+                        f"{-math.log(EXPONENTIAL_EDGE_FRACTION):.2g} ranges")
     est = contact_estimate(problem)
     length, what = cohesive_zone_estimate(problem, est)
     if est is not None and est.smallest < length:
@@ -269,6 +283,8 @@ def cohesive_zone_estimate(problem: Problem, est: ContactEstimate | None) -> tup
       (:func:`~viscontact.physics.adhesion.cohesive_zone_length`; the Maugis-Dugdale ring tends to it
       at a large Maugis parameter), with the body's own E* at the scale of that zone
       (:func:`body_contact_modulus`: a layer judged by its compliance there, not its material's);
+      the exponential law is judged as the Maugis-Dugdale law of its peak, sigma_0 = w / rho and
+      h_0 = rho (:attr:`~viscontact.problem.adhesion.AdhesionSettings.peak_stress`);
     * the width over which the rigid gap of the sphere (R, contact radius a: ``est``) opens to the
       range h_0 = w / sigma_0 beyond the contact's edge, sqrt(a^2 + 2 R h_0) - a: the zone of a small
       Maugis parameter (the DMT limit), which a stiff body (a thin layer on a rigid base) reaches.
@@ -278,7 +294,7 @@ def cohesive_zone_estimate(problem: Problem, est: ContactEstimate | None) -> tup
     the Dugdale zone with the layer's material 457 um, with its stiffness at that scale 3.4 mm)."""
     adhesion, mat = problem.adhesion, problem.material
     e_material = 2.0 * mat.shear_modulus_instantaneous / (1.0 - mat.poisson_ratio)
-    w, sigma = adhesion.work_of_adhesion, adhesion.cohesive_stress
+    w, sigma = adhesion.work_of_adhesion, adhesion.peak_stress
     e_star = body_contact_modulus(problem, cohesive_zone_length(e_material, w, sigma))
     length = cohesive_zone_length(e_star, w, sigma)
     what = f"cohesive zone pi E* w / (4 sigma_0^2) = {length:.3g} m (E* = {e_star:.3g} Pa, the body's at that scale)"

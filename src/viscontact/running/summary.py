@@ -91,6 +91,9 @@ def summary(ds: Any) -> dict[str, Any]:
 
 #: the labels of a line contact's (``grid.dimension = 1``) numbers where they differ from :data:`LABELS`
 LINE_LABELS = {"contact_radius": "contact half-width A/2", "load": "normal load W per unit length"}
+#: the column headers of a line contact's tables where they differ from the names (the names, e.g. of
+#: ``--json``'s rows, stay those of the result)
+LINE_COLUMNS = {"contact_radius": "contact_half_width"}
 
 
 def _line(ds: Any) -> bool:
@@ -238,7 +241,7 @@ def format_summary(s: dict[str, Any]) -> str:
             v = s["values"]
             lines[0] = head + f": {sum(v.get(k, 0) for k in ('runs_computed', 'runs_reused'))} runs, " \
                               f"{v.get('runs_failed', 0)} failed"
-        lines += _table(rows[:MAX_ROWS], s["units"])
+        lines += _table(rows[:MAX_ROWS], s["units"], LINE_COLUMNS if "labels" in s else {})
         if len(rows) > MAX_ROWS:
             lines.append(f"  ... {len(rows) - MAX_ROWS} more (all: --json, or viscontact export RESULT.nc --csv)")
     return "\n".join(lines)
@@ -256,12 +259,14 @@ def _quantity(name: str, value: Any, units: dict[str, str], scales: dict[str, fl
     return text
 
 
-def _table(rows: list[dict[str, Any]], units: dict[str, str]) -> list[str]:
-    """``rows`` as an aligned text table, a header of names and units first."""
+def _table(rows: list[dict[str, Any]], units: dict[str, str], columns: dict[str, str] | None = None) -> list[str]:
+    """``rows`` as an aligned text table, a header of names (or their ``columns`` header) and units first."""
     if not rows:
         return ["  (no rows)"]
+    columns = columns or {}
     names = [name for name in rows[0] if name != "error" or any(row["error"] for row in rows)]
-    header = [name.replace("__", ".") + (f" [{units[name]}]" if units.get(name) not in (None, "1", "") else "")
+    header = [columns.get(name, name).replace("__", ".")
+              + (f" [{units[name]}]" if units.get(name) not in (None, "1", "") else "")
               for name in names]
     cells = [[_cell(row[name]) for name in names] for row in rows]
     widths = [max(len(h), *(len(c[i]) for c in cells)) for i, h in enumerate(header)]

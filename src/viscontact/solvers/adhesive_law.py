@@ -33,7 +33,9 @@ from typing import ClassVar
 
 import numpy as np
 
-from viscontact.numerics.adhesive import adhesive_contact
+from viscontact.numerics.adhesive import AdhesiveSolution, adhesive_contact
+from viscontact.numerics.adhesive_exponential import exponential_contact
+from viscontact.problem.adhesion import AdhesionSettings
 from viscontact.solvers.contact_laws import (
     ADHESIVE_LAW,
     ADHESIVE_PARTIAL_SLIP_LAW,
@@ -43,6 +45,24 @@ from viscontact.solvers.contact_laws import (
     StepSolution,
     register_contact_law,
 )
+
+#: the adhesive area of the exponential law: the open cells whose tension exceeds this fraction of the
+#: peak w / rho (the gap below rho ln 100 = 4.6 rho)
+EXPONENTIAL_AREA_FRACTION = 0.01
+
+
+def adhesive_cells(adhesion: AdhesionSettings, pressure: np.ndarray, interaction: np.ndarray | None
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """(the cells in contact, gap 0; the cells of the adhesive area) of a solution of the law of
+    ``adhesion`` with the pressure [Pa] and the solver's ``interaction``. Maugis-Dugdale: the contact of
+    :func:`contact_cells`, the cohesive zone (the rest of the interaction zone: gap open, p = -sigma_0).
+    Exponential (whose ``interaction`` is the contact): the open cells whose tension exceeds
+    :data:`EXPONENTIAL_AREA_FRACTION` of the peak w / rho."""
+    if adhesion.law == "exponential":
+        contact = pressure > 0 if interaction is None else interaction
+        return contact, ~contact & (pressure < -EXPONENTIAL_AREA_FRACTION * adhesion.peak_stress)
+    contact = contact_cells(pressure, interaction, adhesion.cohesive_stress)
+    return contact, (np.zeros_like(contact) if interaction is None else interaction & ~contact)
 
 
 def contact_cells(pressure: np.ndarray, interaction: np.ndarray | None, cohesive_stress: float) -> np.ndarray:
@@ -71,11 +91,15 @@ def solve_adhesive_normal(ctx: StepContext, known_uz: np.ndarray, pressure: np.n
         p = np.zeros_like(known)
         return p, float(known.min()), 0, known_uz.copy(), np.zeros_like(p), np.zeros_like(p, dtype=bool)
     op = ctx.compliance.elastic_operator("z", ctx.first)
-    sol = adhesive_contact(op, known, control=control, value=ctx.value,
-                           cohesive_stress=adhesion.cohesive_stress, work_of_adhesion=adhesion.work_of_adhesion,
-                           cell_area=problem.grid.cell_area, initial=pressure, interaction=zone,
-                           initial_product=product, tolerance=settings.tolerance,
-                           max_iterations=settings.max_iterations, mixed_precision=settings.mixed_precision)
+    common = {"control": control, "value": ctx.value, "work_of_adhesion": adhesion.work_of_adhesion,
+              "cell_area": problem.grid.cell_area, "initial": pressure, "interaction": zone,
+              "tolerance": settings.tolerance, "max_iterations": settings.max_iterations,
+              "mixed_precision": settings.mixed_precision}
+    sol: AdhesiveSolution
+    if adhesion.law == "exponential":
+        sol = exponential_contact(op, known, decay_length=adhesion.decay_length, **common)
+    else:
+        sol = adhesive_contact(op, known, cohesive_stress=adhesion.cohesive_stress, initial_product=product, **common)
     return sol.pressure, float(sol.approach), sol.iterations, sol.product + known_uz, sol.product, sol.interaction
 
 

@@ -15,7 +15,7 @@ import numpy as np
 from viscontact.problem.problem import Problem
 from viscontact.problem.records import StepRecord
 from viscontact.problem.roughness import roughness_metrics
-from viscontact.solvers.adhesive_law import contact_cells
+from viscontact.solvers.adhesive_law import adhesive_cells
 from viscontact.solvers.checks import check_solution
 from viscontact.solvers.sliding import hysteresis_force, pressure_centroid
 
@@ -60,7 +60,8 @@ def measure(problem: Problem, pressure: np.ndarray, shear: np.ndarray, displacem
         With adhesion: the solution's interaction zone (boolean, on the host). The contact area is
         then the area at gap 0 (:func:`~viscontact.solvers.adhesive_law.contact_cells`), the adhesive
         force the tensile part of the load, sum min(p, 0) dA [N], and the adhesive area that of the
-        cohesive zone (gap open, tension sigma_0) [m^2].
+        cohesive zone (gap open, tension sigma_0; with the exponential law, gap open and tension above
+        1 % of its peak w / rho: :func:`~viscontact.solvers.adhesive_law.adhesive_cells`) [m^2].
 
     Returns
     -------
@@ -80,9 +81,9 @@ def measure(problem: Problem, pressure: np.ndarray, shear: np.ndarray, displacem
     if adhesion is None:
         n_contact, adhesive = int((pressure > 0).sum()), {}
     else:
-        contact = contact_cells(pressure, interaction, adhesion.cohesive_stress)
+        contact, cohesive_cells = adhesive_cells(adhesion, pressure, interaction)
         n_contact = int(contact.sum())
-        cohesive = 0 if interaction is None else int((interaction & ~contact).sum())
+        cohesive = int(cohesive_cells.sum())
         adhesive = {"adhesive_force": float(np.minimum(pressure, 0.0).sum() * grid.cell_area),
                     "adhesive_area": cohesive * grid.cell_area}
     if stick is None:

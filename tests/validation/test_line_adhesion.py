@@ -1,0 +1,116 @@
+"""Adhesion in line contact (``[adhesion]`` with ``grid.dimension = 1``, plane strain).
+
+* The JKR line contact (:func:`viscontact.physics.adhesion.jkr_line_load`): its adhesive part is the
+  strip punch whose energy release rate at each edge is w, checked here from the strip punch's own
+  compliance (:class:`viscontact.physics.reference.StripPunch`, Johnson §2.8: C(a) = delta/W), by
+  G = (W^2/2) dC/dA with A = 2a the contact per unit length; the pull-off under load control is the
+  least load of the curve (found by minimisation).
+* The adhesive line contact is the plane-strain problem of a load uniform along y: a periodic wavy
+  profile pulled on a periodic line grid solves the same state as the same profile, uniform along y,
+  on the periodic 2-D grid (its kernels by Ewald summation, the line's by the closed-form alias sums:
+  independent), through the same Maugis-Dugdale law, to the solver's tolerance.
+* The isolated adhesive cylinder (DC-FFT strips with their datum) is the periodic one far from its
+  images: pressures within 1.2e-3 / 3.1e-4 of the peak with periods of 24 a / 48 a (falling as
+  the period^-2, as Hertz's line contact does), the same cells in contact and in the cohesive zone,
+  the adhesive force within 1e-4.
+"""
+import os
+
+import numpy as np
+import pytest
+import scipy.optimize
+
+from viscontact.io.case import Case
+from viscontact.physics.adhesion import jkr_line_load, jkr_line_pull_off
+from viscontact.physics.reference import StripPunch, hertz_line_from_load
+from viscontact.running.loop import simulate
+
+G, NU, R, W = 0.35e6, 0.5, 1e-2, 0.05
+E_STAR = 2 * G / (1 - NU)
+
+
+def test_jkr_line_crack_criterion_from_the_strip_punch_compliance():
+    for a in (1e-4, 3e-4):
+        load = np.sqrt(2 * np.pi * E_STAR * W * a)  # the adhesive (strip punch) part of jkr_line_load
+        hertz = hertz_line_from_load(1.0, R, G, NU, 1e-3)  # only for its E*-consistency: a^2 = 4WR/(pi E*)
+        assert hertz.radius**2 == pytest.approx(4 * R / (np.pi * E_STAR), rel=1e-12)
+        assert jkr_line_load(a, R, E_STAR, W) == pytest.approx(np.pi * E_STAR * a**2 / (4 * R) - load, rel=1e-12)
+
+        def compliance(half_width: float) -> float:
+            return StripPunch.from_load(1.0, half_width, E_STAR, 1e-2).approach
+
+        step = 1e-4 * a
+        dc_da = (compliance(a + step) - compliance(a - step)) / (2 * step)
+        release = load**2 / 2 * abs(dc_da) / 2  # dA = 2 da
+        assert release == pytest.approx(W, rel=1e-7)
+
+
+def test_jkr_line_pull_off_is_the_least_load():
+    force, half_width = jkr_line_pull_off(R, E_STAR, W)
+    best = scipy.optimize.minimize_scalar(lambda a: jkr_line_load(a, R, E_STAR, W), bounds=(1e-6, 1e-3),
+                                          method="bounded", options={"xatol": 1e-12})
+    assert best.x == pytest.approx(half_width, rel=1e-5)
+    assert best.fun == pytest.approx(force, rel=1e-10)
+
+
+def _wavy(tmp_path, dimension: int, n: int = 64):
+    wavelength, amplitude = 1e-3, 1e-5
+    x = -wavelength / 2 + (np.arange(n) + 0.5) * wavelength / n
+    profile = amplitude * (1 - np.cos(2 * np.pi * x / wavelength))
+    gap = profile[None, :] if dimension == 1 else np.broadcast_to(profile, (n, n)).copy()
+    path = os.path.join(tmp_path, f"wave{dimension}.npy")
+    np.save(path, gap)
+    p_star = np.pi * E_STAR * amplitude / wavelength
+    load = 0.05 * p_star * wavelength  # N/m on the line; on the square period, that times the period
+    case = Case.from_dict({
+        "title": "adhesive wave", "material": {"type": "elastic", "shear_modulus": G, "poisson_ratio": NU},
+        "indenter": {"shape": "surface", "file": path},
+        "adhesion": {"work_of_adhesion": W, "cohesive_stress": 0.5 * p_star},
+        "grid": {"n": n, "half_width": wavelength / 2, "dimension": dimension, "periodic": True},
+        "normal": {"control": "load", "value": load * (1 if dimension == 1 else wavelength)},
+        "tangential": {"mode": "none"}, "time": {"t_end": 1e-3, "dt": 1e-3}})
+    problem = case.to_problem()
+    return problem, list(simulate(problem))[-1]
+
+
+def test_adhesive_periodic_line_is_the_plane_strain_state_of_the_2d_grid(tmp_path):
+    """16 cells in contact, 8 in the cohesive zone, 40 free. Measured: the pressures agree to 3.5e-15 of
+    the peak (round-off), the same cells in the cohesive zone, the same approach."""
+    line_problem, line = _wavy(tmp_path, 1)
+    _, plane = _wavy(tmp_path, 2)
+    p_line, p_plane = line.pressure[0], plane.pressure
+    assert np.allclose(p_plane, p_plane[:1], rtol=0, atol=1e-9 * np.abs(p_plane).max())  # uniform along y
+    sigma = 0.5 * np.pi * E_STAR * 1e-5 / 1e-3
+    cohesive = np.isclose(p_line, -sigma, rtol=1e-9)
+    assert cohesive.any() and (p_line > 0).any() and (p_line == 0).any()  # contact, cohesive zone, free
+    np.testing.assert_array_equal(cohesive, np.isclose(p_plane[0], -sigma, rtol=1e-9))
+    np.testing.assert_allclose(p_line, p_plane[0], rtol=0, atol=1e-12 * np.abs(p_line).max())
+    assert line.delta_z == pytest.approx(plane.delta_z, rel=1e-12, abs=1e-18)
+    assert line.load == pytest.approx(p_line.sum() * line_problem.grid.spacing, rel=1e-12)
+    assert line.adhesive_force < 0
+
+
+def _cylinder(n: int, half_width: float, periodic: bool):
+    case = Case.from_dict({
+        "title": "adhesive cylinder", "material": {"type": "elastic", "shear_modulus": G, "poisson_ratio": NU},
+        "indenter": {"shape": "cylinder", "radius": R},
+        "adhesion": {"work_of_adhesion": W, "cohesive_stress": 3.75e4},  # a cohesive zone of 10 cells
+        "grid": {"n": n, "half_width": half_width, "dimension": 1, "periodic": periodic},
+        "normal": {"control": "load", "value": 0.5}, "tangential": {"mode": "none"},
+        "time": {"t_end": 1e-3, "dt": 1e-3}})
+    return list(simulate(case.to_problem()))[-1]
+
+
+def test_the_isolated_adhesive_cylinder_is_the_periodic_one_far_from_its_images():
+    isolated = _cylinder(512, 1e-3, False)  # a = 79 cells
+    p = isolated.pressure[0]
+    assert (p < 0).any() and isolated.adhesive_force < -3.0
+    errors = []
+    for n, half_width in ((2048, 4e-3), (4096, 8e-3)):
+        periodic = _cylinder(n, half_width, True)
+        middle = periodic.pressure[0][(n - 512) // 2: (n + 512) // 2]
+        errors.append(np.abs(p - middle).max() / p.max())
+        np.testing.assert_array_equal(p > 0, middle > 0)
+        np.testing.assert_array_equal(np.isclose(p, -3.75e4, rtol=1e-9), np.isclose(middle, -3.75e4, rtol=1e-9))
+        assert periodic.adhesive_force == pytest.approx(isolated.adhesive_force, rel=2e-4)
+    assert errors[1] < 5e-4 and errors[0] / errors[1] > 3
