@@ -339,6 +339,13 @@ def _transient(mode: str):
             {"grid.n": 32, "tangential.displacement_rate": 0.004, "time.t_end": 10 * 1e-3 / 32 / 0.02,
              "tangential.slip": "total"})
         return case.to_problem()
+    if mode == "rolling_rough":  # rolling on a rough periodic surface: the roughness carried, its gap moved each step
+        base = _transient("rolling")
+        grid = dataclasses.replace(base.grid, periodic=True)
+        x, y = grid.mesh()
+        k = 2.0 * np.pi / (2.0 * grid.half_width)
+        rough = 0.05 * SEED_A0**2 / SEED_RADIUS * (np.cos(3 * k * x + 5 * k * y) + np.sin(4 * k * x - 0.7))
+        return dataclasses.replace(base, grid=grid, gap=base.shape.gap(grid) + rough, surface_topography=True)
     if mode.startswith("rolling"):  # rolling with the coupling: u_x convected in the state; a held force's root find
         held = {"creepage": -3e-3} if mode == "rolling" else {"tangential_force": 0.02}
         base = sphere_problem(material, 32, 2.5 * SEED_A0, t_end=8 * 2.5 * SEED_A0 / 16 / 0.05, dt=1.0)
@@ -377,7 +384,7 @@ def _adhesive_transient(mode: str):
                                   "partial_slip", "partial_slip_incremental", "rough_periodic",
                                   "rough_periodic_incremental", "layer", "layer_on_elastic", "bulk_modulus",
                                   "sub_cell_sphere", "sub_cell_surface", "sub_cell_periodic", "rolling",
-                                  "rolling_force", "line_creep", "line_gross_sliding",
+                                  "rolling_force", "rolling_rough", "line_creep", "line_gross_sliding",
                                   "line_partial_slip_incremental", "adhesive_retraction", "adhesive_load",
                                   "adhesive_sliding", "adhesive_partial_slip", "adhesive_periodic"])
 @pytest.mark.parametrize("backend", BACKENDS)

@@ -1,4 +1,5 @@
 """The rolling keys of ``[tangential]``: accepted together, refused in one line otherwise."""
+import numpy as np
 import pytest
 
 from viscontact.errors import ParameterError
@@ -105,17 +106,34 @@ def test_rolling_with_adhesion_is_refused_in_one_line():
     assert info.value.key == "tangential.mode" and "adhesion" in str(info.value)
 
 
-@pytest.mark.parametrize("indenter", [
-    '[indenter]\nshape = "sphere"\nradius = 0.01\n[indenter.roughness]\nhurst = 0.8\nrms_height = 1e-7\n',
-    '[indenter]\nshape = "self_affine"\nhurst = 0.8\nrms_slope = 0.1\n'])
-def test_rolling_on_a_rough_surface_is_refused_in_one_line(indenter):
-    """A rough gap stays fixed in the indenter's frame, where the asperities of a rolling surface pass
-    through the contact: rolling on it would model asperities sliding at the rolling speed."""
-    text = BASE.replace('[indenter]\nshape = "sphere"\nradius = 0.01\n', indenter) + ROLLING
-    if "self_affine" in indenter:
-        text = text.replace("[grid]\n", "[grid]\nperiodic = true\n")
+ROUGH_SPHERE = '[indenter]\nshape = "sphere"\nradius = 0.01\n[indenter.roughness]\nhurst = 0.8\nrms_height = 1e-7\n'
+SELF_AFFINE = '[indenter]\nshape = "self_affine"\nhurst = 0.8\nrms_slope = 0.1\n'
+
+
+def _rough_rolling(indenter: str, rolling: str = ROLLING, periodic: bool = True) -> str:
+    text = BASE.replace('[indenter]\nshape = "sphere"\nradius = 0.01\n', indenter) + rolling
+    return text.replace("[grid]\n", "[grid]\nperiodic = true\n") if periodic else text
+
+
+@pytest.mark.parametrize("indenter", [ROUGH_SPHERE, SELF_AFFINE])
+def test_rolling_on_a_rough_periodic_surface_carries_its_roughness(indenter):
+    """A rough surface rolls on a periodic grid with a held creepage; its roughness is carried through
+    the contact (the gap of a later step differs from the first's; the validation tests check how)."""
+    problem = Case.from_toml_text(_rough_rolling(indenter)).to_problem()
+    assert problem.rolls_rough
+    assert problem.rolling_gap(0) is problem.gap
+    assert not np.array_equal(problem.rolling_gap(1), problem.gap)
+
+
+@pytest.mark.parametrize("rolling,periodic,missing", [
+    (ROLLING, False, "grid.periodic"),
+    ('mode = "rolling"\nrolling_speed = 0.1\ntangential_force = 0.01\nfriction_coefficient = 0.3\n', True,
+     "held tangential.creepage")])
+def test_rolling_on_a_rough_surface_refuses_what_is_missing_in_one_line(rolling, periodic, missing):
+    """Rough rolling needs the Fourier shift of a periodic grid and a held creepage (the distance its
+    surface turned is then known at every step); a smooth sphere rolls on either grid."""
     with pytest.raises(ParameterError) as info:
-        Case.from_toml_text(text).to_problem()
-    assert info.value.key == "tangential.mode" and "rough" in str(info.value)
+        Case.from_toml_text(_rough_rolling(ROUGH_SPHERE, rolling, periodic)).to_problem()
+    assert info.value.key == "tangential.mode" and "rough" in str(info.value) and missing in str(info.value)
     smooth = Case.from_toml_text(BASE + ROLLING).to_problem()  # a smooth sphere rolls
-    assert smooth.tangential.rolls
+    assert smooth.tangential.rolls and not smooth.rolls_rough

@@ -141,3 +141,22 @@ def mask_span(mask: np.ndarray, axis: int) -> tuple[int, int]:
     ``mask`` has a True (at least one)."""
     hit = np.flatnonzero(mask.any(axis=1 - axis))
     return int(hit[0]), int(hit[-1]) + 1
+
+
+def shifted_periodic_x(field: np.ndarray, cells: float) -> np.ndarray:
+    """The periodic grid field f(x + cells dx): ``field`` moved by ``cells`` (any real number of cells)
+    towards -x, as its Fourier series along x (a mode exp(i k x) gains the phase exp(i k cells dx)).
+
+    The whole cells are moved by :func:`numpy.roll` (exact, bit for bit); the fraction f of a cell
+    multiplies each mode m of the real FFT along x by exp(2 pi i m f / n), exact for a field whose
+    spectrum the grid holds (the Nyquist mode of an even n keeps its real part only, as the inverse
+    real FFT does). A pure function: ``field`` is not changed.
+    """
+    whole = int(np.floor(cells))
+    fraction = float(cells) - whole
+    moved = np.roll(field, -whole, axis=1)
+    if fraction == 0.0:
+        return moved
+    n = field.shape[1]
+    phase = np.exp(2j * np.pi * np.fft.rfftfreq(n) * fraction)
+    return np.fft.irfft(np.fft.rfft(moved, axis=1) * phase, n, axis=1)

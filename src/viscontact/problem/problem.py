@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any, Callable, Literal
 import numpy as np
 
 from viscontact.errors import ParameterError
-from viscontact.numerics.grid import Grid
+from viscontact.numerics.grid import Grid, shifted_periodic_x
 from viscontact.physics.materials import Material
 from viscontact.problem.adhesion import AdhesionSettings
 from viscontact.problem.shapes import Shape, Sphere
@@ -585,11 +585,7 @@ class Problem:
                                  f"{self.normal.history.values!r}")
         if self.adhesion is not None:
             check_adhesion_supported(self)
-        if self.tangential.rolls and self.surface_topography:
-            raise ParameterError("tangential.mode", "'rolling' is not supported on a rough or measured surface yet: "
-                                 "the gap is fixed in the indenter's frame, where rolling carries the asperities "
-                                 "through the contact with the surfaces (a convected gap is missing); roll a smooth "
-                                 "indenter, or slide (gross_sliding, partial_slip)")
+        self._check_rough_rolling()
         if np.shape(self.gap) != grid_shape:
             raise ParameterError("gap", f"must be an array of the grid's shape {grid_shape}, got shape "
                                  f"{np.shape(self.gap)}")
@@ -606,6 +602,22 @@ class Problem:
                 object.__setattr__(self, key, value)
         check_subsurface_body(self.output.subsurface_depths, body)
         check_line_contact_supported(self)
+
+    def _check_rough_rolling(self) -> None:
+        """Rolling on a rough surface (:meth:`rolling_gap`) needs a periodic grid and a held creepage;
+        refused in one line otherwise."""
+        if not self.rolls_rough:
+            return
+        missing = None
+        if not self.grid.periodic:
+            missing = ("needs grid.periodic = true: the roughness is carried through the contact as its "
+                       "Fourier series (a convected roughness on a DC-FFT grid is missing)")
+        elif self.tangential.creepage is None:
+            missing = ("needs a held tangential.creepage: under a held tangential_force the roughness's "
+                       "distance turned depends on each step's creepage (its accumulation is missing)")
+        if missing:
+            raise ParameterError("tangential.mode", f"'rolling' on a rough or measured surface {missing}; "
+                                 "roll a smooth indenter, or slide (gross_sliding, partial_slip)")
 
     def _mirror_sphere(self) -> None:
         """Keep ``radius`` and a :class:`~viscontact.problem.shapes.Sphere` ``shape`` one description
@@ -653,6 +665,35 @@ class Problem:
         """Whether the result keeps step ``step``: every ``output.every``-th, the last and the
         :attr:`turning_steps`."""
         return step % self.output.every == 0 or step == self.time.n_steps - 1 or step in self.turning_steps
+
+    @property
+    def rolls_rough(self) -> bool:
+        """Whether the indenter rolls on a rough or measured surface (``surface_topography``): its
+        roughness is then carried through the contact (:meth:`rolling_gap`)."""
+        return self.tangential.rolls and self.surface_topography
+
+    @cached_property
+    def _rolling_parts(self) -> tuple[np.ndarray, np.ndarray]:
+        """The gap's smooth part (``shape``'s gap, fixed in the rolling frame; 0 without a shape) and
+        its roughness, the rest [m]: gap = smooth + roughness."""
+        smooth = np.zeros_like(self.gap) if self.shape is None else self.shape.gap(self.grid)
+        return smooth, self.gap - smooth
+
+    def rolling_gap(self, step: int) -> np.ndarray:
+        """The undeformed gap [m] of rolling step ``step`` on a rough surface (:attr:`rolls_rough`).
+
+        In the frame of the roller's axis (one cell dx = V dt per step) the roller's surface moves
+        towards -x at its circumferential speed V (1 + xi) (``tangential.creepage`` xi), carrying its
+        asperities through the contact, while its smooth shape stays in place: after k steps the gap
+        is h_smooth(x) + r(x + k (1 + xi) dx), r the roughness (:attr:`_rolling_parts`), moved as its
+        Fourier series along x (:func:`~viscontact.numerics.grid.shifted_periodic_x`; whole cells
+        exactly). Step 0 (nothing rolled yet) and a problem that does not roll on a rough surface:
+        ``gap`` itself.
+        """
+        if step == 0 or not self.rolls_rough:
+            return self.gap
+        smooth, roughness = self._rolling_parts
+        return smooth + shifted_periodic_x(roughness, step * (1.0 + float(self.tangential.creepage)))
 
     def frame_gap(self, offset: float) -> np.ndarray:
         """Undeformed gap [m] on the grid with the indenter centre at x = ``offset`` [m], 0 <= offset < dx.

@@ -187,6 +187,10 @@ def check_steady_rolling(problem: Problem, speed: float | None = None) -> None:
     if not problem.tangential.rolls:
         raise ParameterError("tangential.mode", f"must be 'rolling' for a steady rolling state, got "
                              f"{problem.tangential.mode!r}")
+    if problem.rolls_rough:
+        raise ParameterError("tangential.mode", "a steady rolling state on a rough or measured surface is not "
+                             "supported: the roughness carried through the contact makes the state change "
+                             "with time (a steady solver for it is missing); run the transient (viscontact run)")
     check_speed(problem.tangential.rolling_speed if speed is None else speed)
 
 

@@ -281,10 +281,13 @@ def step(problem: Problem, compliance: Compliance, state: State,
         known_uz, known_ux = compliance.known_from_response(state.response, t, first), None
     else:
         known_uz, known_ux = compliance.known_displacement(state.histories, t, first, need_x=law.solves_shear)
-    gap = problem.frame_gap(offset)  # on the host, for the record
+    # on the host, for the record; rolling on a rough surface: its roughness carried k steps on
+    gap = problem.rolling_gap(k) if problem.rolls_rough else problem.frame_gap(offset)
     backend = compliance.backend
     if backend.is_cpu:
         device_gap = gap
+    elif problem.rolls_rough:
+        device_gap = backend.to_device(gap)
     else:
         device_gap = (frame_gaps or problem.frame_gaps(backend.to_device)).at(offset)
     # partial slip, total slip: the stuck points move with the indenter since the contact began (this
