@@ -39,7 +39,7 @@ import numpy as np
 
 from viscontact.numerics.adhesive import AdhesiveSolution, adhesive_contact
 from viscontact.numerics.adhesive_exponential import exponential_contact
-from viscontact.problem.adhesion import AdhesionSettings
+from viscontact.problem.adhesion import AdhesionSettings, Exponential, MaugisDugdale
 from viscontact.solvers.contact_laws import (
     ADHESIVE_LAW,
     ADHESIVE_PARTIAL_SLIP_LAW,
@@ -103,8 +103,8 @@ def _exponential_cells(adhesion: AdhesionSettings, pressure: np.ndarray, interac
 #: the solver of each traction-separation law, by the law's name
 #: (:data:`~viscontact.problem.adhesion.ADHESION_LAWS`)
 ADHESIVE_SOLVERS: dict[str, AdhesiveSolver] = {
-    "maugis_dugdale": AdhesiveSolver(_maugis_dugdale_solve, _maugis_dugdale_cells),
-    "exponential": AdhesiveSolver(_exponential_solve, _exponential_cells),
+    MaugisDugdale.name: AdhesiveSolver(_maugis_dugdale_solve, _maugis_dugdale_cells),
+    Exponential.name: AdhesiveSolver(_exponential_solve, _exponential_cells),
 }
 
 
