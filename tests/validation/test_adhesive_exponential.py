@@ -149,6 +149,31 @@ def test_the_settings_refuse_the_other_laws_parameter(args, key):
     assert err.value.key == key
 
 
+@pytest.mark.parametrize("law, parameter", [("maugis_dugdale", 1.9e4), ("exponential", 2.6e-6)])
+def test_each_registered_law_separates_with_the_work_of_adhesion_and_has_a_solver_and_a_case_key(law, parameter):
+    """The seam of a law (problem/adhesion.py ADHESION_LAWS, solvers/adhesive_law.py ADHESIVE_SOLVERS, the
+    case key): its tension integrated over the gap by quadrature is the Dupre work w (the definition of
+    both laws), and it falls below a fraction of its peak beyond its tail_gap."""
+    from scipy.integrate import quad
+
+    from viscontact.io.case import AdhesionSection
+    from viscontact.problem.adhesion import ADHESION_LAWS
+    from viscontact.solvers.adhesive_law import ADHESIVE_SOLVERS
+
+    assert set(ADHESIVE_SOLVERS) == set(ADHESION_LAWS)
+    kind = ADHESION_LAWS[law]
+    assert kind.key in AdhesionSection.model_fields
+    settings = AdhesionSettings(W, parameter if kind.attribute == "cohesive_stress" else None, law,
+                                parameter if kind.attribute == "decay_length" else None)
+    assert settings.kind is kind
+    scale = settings.range
+    work, _ = quad(lambda g: settings.peak_stress * kind.tail(settings, g * scale) * scale, 0.0, 60.0,
+                   points=[1.0], limit=200)
+    assert work == pytest.approx(W, rel=1e-9)
+    gap = kind.tail_gap(settings, 0.01)
+    assert kind.tail(settings, 1.001 * gap) < 0.01 <= kind.tail(settings, 0.999 * gap)
+
+
 def test_the_steady_solver_refuses_the_exponential_law_in_one_line():
     from viscontact.running import api
 

@@ -43,7 +43,7 @@ from viscontact.io.prony_table import parse_prony_table
 from viscontact.io.safe_read import MAX_INPUT_BYTES, npy_layout, read_text_input, regular_input
 from viscontact.numerics.grid import Grid
 from viscontact.physics.materials import Material, shear_from_tensile, wlf_shift_factor
-from viscontact.problem.adhesion import AdhesionSettings
+from viscontact.problem.adhesion import ADHESION_LAWS, AdhesionSettings
 from viscontact.problem.problem import (
     LayerSettings,
     NormalLoading,
@@ -662,18 +662,17 @@ class AdhesionSection(_Section):
 
     @model_validator(mode="after")
     def _law_needs(self) -> AdhesionSection:
-        own, other = ("cohesive_stress", "range") if self.law == "maugis_dugdale" else ("range", "cohesive_stress")
-        unit = " Pa" if own == "cohesive_stress" else " m"
-        if getattr(self, own) is None:
-            raise ParameterError(f"adhesion.{own}", f"required (> 0{unit}) with adhesion.law = {self.law!r}")
-        if getattr(self, other) is not None:
-            raise ParameterError(f"adhesion.{other}", f"not a key of adhesion.law = {self.law!r}")
+        kind = ADHESION_LAWS[self.law]
+        if getattr(self, kind.key) is None:
+            raise ParameterError(f"adhesion.{kind.key}", f"required (> 0 {kind.unit}) with adhesion.law = {self.law!r}")
+        for other in ADHESION_LAWS.values():
+            if other is not kind and getattr(self, other.key) is not None:
+                raise ParameterError(f"adhesion.{other.key}", f"not a key of adhesion.law = {self.law!r}")
         return self
 
     def build(self) -> AdhesionSettings:
-        if self.law == "exponential":
-            return AdhesionSettings(self.work_of_adhesion, None, self.law, self.range)
-        return AdhesionSettings(self.work_of_adhesion, self.cohesive_stress, self.law)
+        # the validator left only the law's own parameter set
+        return AdhesionSettings(self.work_of_adhesion, self.cohesive_stress, self.law, self.range)
 
 
 class SolverSection(_Section):

@@ -50,6 +50,7 @@ from viscontact.numerics.hereditary import hereditary_integral
 from viscontact.numerics.schemes import stable_step_limit
 from viscontact.physics.adhesion import cohesive_zone_length
 from viscontact.physics.materials import Material
+from viscontact.problem.adhesion import ADHESION_LAWS
 from viscontact.problem.problem import PiecewiseLinear, Problem
 from viscontact.problem.shapes import FLAT_FACE_LOAD_ERROR_PER_CELL, Shape, Sphere, peak_pressure_error
 from viscontact.solvers.time_step_error import time_step_error
@@ -60,10 +61,10 @@ __all__ = ["ContactEstimate", "check_material", "check_problem", "check_sliding_
 #: cells across the adhesive cohesive zone (or the contact radius, when smaller) below which a run is
 #: refused / warned about (:func:`_check_adhesion`): the cell-by-cell law knows the zone's edge to a cell
 ADHESION_MIN_CELLS, ADHESION_WARN_CELLS = 2.0, 4.0
-#: the exponential law's tension at the domain's edge (the rigid gap's rise there), as a fraction of its
-#: peak, above which a warning says the grid cuts off its tail (the Derjaguin force of a sphere loses
-#: that fraction: int 2 pi r sigma dr = 2 pi R w e^(-g_edge / rho))
-EXPONENTIAL_EDGE_FRACTION = 0.01
+#: the tension at the domain's edge (the rigid gap's rise there) of a law whose tension reaches every cell
+#: (the exponential), as a fraction of its peak, above which a warning says the grid cuts off its tail (the
+#: Derjaguin force of a sphere loses that fraction: int 2 pi r sigma dr = 2 pi R w e^(-g_edge / rho))
+EDGE_TAIL_FRACTION = 0.01
 #: estimated relative errors of the peak pressure above which a run is refused / warned about
 ERROR_LIMIT, WARNING_LIMIT = 0.10, 0.05
 #: the same for the one-point estimate of the time discretisation (:func:`time_step_error`). It
@@ -233,17 +234,20 @@ def _check_adhesion(problem: Problem, transient: bool) -> None:
     if not transient and problem.grid.periodic:
         raise ParameterError("adhesion", "is not supported by `viscontact steady` on a periodic grid yet: run the "
                              "transient (`viscontact run`), or the steady state on a non-periodic grid")
-    if not transient and adhesion.law != "maugis_dugdale":
+    kind = adhesion.kind
+    if not transient and not kind.steady:
+        steady_laws = " or ".join(repr(name) for name, law in ADHESION_LAWS.items() if law.steady)
         raise ParameterError("adhesion.law", f"{adhesion.law!r} is not supported by `viscontact steady` yet: run the "
-                             "transient (`viscontact run`), or law = 'maugis_dugdale'")
+                             f"transient (`viscontact run`), or law = {steady_laws}")
     grid = problem.grid
-    if adhesion.law == "exponential" and not grid.periodic:
+    if kind.reaches_every_cell and not grid.periodic:
         rise = float(grid.edge_values(problem.gap).min() - problem.gap.min())
-        if math.exp(-rise / adhesion.range) > EXPONENTIAL_EDGE_FRACTION:
-            warn_caller(f"grid.half_width: the exponential tension at the domain's edge (the gap {rise:.3g} m above "
-                        f"its least, {rise / adhesion.range:.2g} ranges) is {math.exp(-rise / adhesion.range):.2g} "
+        tail = kind.tail(adhesion, rise)
+        if tail > EDGE_TAIL_FRACTION:
+            warn_caller(f"grid.half_width: the {kind.label} tension at the domain's edge (the gap {rise:.3g} m above "
+                        f"its least, {rise / adhesion.range:.2g} ranges) is {tail:.2g} "
                         f"of its peak, cut off outside the grid; widen the domain to a rise of "
-                        f"{-math.log(EXPONENTIAL_EDGE_FRACTION):.2g} ranges")
+                        f"{kind.tail_gap(adhesion, EDGE_TAIL_FRACTION) / adhesion.range:.2g} ranges")
     est = contact_estimate(problem)
     length, what = cohesive_zone_estimate(problem, est)
     if est is not None and est.smallest < length:

@@ -5,7 +5,10 @@ Each step of the transient is an elastic problem with the instantaneous complian
 known hereditary displacement (seed Eq. 5); with adhesion that problem is the adhesive one of
 :func:`viscontact.numerics.adhesive.adhesive_contact` (a tension sigma_0 wherever 0 < gap < w /
 sigma_0; solved as a majorise-minimise sequence of Polonsky-Keer problems, Rey, Anciaux & Molinari
-2017), with the step's operator K = J_inst K_zz and the known gap h_k = h_0(x, y) + u_z^history.
+2017), with the step's operator K = J_inst K_zz and the known gap h_k = h_0(x, y) + u_z^history;
+with the exponential law, :func:`viscontact.numerics.adhesive_exponential.exponential_contact`. Which
+function solves a step, and how the contact and adhesive cells are measured, is one
+:class:`AdhesiveSolver` per law, registered by the law's name in :data:`ADHESIVE_SOLVERS`.
 Nothing else of the stepper changes: the pressure (now signed) enters the hereditary history as any
 other. The step is warm-started with the last step's pressure and interaction zone (carried in
 :class:`~viscontact.solvers.transient.State`), which makes the zone move by a ring of cells a round
@@ -28,6 +31,7 @@ sliding interface carries no shear: the friction is the hysteresis alone, enhanc
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -35,7 +39,7 @@ import numpy as np
 
 from viscontact.numerics.adhesive import AdhesiveSolution, adhesive_contact
 from viscontact.numerics.adhesive_exponential import exponential_contact
-from viscontact.problem.adhesion import AdhesionSettings
+from viscontact.problem.adhesion import AdhesionSettings, Exponential, MaugisDugdale
 from viscontact.solvers.contact_laws import (
     ADHESIVE_LAW,
     ADHESIVE_PARTIAL_SLIP_LAW,
@@ -51,18 +55,65 @@ from viscontact.solvers.contact_laws import (
 EXPONENTIAL_AREA_FRACTION = 0.01
 
 
+@dataclass(frozen=True)
+class AdhesiveSolver:
+    """The solver side of one traction-separation law (:data:`ADHESIVE_SOLVERS`).
+
+    Attributes
+    ----------
+    solve
+        ``solve(operator, known_gap, adhesion, initial_product, **common)``: the step's adhesive problem
+        with the operator [m/Pa] and the known gap [m] (the iterate's product [m] where known; the
+        numerics' common arguments ``common``), an :class:`~viscontact.numerics.adhesive.AdhesiveSolution`.
+    cells
+        ``cells(adhesion, pressure, interaction)``: (the cells in contact, gap 0; the cells of the
+        adhesive area) of a solution with the pressure [Pa] and the solver's ``interaction``.
+    """
+
+    solve: Callable[..., AdhesiveSolution]
+    cells: Callable[[AdhesionSettings, np.ndarray, np.ndarray | None], tuple[np.ndarray, np.ndarray]]
+
+
+def _maugis_dugdale_solve(op, known, adhesion: AdhesionSettings, product, **common) -> AdhesiveSolution:
+    """:func:`~viscontact.numerics.adhesive.adhesive_contact` with sigma_0 [Pa], warm-started with the product."""
+    return adhesive_contact(op, known, cohesive_stress=adhesion.cohesive_stress, initial_product=product, **common)
+
+
+def _maugis_dugdale_cells(adhesion: AdhesionSettings, pressure: np.ndarray, interaction: np.ndarray | None
+                          ) -> tuple[np.ndarray, np.ndarray]:
+    """The contact of :func:`contact_cells`, the cohesive zone (the rest of the interaction zone: gap
+    open, p = -sigma_0)."""
+    contact = contact_cells(pressure, interaction, adhesion.cohesive_stress)
+    return contact, (np.zeros_like(contact) if interaction is None else interaction & ~contact)
+
+
+def _exponential_solve(op, known, adhesion: AdhesionSettings, product, **common) -> AdhesiveSolution:
+    """:func:`~viscontact.numerics.adhesive_exponential.exponential_contact` with rho [m] (no product)."""
+    return exponential_contact(op, known, decay_length=adhesion.decay_length, **common)
+
+
+def _exponential_cells(adhesion: AdhesionSettings, pressure: np.ndarray, interaction: np.ndarray | None
+                       ) -> tuple[np.ndarray, np.ndarray]:
+    """The contact (the solver's ``interaction``), the open cells whose tension exceeds
+    :data:`EXPONENTIAL_AREA_FRACTION` of the peak w / rho."""
+    contact = pressure > 0 if interaction is None else interaction
+    return contact, ~contact & (pressure < -EXPONENTIAL_AREA_FRACTION * adhesion.peak_stress)
+
+
+#: the solver of each traction-separation law, by the law's name
+#: (:data:`~viscontact.problem.adhesion.ADHESION_LAWS`)
+ADHESIVE_SOLVERS: dict[str, AdhesiveSolver] = {
+    MaugisDugdale.name: AdhesiveSolver(_maugis_dugdale_solve, _maugis_dugdale_cells),
+    Exponential.name: AdhesiveSolver(_exponential_solve, _exponential_cells),
+}
+
+
 def adhesive_cells(adhesion: AdhesionSettings, pressure: np.ndarray, interaction: np.ndarray | None
                    ) -> tuple[np.ndarray, np.ndarray]:
     """(the cells in contact, gap 0; the cells of the adhesive area) of a solution of the law of
-    ``adhesion`` with the pressure [Pa] and the solver's ``interaction``. Maugis-Dugdale: the contact of
-    :func:`contact_cells`, the cohesive zone (the rest of the interaction zone: gap open, p = -sigma_0).
-    Exponential (whose ``interaction`` is the contact): the open cells whose tension exceeds
-    :data:`EXPONENTIAL_AREA_FRACTION` of the peak w / rho."""
-    if adhesion.law == "exponential":
-        contact = pressure > 0 if interaction is None else interaction
-        return contact, ~contact & (pressure < -EXPONENTIAL_AREA_FRACTION * adhesion.peak_stress)
-    contact = contact_cells(pressure, interaction, adhesion.cohesive_stress)
-    return contact, (np.zeros_like(contact) if interaction is None else interaction & ~contact)
+    ``adhesion`` with the pressure [Pa] and the solver's ``interaction``: its solver's
+    :attr:`AdhesiveSolver.cells` (:data:`ADHESIVE_SOLVERS`)."""
+    return ADHESIVE_SOLVERS[adhesion.law].cells(adhesion, pressure, interaction)
 
 
 def contact_cells(pressure: np.ndarray, interaction: np.ndarray | None, cohesive_stress: float) -> np.ndarray:
@@ -95,11 +146,7 @@ def solve_adhesive_normal(ctx: StepContext, known_uz: np.ndarray, pressure: np.n
               "cell_area": problem.grid.cell_area, "initial": pressure, "interaction": zone,
               "tolerance": settings.tolerance, "max_iterations": settings.max_iterations,
               "mixed_precision": settings.mixed_precision}
-    sol: AdhesiveSolution
-    if adhesion.law == "exponential":
-        sol = exponential_contact(op, known, decay_length=adhesion.decay_length, **common)
-    else:
-        sol = adhesive_contact(op, known, cohesive_stress=adhesion.cohesive_stress, initial_product=product, **common)
+    sol = ADHESIVE_SOLVERS[adhesion.law].solve(op, known, adhesion, product, **common)
     return sol.pressure, float(sol.approach), sol.iterations, sol.product + known_uz, sol.product, sol.interaction
 
 

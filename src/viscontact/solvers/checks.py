@@ -42,9 +42,9 @@ def check_solution(problem: Problem, pressure: np.ndarray, load: float, value: f
         raise NumericalGuardError(f"pressure has NaN or Inf values{where}; check the inputs (material, load, grid)")
     grid = problem.grid
     adhesion = problem.adhesion
-    # adhesion: tension loads a cell too; the exponential law's tension reaches every cell (its tail, cut off
-    # at the edge, is judged before the run: running/guards.py), so there the compressed contact is judged
-    loaded = pressure if adhesion is None else np.maximum(pressure, 0.0) if adhesion.law == "exponential" \
+    # adhesion: tension loads a cell too; a law whose tension reaches every cell (the exponential; its tail, cut
+    # off at the edge, is judged before the run: running/guards.py) has the compressed contact judged
+    loaded = pressure if adhesion is None else np.maximum(pressure, 0.0) if adhesion.kind.reaches_every_cell \
         else np.abs(pressure)
     edge = grid.edge_values(loaded)
     peak = float(loaded.max())
