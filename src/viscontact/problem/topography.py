@@ -235,6 +235,9 @@ def read_heights(path: str | Path, grid: Grid, *, resample: bool = False, physic
         raise ParameterError(key, f"{path} does not give its length unit: give indenter.unit")
     if topography.has_undefined_data:
         raise ParameterError(key, f"{path} has undefined (missing) points; fill them before use")
+    if min(topography.nb_grid_pts) < 2:
+        raise ParameterError(key, f"{path} holds {topography.nb_grid_pts} points: a topography needs at least 2 "
+                             "along each axis")
     topography = topography.to_unit("m")
     heights = np.asarray(topography.heights(), dtype=float).T.reshape(-1, topography.nb_grid_pts[0])  # [y, x]
     if not np.all(np.isfinite(heights)):
