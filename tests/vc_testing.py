@@ -4,8 +4,15 @@ from __future__ import annotations
 
 from viscontact.numerics.grid import Grid
 from viscontact.physics.materials import Material
-from viscontact.problem.problem import (NormalLoading, OutputSettings, PiecewiseLinear, Problem, SolverSettings,
-                                TangentialLoading, TimeStepping)
+from viscontact.problem.problem import (
+    NormalLoading,
+    OutputSettings,
+    PiecewiseLinear,
+    Problem,
+    SolverSettings,
+    TangentialLoading,
+    TimeStepping,
+)
 
 #: the seed's material and contact: G(0) = 1.93 MPa (the seed's mu = 2G),
 #: G(inf) = G(0)/10, retardation time 0.01 s, nu = 0.3, R = 10 mm, W = 0.15 N
@@ -94,3 +101,35 @@ def dry_run(capsys, case, *sets: str) -> tuple[int, list[str]]:
         args += ["--set", s]
     code = cli.main(args)
     return code, [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+
+
+def elastic_pull_off_run(shear_modulus: float, poisson_ratio: float, radius: float, adhesion, reference: float,
+                         n: int, half_width: float, *, press: float = 1.0, end: float = 1.1,
+                         load_step: float = 0.01):
+    """(the records, the run's ending) of an elastic sphere (R = ``radius`` [m]) with ``adhesion`` on n x n
+    cells of +-``half_width`` [m], pressed with ``press`` |P_c| and pulled under load control in steps
+    of ``load_step`` P_c from 0.9 P_c on to ``end`` P_c, where ``reference`` is the expected pull-off
+    P_c [N] (< 0); warnings (the cohesive-zone guard's) silenced."""
+    import warnings
+
+    from viscontact.solvers import transient
+
+    steps = round((end - 0.9) / load_step)
+    history = PiecewiseLinear((0.0, 1.0, 11.0, 11.0 + steps), (-press * reference, -press * reference,
+                                                                 0.9 * reference, end * reference))
+    grid = Grid(n, half_width)
+    x, y = grid.mesh()
+    problem = Problem(material=Material.elastic(shear_modulus, poisson_ratio), grid=grid,
+                      gap=(x**2 + y**2) / (2 * radius), normal=NormalLoading("load", history, tensile=True),
+                      time=TimeStepping(history.times[-1], 1.0, "linear"), solver=SolverSettings(tolerance=1e-8),
+                      output=OutputSettings(1, ("pressure",)), radius=radius, adhesion=adhesion)
+    run = transient.steps(problem)
+    records = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        while True:
+            try:
+                _, record = next(run)
+            except StopIteration as stop:
+                return records, stop.value
+            records.append(record)

@@ -16,24 +16,12 @@ lambda^-2 (15 um at lambda = 3, where 4.8 and 2.4 um cells are 14.5 % and 7.25 %
 """
 from __future__ import annotations
 
-import warnings
-
 import numpy as np
 import pytest
+from vc_testing import elastic_pull_off_run
 
-from viscontact.numerics.grid import Grid
 from viscontact.physics.adhesion import dmt_pull_off, maugis_dugdale_pull_off, maugis_parameter
-from viscontact.physics.materials import Material
 from viscontact.problem.adhesion import AdhesionSettings
-from viscontact.problem.problem import (
-    NormalLoading,
-    OutputSettings,
-    PiecewiseLinear,
-    Problem,
-    SolverSettings,
-    TimeStepping,
-)
-from viscontact.solvers import transient
 
 G, NU, R, W = 0.35e6, 0.5, 1e-2, 0.05
 E_STAR = 2 * G / (1 - NU)
@@ -60,27 +48,10 @@ def stepper_pull_off(lam: float, n: int, half_width: float, press: float = 1.0, 
     """The last load [N] an elastic sphere on n x n cells of +-``half_width`` [m] carries when pulled
     under load control (module docstring; pressed with ``press`` |P_c|, pulled on to ``end`` P_c)."""
     reference, _ = adhesion_package_pull_off(lam)
-    steps = round((end - 0.9) / LOAD_STEP)
-    history = PiecewiseLinear((0.0, 1.0, 11.0, 11.0 + steps), (-press * reference, -press * reference,
-                                                                 0.9 * reference, end * reference))
-    grid = Grid(n, half_width)
-    x, y = grid.mesh()
-    problem = Problem(material=Material.elastic(G, NU), grid=grid, gap=(x**2 + y**2) / (2 * R),
-                      normal=NormalLoading("load", history, tensile=True),
-                      time=TimeStepping(history.times[-1], 1.0, "linear"), solver=SolverSettings(tolerance=1e-8),
-                      output=OutputSettings(1, ("pressure",)), radius=R,
-                      adhesion=AdhesionSettings(W, sigma_for(lam)))
-    run = transient.steps(problem)
-    load = None
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        while True:
-            try:
-                _, record = next(run)
-            except StopIteration as stop:
-                assert stop.value is not None and stop.value.t_pull_off is not None  # it came off
-                return load
-            load = record.load
+    records, ending = elastic_pull_off_run(G, NU, R, AdhesionSettings(W, sigma_for(lam)), reference, n, half_width,
+                                           press=press, end=end, load_step=LOAD_STEP)
+    assert ending is not None and ending.t_pull_off is not None  # it came off
+    return records[-1].load
 
 
 def test_a_small_maugis_parameter_pulls_off_at_dmt():

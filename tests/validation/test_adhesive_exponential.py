@@ -17,21 +17,11 @@ import warnings
 
 import numpy as np
 import pytest
+from vc_testing import elastic_pull_off_run
 
 from viscontact.errors import ParameterError
-from viscontact.numerics.grid import Grid
 from viscontact.physics.adhesion import dmt_pull_off, jkr_pull_off, maugis_dugdale_pull_off, maugis_parameter
-from viscontact.physics.materials import Material
 from viscontact.problem.adhesion import AdhesionSettings
-from viscontact.problem.problem import (
-    NormalLoading,
-    OutputSettings,
-    PiecewiseLinear,
-    Problem,
-    SolverSettings,
-    TimeStepping,
-)
-from viscontact.solvers import transient
 
 G, NU, R, W = 0.35e6, 0.5, 1e-2, 0.05
 E_STAR = 2 * G / (1 - NU)
@@ -50,27 +40,9 @@ def md_pull_off(lam: float) -> float:
 def pull(lam: float, n: int, half_width: float, end: float = 1.5):
     """(the last load [N] carried, the records of the run, its ending) for the exponential law of
     lambda's peak on n x n cells of +-``half_width`` [m] (module docstring)."""
-    reference = md_pull_off(lam)
-    steps = round((end - 0.9) / LOAD_STEP)
-    history = PiecewiseLinear((0.0, 1.0, 11.0, 11.0 + steps), (-reference, -reference, 0.9 * reference,
-                                                                 end * reference))
-    grid = Grid(n, half_width)
-    x, y = grid.mesh()
-    problem = Problem(material=Material.elastic(G, NU), grid=grid, gap=(x**2 + y**2) / (2 * R),
-                      normal=NormalLoading("load", history, tensile=True),
-                      time=TimeStepping(history.times[-1], 1.0, "linear"), solver=SolverSettings(tolerance=1e-8),
-                      output=OutputSettings(1, ("pressure",)), radius=R,
-                      adhesion=AdhesionSettings(W, None, "exponential", range_for(lam)))
-    run = transient.steps(problem)
-    records = []
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        while True:
-            try:
-                _, record = next(run)
-            except StopIteration as stop:
-                return records[-1].load, records, stop.value
-            records.append(record)
+    records, ending = elastic_pull_off_run(G, NU, R, AdhesionSettings(W, None, "exponential", range_for(lam)),
+                                           md_pull_off(lam), n, half_width, end=end, load_step=LOAD_STEP)
+    return records[-1].load, records, ending
 
 
 def test_a_long_range_pulls_off_at_dmt_and_the_load_splits_into_its_parts():
