@@ -104,7 +104,7 @@ def _add_run(sub: Any) -> None:
 
 
 def _add_steady(sub: Any) -> None:
-    p = sub.add_parser("steady", help="steady sliding state(s) (direct solver)")
+    p = sub.add_parser("steady", help="steady sliding or rolling state(s) (direct solver)")
     _case_arguments(p)
     p.add_argument("--speeds", metavar="V1,V2,...", help="speed sweep [m/s], comma-separated")
     p.add_argument("--creepages", metavar="XI1,XI2,...", help="rolling: traction-creepage curve at the case's "
@@ -186,7 +186,8 @@ def _add_reproduce(sub: Any) -> None:
 
 def build_parser() -> Parser:
     parser = Parser(
-        prog=PROG, description="Transient frictional sliding contact on a linear viscoelastic half-space.")
+        prog=PROG, description="Transient frictional contact of a rigid indenter on a linear viscoelastic body: "
+        "indentation, partial slip, sliding, rolling and adhesion, in 3-D or as a line contact.")
     parser.add_argument("--version", action="version", version=f"%(prog)s {cli_version()}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for add in (_add_run, _add_steady, _add_material, _add_plot, _add_export, _add_sweep, _add_reproduce):
