@@ -307,7 +307,7 @@ def cohesive_zone_estimate(problem: Problem, est: ContactEstimate | None) -> tup
         opening = math.sqrt(a**2 + 2.0 * radius * adhesion.range) - a
         if opening < length:
             length = opening
-            what = (f"cohesive zone sqrt(a^2 + 2 R h_0) - a = {length:.3g} m (where the sphere's gap opens to the "
+            what = (f"cohesive zone sqrt(a^2 + 2 R h_0) - a = {length:.3g} m (where the indenter's gap opens to the "
                     f"range h_0 = w / sigma_0 = {adhesion.range:.3g} m beyond a = {a:.3g} m)")
     return length, what
 

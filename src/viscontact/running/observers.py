@@ -107,6 +107,10 @@ class StreamWriter(Recorder):
         self.stream.append(record)
 
 
+#: a load step at the pull-off above this fraction of the pull-off force is warned (:class:`PullOff`)
+PULL_OFF_BRACKET = 0.05
+
+
 class PullOff(Observer):
     """The pull-off of a run with adhesion (:mod:`viscontact.problem.adhesion`), from its last state:
     :attr:`attrs` are the result's attributes ``pull_off_force`` [N] and ``t_pull_off`` [s] (empty
@@ -129,10 +133,25 @@ class PullOff(Observer):
         nan = float("nan")
         if state.t_pull_off is not None:
             self.attrs = {"pull_off_force": state.most_tensile_load, "t_pull_off": state.t_pull_off, "complete": 1}
+            self._check_bracket(state)
         elif self.problem.normal.control == "displacement" and state.most_tensile_load < 0:
             self.attrs = {"pull_off_force": state.most_tensile_load, "t_pull_off": state.t_most_tensile}
         else:
             self.attrs = {"pull_off_force": nan, "t_pull_off": nan}
+
+
+    def _check_bracket(self, state) -> None:
+        """Warn when the load step at the pull-off exceeds :data:`PULL_OFF_BRACKET` of the pull-off
+        force (or the run came off before any tensile load): the pull-off lies anywhere between the
+        last load carried and the first one not carried."""
+        normal, dt = self.problem.normal, self.problem.time.dt
+        carried, failed = float(normal.history(state.t_pull_off - dt)), float(normal.history(state.t_pull_off))
+        if state.most_tensile_load < 0 and carried - failed <= PULL_OFF_BRACKET * -state.most_tensile_load:
+            return
+        unit = "N/m" if self.problem.grid.dimension == 1 else "N"  # the load's unit (per unit length on a line)
+        warn_caller(f"time.dt: the run came off in a load step from {carried:.4g} to {failed:.4g} {unit} (t = "
+                    f"{state.t_pull_off:.4g} s): the pull-off lies between them; refine the load steps near it "
+                    "(a smaller time.dt, or more history points) for a sharper pull-off force")
 
 
 class WakeWarning(Observer):

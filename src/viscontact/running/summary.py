@@ -33,6 +33,9 @@ UNITS: dict[str, str] = {
     "pull_off_force": "N", "t_pull_off": "s", "creepage": "1", "stick_ratio": "1",
     "speed": "m/s", "deborah": "1", "run_time": "s",
 }
+#: numbers that are result attributes, not variables, with the variable whose unit is theirs (a line
+#: contact's forces: N/m)
+UNIT_OF = {"pull_off_force": "load"}
 #: how each quantity is named in the text
 LABELS: dict[str, str] = {
     "t_end": "final time", "load": "normal load W", "delta_z": "approach delta_z", "contact_radius":
@@ -213,8 +216,9 @@ def _plain(value: Any) -> Any:
 def _unit(ds: Any, name: str) -> str | None:
     """The unit of ``name``: the result variable's own (a line contact's forces are per unit length,
     N/m), else :data:`UNITS`'."""
-    if name in ds.variables and ds[name].attrs.get("units"):
-        return str(ds[name].attrs["units"])
+    variable = name if name in ds.variables else UNIT_OF.get(name)
+    if variable in ds.variables and ds[variable].attrs.get("units"):
+        return str(ds[variable].attrs["units"])
     return UNITS.get(name)
 
 
@@ -234,7 +238,7 @@ def format_summary(s: dict[str, Any]) -> str:
         if pull_off:  # an adhesive run: its own line, last
             force, t = pull_off["pull_off_force"], pull_off["t_pull_off"]
             lines.append("pull-off: none (no tensile load in the run)" if force is None else
-                         f"pull-off force {force:.6g} N at t = {t:.6g} s")
+                         f"pull-off force {force:.6g} {s['units'].get('pull_off_force', 'N')} at t = {t:.6g} s")
     else:
         rows = s["rows"]
         if s["kind"] == "sweep" and s["values"]:
