@@ -111,7 +111,7 @@ def _finish(ds: Any, args: argparse.Namespace, started: float) -> None:
 
     ds.attrs["history"] = f"{ds.attrs.get('history', '')} {_history_note(args)}".strip()
     write_netcdf(ds, args.out, force=args.force)
-    _report(ds, ds.sizes.get("t", ds.sizes.get("speed", 0)), args, started)
+    _report(ds, next((ds.sizes[d] for d in ("t", "speed", "creepage") if d in ds.sizes), 0), args, started)
 
 
 def _history_note(args: argparse.Namespace) -> str:
