@@ -223,7 +223,7 @@ def grid_suggestion(est: ContactEstimate, n: int, half_width: float) -> tuple[in
 
 
 def _check_adhesion(problem: Problem, transient: bool) -> None:
-    """With ``[adhesion]``: refuse the steady solver on a periodic grid (not supported yet), and a grid whose cells are
+    """With ``[adhesion]``: refuse a law the steady solver does not have (``transient`` False), and a grid whose cells are
     too coarse for the cohesive zone (:func:`cohesive_zone_estimate`) or for the contact radius
     (:func:`contact_estimate`) where that is smaller: fewer than :data:`ADHESION_MIN_CELLS` across is
     refused, fewer than :data:`ADHESION_WARN_CELLS` warned about, each with the grid.n that gives
@@ -231,9 +231,6 @@ def _check_adhesion(problem: Problem, transient: bool) -> None:
     adhesion = problem.adhesion
     if adhesion is None:
         return
-    if not transient and problem.grid.periodic:
-        raise ParameterError("adhesion", "is not supported by `viscontact steady` on a periodic grid yet: run the "
-                             "transient (`viscontact run`), or the steady state on a non-periodic grid")
     kind = adhesion.kind
     if not transient and not kind.steady:
         steady_laws = " or ".join(repr(name) for name, law in ADHESION_LAWS.items() if law.steady)

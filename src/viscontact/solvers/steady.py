@@ -38,7 +38,8 @@ For gross sliding (q_x = mu_f p) the operator is K_zz + mu_f K_zx.
 With ``[adhesion]`` (a Maugis-Dugdale surface) the contact, the cohesive zone and the free surface
 are found by :func:`viscontact.numerics.adhesive.adhesive_active_set` on K_zz (the same active set on
 x = p + sigma_0 1_I for each interaction zone I, the zone moved to a fixed point), with q_x = mu_f
-max(p, 0) whose displacement mu_f K_zx max(p, 0) enters the gap as a fixed point (:func:`_solve_adhesive`).
+max(p, 0) whose displacement mu_f K_zx max(p, 0) enters the gap as a fixed point (:func:`_solve_adhesive`);
+on a periodic grid with the period's exact steady operator (:func:`_periodic_adhesive`).
 
 The fields are those of the compliance's array backend (:mod:`viscontact.numerics.arrays`); the record comes
 back to the host, measured by :func:`viscontact.solvers.measure.measure` as a transient step is.
@@ -54,7 +55,7 @@ from viscontact.bodies.compliance import compliance_of
 from viscontact.bodies.compliance import Compliance
 from viscontact.errors import ParameterError
 from viscontact.numerics.active_set import solve_contact_active_set
-from viscontact.numerics.adhesive import NoEquilibriumError, adhesive_active_set
+from viscontact.numerics.adhesive import NoEquilibriumError, Operator, adhesive_active_set
 from viscontact.numerics.convolution import Convolver, FourierPreconditioner
 from viscontact.problem.problem import PHASE_GROSS_SLIDING, Problem
 from viscontact.problem.records import StepRecord
@@ -200,6 +201,8 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
     backend = compliance.backend
     if initial is not None:
         initial = backend.to_device(initial)
+    if grid.periodic and problem.adhesion is not None:
+        return _periodic_adhesive(problem, compliance, v, mu, value, initial, tolerance)
     if grid.periodic:
         from viscontact.solvers.steady_periodic import solve_periodic_steady
 
@@ -223,8 +226,14 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
             initial = _symmetric_guess(conv, problem, value, coupled, mu,
                                        steady_preconditioner(compliance, kernels, v, problem.solver.workers, True))
         if problem.adhesion is not None:
-            p, delta, krylov, u_z, interaction = _solve_adhesive(conv, problem, value, mu if coupled else 0.0, initial,
-                                                                 tolerance, precondition, backend)
+            def apply_zz(p: np.ndarray) -> np.ndarray:
+                return conv.apply("zz", p)
+
+            def cross(p: np.ndarray) -> np.ndarray:
+                return mu * conv.apply("zx", np.maximum(p, 0.0))
+
+            p, delta, krylov, u_z, interaction = _solve_adhesive(apply_zz, cross if coupled and mu else None, problem,
+                                                                 value, initial, tolerance, precondition, backend)
             return measure(problem, p, mu * np.maximum(p, 0.0), u_z, delta_z=delta, value=value, gap=problem.gap,
                            step=0, t=problem.time.t_end, phase=PHASE_GROSS_SLIDING, sliding_distance=float("inf"),
                            iterations=krylov, where=f" at v = {v:.4g} m/s", interaction=interaction)
@@ -239,36 +248,62 @@ def solve_steady(problem: Problem, speed: float | None = None, *, initial: np.nd
                    where=f" at v = {v:.4g} m/s")
 
 
-def _solve_adhesive(conv: Convolver, problem: Problem, value: float, cross_friction: float,
+def _solve_adhesive(apply_zz: Operator, cross: Operator | None, problem: Problem, value: float,
                     initial: np.ndarray | None, tolerance: float, preconditioner: FourierPreconditioner,
                     backend) -> tuple[np.ndarray, float, int, np.ndarray, np.ndarray]:
-    """The steady Maugis-Dugdale contact (``[adhesion]``) on the effective steady kernel K_zz:
+    """The steady Maugis-Dugdale contact (``[adhesion]``) on the effective steady kernel ``apply_zz``
+    (p [Pa] -> u_z [m]; that of a DC-FFT grid, or a period's with the q = 0 entry of its solve,
+    :class:`~viscontact.solvers.steady_periodic.PeriodicSteadyOperator`):
     :func:`~viscontact.numerics.adhesive.adhesive_active_set` (contact, cohesive zone and free surface),
     with q_x = mu_f max(p, 0) (no friction where the interface is in tension, as in the transient:
-    :mod:`viscontact.solvers.adhesive_law`) whose displacement mu_f K_zx max(p, 0) enters as a fixed
-    point where ``cross_friction`` mu_f != 0 (the coupling). Returns (p [Pa], delta [m], GMRES
-    iterations, u_z [m], the interaction zone), on the host. A tensile load that no zone carries (beyond
-    the pull-off) raises :class:`~viscontact.errors.ParameterError` naming the normal key."""
+    :mod:`viscontact.solvers.adhesive_law`) whose displacement ``cross`` = mu_f K_zx max(p, 0) enters as
+    a fixed point (the coupling; None: uncoupled). Returns (p [Pa], delta [m], GMRES iterations,
+    u_z [m], the interaction zone), on the host. A tensile load that no zone carries (beyond the
+    pull-off) raises :class:`~viscontact.errors.ParameterError` naming the normal key."""
     adhesion = problem.adhesion
-
-    def apply_zz(p: np.ndarray) -> np.ndarray:
-        return conv.apply("zz", p)
-
-    def cross(p: np.ndarray) -> np.ndarray:
-        return cross_friction * conv.apply("zx", np.maximum(p, 0.0))
-
     try:
         sol = adhesive_active_set(apply_zz, backend.to_device(problem.gap), control=problem.normal.control,
                                   value=value, cohesive_stress=adhesion.cohesive_stress,
                                   work_of_adhesion=adhesion.work_of_adhesion, cell_area=problem.grid.cell_area,
-                                  initial=initial, cross=cross if cross_friction else None, tolerance=tolerance,
+                                  initial=initial, cross=cross, tolerance=tolerance,
                                   max_iterations=problem.solver.max_iterations, preconditioner=preconditioner)
     except NoEquilibriumError as exc:  # a tensile load beyond the pull-off: the case asks for what cannot be
         key = "normal.value" if len(problem.normal.history.times) == 1 else "normal.history"
         raise ParameterError(key, f"{exc} (no steady sliding state: lower the tensile load)") from None
-    u_z = sol.product + (cross(sol.pressure) if cross_friction else 0.0)
+    u_z = sol.product + (cross(sol.pressure) if cross is not None else 0.0)
     return (backend.to_host(sol.pressure), sol.approach, sol.iterations, backend.to_host(u_z),
             backend.to_host(sol.interaction))
+
+
+def _periodic_adhesive(problem: Problem, compliance: Compliance, speed: float, friction: float, value: float,
+                       initial: np.ndarray | None, tolerance: float) -> StepRecord:
+    """The steady adhesive state at ``speed`` [m/s] on a periodic grid: :func:`_solve_adhesive` on the
+    period's steady operator (:class:`~viscontact.solvers.steady_periodic.PeriodicSteadyOperator`, the
+    spectrum K^_zz J*(-k_x v)), with the coupling mu_f K^_zx J*(-k_x v) max(p, 0) for ``friction`` mu_f
+    where the compliance has ``zx``; u_z [m] of zero mean and delta_z [m] in the zero-mean convention, as
+    :func:`~viscontact.solvers.steady_periodic.solve_periodic_steady` reports them."""
+    from viscontact.physics.periodic import check_approach
+    from viscontact.solvers.steady_periodic import PeriodicSteadyOperator
+
+    backend = compliance.backend
+    if problem.normal.control == "displacement":
+        check_approach(value, problem.gap)
+    zz = compliance.steady_spectrum(speed)
+    op = PeriodicSteadyOperator.of(compliance.convolver, zz, problem.normal.control)
+    cross = None
+    if friction > 0 and "zx" in compliance.convolver.spectra:
+        apply_zx = op.apply(compliance.steady_spectrum(speed, friction) - zz)
+
+        def cross(p: np.ndarray) -> np.ndarray:
+            return apply_zx(np.maximum(p, 0.0))
+
+    p, solved, krylov, _, interaction = _solve_adhesive(op.apply(op.solve_spectrum), cross, problem, value, initial,
+                                                        tolerance, op.preconditioner, backend)
+    u_z = backend.to_host(op.apply(zz)(backend.to_device(p)) + (cross(backend.to_device(p)) if cross else 0.0))
+    return measure(problem, p, friction * np.maximum(p, 0.0), u_z, delta_z=op.approach(solved, p), value=value,
+                   gap=problem.gap, step=0, t=problem.time.t_end, phase=PHASE_GROSS_SLIDING,
+                   sliding_distance=float("inf"), iterations=krylov, where=f" at v = {speed:.4g} m/s",
+                   interaction=interaction)
 
 
 def speed_sweep(problem: Problem, speeds: Sequence[float]) -> list[StepRecord]:

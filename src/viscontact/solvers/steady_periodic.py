@@ -55,6 +55,57 @@ def steady_spectrum(conv: PeriodicConvolver, material: Material, grid: Grid, spe
 
 
 @dataclass(frozen=True)
+class PeriodicSteadyOperator:
+    """The steady operator p [Pa] -> u_z [m] of one period, set up for an active-set solve.
+
+    Attributes
+    ----------
+    conv
+        The periodic convolver whose FFTs apply the spectra.
+    spectrum
+        The steady operator's spectrum (n, n//2 + 1) [m per Pa] (zero-mean u_z unless the body bounds
+        its uniform compliance).
+    solve_spectrum
+        The same with the q = 0 entry the solve uses (module docstring): the body's own when
+        ``bounded``, else the lowest non-zero mode's compliance c under load control, 0 under
+        displacement control.
+    bounded
+        Whether the body keeps its own q = 0 mode (a layer on a rigid base).
+    preconditioner
+        The Fourier preconditioner of the symmetric part of ``solve_spectrum``.
+    """
+
+    conv: PeriodicConvolver
+    spectrum: np.ndarray
+    solve_spectrum: np.ndarray
+    bounded: bool
+    preconditioner: FourierPreconditioner
+
+    @classmethod
+    def of(cls, conv: PeriodicConvolver, spectrum: np.ndarray, control: str) -> PeriodicSteadyOperator:
+        """Set up ``spectrum`` for a solve under ``control`` ("load" or "displacement")."""
+        # q = 0 compliance (module docstring); a body with a bounded uniform compliance (a layer on a rigid
+        # base: h/M) keeps its own and reports the approach in that convention, as its transient does
+        bounded = abs(spectrum[0, 0].real) > 1e-9 * abs(spectrum[0, 1].real)
+        offset = float(spectrum[0, 0].real) if bounded else float(spectrum[0, 1].real) if control == "load" else 0.0
+        spec_solve = spectrum.copy()
+        spec_solve[0, 0] = offset
+        symmetric = np.abs(spec_solve.real)
+        symmetric[0, 0] = symmetric[0, 1]
+        return cls(conv, spectrum, spec_solve, bounded, FourierPreconditioner(1.0 / symmetric, conv.workers, conv.fft))
+
+    def apply(self, spectrum: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
+        """p [Pa] -> the inverse FFT of ``spectrum`` times p's [m]."""
+        conv = self.conv
+        return lambda p: conv.inverse(spectrum * conv.spectrum(p))
+
+    def approach(self, solved: float, pressure: np.ndarray) -> float:
+        """The approach delta_z [m] reported of the approach ``solved`` [m] with ``solve_spectrum``:
+        delta_c - c mean(p) in the zero-mean convention, unchanged for a bounded body."""
+        return solved - (0.0 if self.bounded else float(self.solve_spectrum[0, 0].real)) * float(pressure.mean())
+
+
+@dataclass(frozen=True)
 class PeriodicSteadyState:
     """Steady sliding on one period.
 
@@ -122,19 +173,8 @@ def solve_periodic_steady(conv: PeriodicConvolver, material: Material, grid: Gri
         check_approach(value, gap)
     spec = steady_spectrum(conv, material, grid, speed, friction) if spectrum is None else spectrum
     load_control = control == "load"
-    # q = 0 compliance (module docstring); a body with a bounded uniform compliance (a layer on a rigid
-    # base: h/M) keeps its own and reports the approach in that convention, as its transient does
-    bounded = abs(spec[0, 0].real) > 1e-9 * abs(spec[0, 1].real)
-    offset = float(spec[0, 0].real) if bounded else float(spec[0, 1].real) if load_control else 0.0
-    spec_solve = spec.copy()
-    spec_solve[0, 0] = offset
-
-    def apply(spectrum: np.ndarray):
-        return lambda p: conv.inverse(spectrum * conv.spectrum(p))
-
-    symmetric = np.abs(spec_solve.real)
-    symmetric[0, 0] = symmetric[0, 1]
-    precondition = FourierPreconditioner(1.0 / symmetric, conv.workers, conv.fft)
+    op = PeriodicSteadyOperator.of(conv, spec, control)
+    apply, spec_solve, precondition = op.apply, op.solve_spectrum, op.preconditioner
     gap = conv.xp.asarray(gap)
     if initial is None:  # Polonsky-Keer with the symmetric part: the right contact size to start from
         b = -gap if load_control else value - gap
@@ -145,7 +185,7 @@ def solve_periodic_steady(conv: PeriodicConvolver, material: Material, grid: Gri
                                                       cell_area=grid.cell_area, initial=initial, tolerance=tolerance,
                                                       max_iterations=max_iterations, preconditioner=precondition)
     p, u_z = to_host(p), to_host(apply(spec)(p))
-    delta = delta - (0.0 if bounded else offset) * float(p.mean())
+    delta = op.approach(delta, p)
     load = float(p.sum() * grid.cell_area)
     f_t = hysteresis_force(p, u_z, grid, periodic=True)
     return PeriodicSteadyState(p, u_z, float(delta), load, f_t, f_t / load if load > 0 else 0.0,
