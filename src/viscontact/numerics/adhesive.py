@@ -21,7 +21,11 @@ increases and the zone can never come back to a set it left: the iteration ends,
 satisfies the law on every cell (up to the solve's tolerance). A step of the approach or of the load
 beyond the last equilibrium makes the zone move by a ring of cells a round: the jump in, or, under
 load control, the pull-off, where the required tension exceeds what the zone can carry
-(:class:`NoEquilibriumError`).
+(:class:`NoEquilibriumError`). Every cell whose gap falls in the range joins at once; the ring a round
+is the iteration's own pace (the tension of the cells that joined pulls their neighbours into the
+range), so the rounds a step needs grow with the cells the zone's edge travels: the default limit
+(:data:`MIN_ROUNDS`, :data:`ROUNDS_PER_CELL_ACROSS` times the cells across the grid) covers a zone
+that crosses the whole grid, on a fine grid as on a coarse one.
 
 Cost. A step's rounds run on a box around the zone (and the start's support), with a margin
 (:data:`ZONE_MARGIN_CELLS`, :data:`ZONE_MARGIN_FRACTION`): the operator cropped to the box (translation
@@ -67,6 +71,11 @@ LOOSE_TOLERANCE = 1e-3
 LOOSE_HYSTERESIS = 1e-4
 #: rounds after which every round is tight
 LOOSE_ROUNDS = 50
+#: the default limit of rounds at least
+MIN_ROUNDS = 500
+#: the default limit of rounds per cell across the grid (the zone's edge moves by a cell or more each
+#: round, both edges of a line's zone at once, and may cross the grid: joining, then leaving)
+ROUNDS_PER_CELL_ACROSS = 2
 #: margin [cells] at least around the zone's box (the zone moves by a few cells a step)
 ZONE_MARGIN_CELLS = 4
 #: margin as a fraction of the zone's extent
@@ -139,8 +148,8 @@ def adhesive_contact(operator: Any, known_gap: np.ndarray, *, control: Literal["
                      value: float, cohesive_stress: float, work_of_adhesion: float, cell_area: float,
                      initial: np.ndarray | None = None, interaction: np.ndarray | None = None,
                      initial_product: np.ndarray | None = None, tolerance: float = 1e-10,
-                     max_iterations: int = 2000, max_rounds: int = 500, preconditioner: Operator | None = None,
-                     mixed_precision: bool = True) -> AdhesiveSolution:
+                     max_iterations: int = 2000, max_rounds: int | None = None,
+                     preconditioner: Operator | None = None, mixed_precision: bool = True) -> AdhesiveSolution:
     """Solve the adhesive normal problem of the module docstring.
 
     Parameters
@@ -165,7 +174,8 @@ def adhesive_contact(operator: Any, known_gap: np.ndarray, *, control: Literal["
     tolerance, max_iterations
         Of each Polonsky-Keer solve.
     max_rounds
-        Subproblems at most before :class:`~viscontact.errors.ConvergenceError`.
+        Subproblems at most before :class:`~viscontact.errors.ConvergenceError`; None: the larger of
+        :data:`MIN_ROUNDS` and :data:`ROUNDS_PER_CELL_ACROSS` times the cells across the grid.
     preconditioner
         r -> approximate K^-1 r, for a plain action (an operator brings its own).
     mixed_precision
@@ -184,6 +194,8 @@ def adhesive_contact(operator: Any, known_gap: np.ndarray, *, control: Literal["
     if interaction is None:
         interaction = (known_gap - value < h0) if control != "load" else np.zeros(known_gap.shape, dtype=bool)
     zone = interaction.astype(bool, copy=False)
+    if max_rounds is None:
+        max_rounds = max(MIN_ROUNDS, ROUNDS_PER_CELL_ACROSS * max(known_gap.shape))
     pressure = np.zeros_like(known_gap) if initial is None else initial.astype(float, copy=False)
     product = None if initial is None else initial_product
     settings = _Rounds(control, float(value), float(cohesive_stress), h0, cell_area, tolerance, max_iterations,
