@@ -25,17 +25,7 @@ def measure(n: int) -> dict[str, float]:
     case = vc.load_case(vc.shipped_case("rolling_polymer_roller")).with_overrides({"grid.n": n})
     sliding = case.with_overrides({"tangential.mode": "frictionless_sliding", "tangential.sliding_speed": 0.0526,
                                    "tangential.rolling_speed": 0.0, "tangential.creepage": None})
-    creepages = list(-np.logspace(-4, np.log10(0.05), 20))
-    out: dict[str, float] = {}
-    for name, call in (("state", lambda: vc.run_steady(case)),
-                       ("curve", lambda: vc.run_steady(case, creepages=creepages)),
-                       ("sliding", lambda: vc.run_steady(sliding))):
-        start = time.perf_counter()
-        result = call()
-        out[name] = time.perf_counter() - start
-        if name == "curve":
-            out["saturation"] = float(result["traction_ratio"][-1])
-    return out
+    return _timed(case, sliding)
 
 
 def measure_line(n: int) -> dict[str, float]:
@@ -44,10 +34,18 @@ def measure_line(n: int) -> dict[str, float]:
     case = vc.load_case(vc.shipped_case("polymer_roller_line_contact")).with_overrides({
         "grid.n": n, "tangential.mode": "rolling", "tangential.rolling_speed": 0.5, "tangential.creepage": -5e-3,
         "tangential.displacement_rate": None, "tangential.slip": None, "tangential.sliding_speed": None})
+    return _timed(case)
+
+
+def _timed(case, sliding=None) -> dict[str, float]:
+    """Wall times [s] of one steady rolling state of ``case``, its 20-point curve (braking creepages
+    1e-4 ... 0.05) and, given, the steady ``sliding`` state; with the curve's last F/(mu_f W)."""
     creepages = list(-np.logspace(-4, np.log10(0.05), 20))
+    calls = [("state", lambda: vc.run_steady(case)), ("curve", lambda: vc.run_steady(case, creepages=creepages))]
+    if sliding is not None:
+        calls.append(("sliding", lambda: vc.run_steady(sliding)))
     out: dict[str, float] = {}
-    for name, call in (("state", lambda: vc.run_steady(case)),
-                       ("curve", lambda: vc.run_steady(case, creepages=creepages))):
+    for name, call in calls:
         start = time.perf_counter()
         result = call()
         out[name] = time.perf_counter() - start
