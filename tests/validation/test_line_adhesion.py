@@ -53,7 +53,7 @@ def test_jkr_line_pull_off_is_the_least_load():
     assert best.fun == pytest.approx(force, rel=1e-10)
 
 
-def _wavy(tmp_path, dimension: int, n: int = 64):
+def _wavy(tmp_path, dimension: int, n: int = 64, mixed_precision: bool = True):
     wavelength, amplitude = 1e-3, 1e-5
     x = -wavelength / 2 + (np.arange(n) + 0.5) * wavelength / n
     profile = amplitude * (1 - np.cos(2 * np.pi * x / wavelength))
@@ -68,24 +68,29 @@ def _wavy(tmp_path, dimension: int, n: int = 64):
         "adhesion": {"work_of_adhesion": W, "cohesive_stress": 0.5 * p_star},
         "grid": {"n": n, "half_width": wavelength / 2, "dimension": dimension, "periodic": True},
         "normal": {"control": "load", "value": load * (1 if dimension == 1 else wavelength)},
-        "tangential": {"mode": "none"}, "time": {"t_end": 1e-3, "dt": 1e-3}})
+        "tangential": {"mode": "none"}, "time": {"t_end": 1e-3, "dt": 1e-3},
+        "solver": {"mixed_precision": mixed_precision}})
     problem = case.to_problem()
     return problem, list(simulate(problem))[-1]
 
 
-def test_adhesive_periodic_line_is_the_plane_strain_state_of_the_2d_grid(tmp_path):
-    """16 cells in contact, 8 in the cohesive zone, 40 free. Measured: the pressures agree to 3.5e-15 of
-    the peak (round-off), the same cells in the cohesive zone, the same approach."""
-    line_problem, line = _wavy(tmp_path, 1)
-    _, plane = _wavy(tmp_path, 2)
+@pytest.mark.parametrize("mixed_precision, agreement", [(False, 1e-12), (True, 1e-9)])
+def test_adhesive_periodic_line_is_the_plane_strain_state_of_the_2d_grid(tmp_path, mixed_precision, agreement):
+    """16 cells in contact, 8 in the cohesive zone, 40 free. Measured: in double precision the pressures
+    agree to 2.7e-15 of the peak (round-off), the same cells in the cohesive zone, the same approach;
+    with the default float32 search directions, whose rounding the two grids' solves meet differently,
+    to 1.6e-11 of the peak (the solves' own tolerance, solver.tolerance = 1e-8 a change of p, bounds
+    their distance to the exact state)."""
+    line_problem, line = _wavy(tmp_path, 1, mixed_precision=mixed_precision)
+    _, plane = _wavy(tmp_path, 2, mixed_precision=mixed_precision)
     p_line, p_plane = line.pressure[0], plane.pressure
     assert np.allclose(p_plane, p_plane[:1], rtol=0, atol=1e-9 * np.abs(p_plane).max())  # uniform along y
     sigma = 0.5 * np.pi * E_STAR * 1e-5 / 1e-3
     cohesive = np.isclose(p_line, -sigma, rtol=1e-9)
     assert cohesive.any() and (p_line > 0).any() and (p_line == 0).any()  # contact, cohesive zone, free
     np.testing.assert_array_equal(cohesive, np.isclose(p_plane[0], -sigma, rtol=1e-9))
-    np.testing.assert_allclose(p_line, p_plane[0], rtol=0, atol=1e-12 * np.abs(p_line).max())
-    assert line.delta_z == pytest.approx(plane.delta_z, rel=1e-12, abs=1e-18)
+    np.testing.assert_allclose(p_line, p_plane[0], rtol=0, atol=agreement * np.abs(p_line).max())
+    assert line.delta_z == pytest.approx(plane.delta_z, rel=agreement, abs=1e-18)
     assert line.load == pytest.approx(p_line.sum() * line_problem.grid.spacing, rel=1e-12)
     assert line.adhesive_force < 0
 

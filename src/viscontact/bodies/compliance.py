@@ -128,8 +128,10 @@ class ElasticOperator:
     ``fast_length``: the padded window sides its backend transforms best
     (:attr:`~viscontact.numerics.arrays.ArrayBackend.fast_length`).
     ``apply_increment`` and ``single_preconditioner``: K and the preconditioner in single precision
-    (float32 transforms), for the search directions of a mixed-precision solve; None where the
-    solves must reach round-off (periodic grids: their preconditioner is exact)."""
+    (float32 transforms), for the search directions of a mixed-precision solve; None where an
+    operator has none (then every product is in double).
+    ``sparse_limit``: the non-zeros up to which ``apply_sparse`` costs less than ``apply`` (its
+    convolver's :attr:`~viscontact.numerics.convolution.Convolver.sparse_limit`)."""
 
     apply: Operator
     preconditioner: Operator
@@ -138,6 +140,7 @@ class ElasticOperator:
     apply_increment: Operator | None = None
     single_preconditioner: Operator | None = None
     fast_length: Callable[[int], int] = cpu_fast_length
+    sparse_limit: int = Convolver.sparse_limit
 
     def cg_options(self, mixed_precision: bool = True) -> dict[str, Operator | None]:
         """Keyword arguments of :func:`~viscontact.numerics.constrained.constrained_cg` besides the action:
@@ -145,7 +148,8 @@ class ElasticOperator:
         preconditioner in single precision where this operator has them."""
         mixed = mixed_precision and self.apply_increment is not None
         return {"preconditioner": self.single_preconditioner if mixed else self.preconditioner,
-                "apply_k_sparse": self.apply_sparse, "apply_k_increment": self.apply_increment if mixed else None}
+                "apply_k_sparse": self.apply_sparse, "sparse_limit": self.sparse_limit,
+                "apply_k_increment": self.apply_increment if mixed else None}
 
 
 class Compliance:
@@ -339,7 +343,7 @@ class Compliance:
         windowed = not self.periodic and self.convolver.kernels is not None and self.grid.dimension == 2
         window = (lambda m: self._window_operator(component, first, m)) if windowed else None
         return _operator(self._factors(component, first), self.convolver, self.preconditioners, window,
-                         single=not self.periodic, fast_length=self.backend.fast_length)
+                         self.backend)
 
     def _window_operator(self, component: str, first: bool, m: int) -> ElasticOperator:
         """:meth:`elastic_operator` on an m x m window: a convolver of the kernels cropped to the window
@@ -361,7 +365,7 @@ class Compliance:
         conv, precond, operators = self._windows[m]
         key = (component, first)
         if key not in operators:
-            operators[key] = _operator(self._factors(component, first), conv, precond, None, single=True)
+            operators[key] = _operator(self._factors(component, first), conv, precond, None, self.backend)
         return operators[key]
 
     def free_mean(self, component: str) -> bool:
@@ -467,11 +471,10 @@ class Compliance:
 
 def _operator(factors: Sequence[tuple[str, float]], conv: Convolver,
               preconditioners: Mapping[str, FourierPreconditioner],
-              window: Callable[[int], ElasticOperator] | None, single: bool,
-              fast_length: Callable[[int], int] = cpu_fast_length) -> ElasticOperator:
+              window: Callable[[int], ElasticOperator] | None, backend: ArrayBackend = CPU) -> ElasticOperator:
     """K x = sum over ``factors`` (kernel name, J_inst [1/Pa]) of J_inst K_name x through ``conv``, with
-    the Fourier preconditioner of the summed symbols (:class:`ElasticOperator`); ``single``: with its
-    single-precision variants as well; ``fast_length``: the backend's window sides."""
+    the Fourier preconditioner of the summed symbols and their single-precision variants
+    (:class:`ElasticOperator`); ``backend``: where the fields live (its window sides)."""
     if len(factors) == 1:
         (kernel, j_inst), = factors
         base = preconditioners[kernel]
@@ -494,10 +497,8 @@ def _operator(factors: Sequence[tuple[str, float]], conv: Convolver,
         def sparse(x: Array) -> Array:
             return sum(conv.apply_sparse(k, x, j) for k, j in factors)
 
-    if not single:
-        return ElasticOperator(product, precond, sparse, window, fast_length=fast_length)
     return ElasticOperator(product, precond, sparse, window, lambda x: product(x, True), precond.single(),
-                           fast_length)
+                           backend.fast_length, conv.sparse_limit)
 
 
 @dataclass(frozen=True)

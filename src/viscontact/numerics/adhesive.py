@@ -49,7 +49,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import Any, Literal
+from typing import Any, ClassVar, Literal
 
 import numpy as np
 
@@ -136,6 +136,8 @@ class FullDomain:
     apply: Operator
     preconditioner: Operator | None = None
     window: None = None
+    #: its "direct sums" are the action itself
+    sparse_limit: ClassVar[int] = 0
 
     def apply_sparse(self, field: np.ndarray) -> np.ndarray:
         return self.apply(field)
@@ -307,6 +309,10 @@ class _Boxed:
         return self.box.apply_sparse
 
     @property
+    def sparse_limit(self) -> int:
+        return self.box.sparse_limit
+
+    @property
     def window(self) -> Callable[[int], Any]:
         return self.full.window
 
@@ -339,11 +345,13 @@ def _zone_box(cover: np.ndarray, op: Any) -> tuple[int, tuple[slice, slice]] | N
 
 
 def _product(op: Any, field: np.ndarray) -> np.ndarray:
-    """K ``field`` [m] in double precision: by direct sums for at most :data:`SPARSE_LIMIT` non-zeros."""
+    """K ``field`` [m] in double precision: by direct sums for at most :data:`SPARSE_LIMIT` non-zeros
+    and the operator's own ``sparse_limit`` (fewer on a periodic grid)."""
     points = int(np.count_nonzero(field))
     if not points:
         return np.zeros_like(field)
-    return op.apply_sparse(field) if points <= SPARSE_LIMIT else op.apply(field)
+    limit = min(SPARSE_LIMIT, op.sparse_limit)
+    return op.apply_sparse(field) if points <= limit else op.apply(field)
 
 
 def _moved(zone: np.ndarray, gap: np.ndarray, h0: float, band: float) -> tuple[np.ndarray, np.ndarray]:

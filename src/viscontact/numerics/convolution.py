@@ -16,7 +16,7 @@ from collections import Counter
 from dataclasses import dataclass
 from dataclasses import field as dataclass_field
 from types import ModuleType
-from typing import Iterable, Mapping
+from typing import ClassVar, Iterable, Mapping
 
 import numpy as np
 import scipy.fft
@@ -65,6 +65,11 @@ class Convolver:
     #: complex64 copies of ``spectra`` made by the first single-precision product of each kernel
     single_spectra: dict[str, np.ndarray] = dataclass_field(default_factory=dict, compare=False, repr=False)
     rows: int | None = None
+    #: non-zeros up to which :meth:`apply_sparse` costs less than one double-precision product: a padded
+    #: product transforms four times the grid, a direct sum two passes over it a point (measured at
+    #: 256^2 and 512^2, with the window sides between: 24 points cost 0.5-0.6 of a product,
+    #: ``benchmarks/sparse_products.py``)
+    sparse_limit: ClassVar[int] = 48
 
     def __post_init__(self) -> None:
         if self.rows is None:

@@ -205,8 +205,9 @@ def gross_slip_under_history(t: float, delta_x: float, force: float, load: float
         "(a ramp into gross sliding)")
 
 
-#: clipped points of the extrapolated warm start whose product is added by direct sums; more: one
-#: product of the warm start instead (:func:`_warm_start`)
+#: clipped points of the extrapolated warm start whose product is added by direct sums (fewer where the
+#: operator's direct sums stop paying earlier: its ``sparse_limit``); more: one product of the warm
+#: start instead (:func:`_warm_start`)
 WARM_CLIP_POINTS = 24
 
 
@@ -214,7 +215,8 @@ def _warm_start(compliance: Compliance, state: State, k: int) -> tuple[np.ndarra
     """The warm start of step ``k``'s pressure [Pa]: the linear extrapolation of the last two steps
     (frame fields) clipped at 0, or the last pressure at k <= 1; and the step's normal operator
     applied to it [m] where the state's products give it (J_inst K is linear: 2 K p_-1 - K p_-2, plus
-    the direct sums of the clipped points, at most :data:`WARM_CLIP_POINTS`), else None."""
+    the direct sums of the clipped points, at most :data:`WARM_CLIP_POINTS` and the operator's
+    ``sparse_limit``), else None."""
     if k <= 1:
         return state.pressure, None
     linear = 2.0 * state.pressure - state.pressure_previous
@@ -223,11 +225,12 @@ def _warm_start(compliance: Compliance, state: State, k: int) -> tuple[np.ndarra
         return warm, None
     clipped = np.subtract(warm, linear, out=linear)
     points = np.count_nonzero(clipped)
-    if points > WARM_CLIP_POINTS:
+    op = compliance.elastic_operator("z", False)
+    if points > min(WARM_CLIP_POINTS, op.sparse_limit):
         return warm, None
     product = 2.0 * state.pressure_product - state.pressure_product_previous
     if points:
-        product += compliance.elastic_operator("z", False).apply_sparse(clipped)
+        product += op.apply_sparse(clipped)
     return warm, product
 
 
