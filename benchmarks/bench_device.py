@@ -12,7 +12,11 @@ R = 10 mm; through :func:`viscontact.solvers.transient.steps`, each step's recor
             per step (the support window and frame shifts).
 
 ``--scipy-lengths`` adds GPU rows with the CPU's window sides (a new cuFFT plan for every side a
-creeping contact walks through) beside those on the device ladder.
+creeping contact walks through) beside those on the device ladder. ``--host-cg`` adds GPU rows whose
+constrained CG decides on the host every iteration (``check_every = 1``, as before the resident CG:
+about sixteen reads of the device an iteration) beside the default (its scalars on the device, read
+every :data:`~viscontact.numerics.arrays.DEVICE_CHECK_EVERY` iterations): the time per CG iteration
+of each is the later step's time over its iterations.
 
 Prints, per case, grid and backend: the first step (kernels, spectra, plans), the median of the
 later steps, their speed-up over the CPU, the CG iterations, the largest pressure difference
@@ -79,6 +83,8 @@ def main() -> None:
     parser.add_argument("--scipy-lengths", action="store_true",
                         help="also run the GPU with the CPU's window sides (scipy.fft.next_fast_len) instead of "
                              "the device ladder (viscontact.numerics.arrays.device_fast_length)")
+    parser.add_argument("--host-cg", action="store_true",
+                        help="also run the GPU with the CG's decisions on the host every iteration (check_every = 1)")
     args = parser.parse_args()
 
     try:
@@ -93,8 +99,9 @@ def main() -> None:
     except ImportError as exc:
         gpu, device = None, f"none ({exc})"
     print(f"# {platform.machine()} {platform.processor() or ''}, GPU: {device}, {time.strftime('%Y-%m-%d %H:%M')}")
-    print("| case | grid x steps | backend | first step [s] | later step [ms] | speed-up | CG it/step | max dp / peak | memory [MiB] |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| case | grid x steps | backend | first step [s] | later step [ms] | speed-up | CG it/step | ms per CG "
+          "iteration | max dp / peak | memory [MiB] |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for case in args.cases.split(","):
         for n in args.n:
             pb = problem(case, n, args.steps)
@@ -102,19 +109,23 @@ def main() -> None:
             rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
             peak = float(np.max(cpu["pressure"]))
             print(f"| {case} | {n}² × {args.steps} | cpu | {cpu['first']:.2f} | {1e3 * cpu['step']:.1f} | 1 | "
-                  f"{cpu['iterations']:.1f} | 0 | {rss:.0f} (process peak) |")
+                  f"{cpu['iterations']:.1f} | {1e3 * cpu['step'] / cpu['iterations']:.2f} | 0 | "
+                  f"{rss:.0f} (process peak) |")
             if gpu is None:
-                print(f"| {case} | {n}² × {args.steps} | gpu | no CUDA device | | | | | |")
+                print(f"| {case} | {n}² × {args.steps} | gpu | no CUDA device | | | | | | |")
                 continue
             rows = [("gpu", gpu)]
             if args.scipy_lengths:  # the windows of the CPU: a new cuFFT plan for every new side
                 rows.append(("gpu, scipy lengths", dataclasses.replace(gpu, fast_length=cpu_fast_length)))
+            if args.host_cg:  # the CG's decisions on the host, a read of the device each
+                rows.append(("gpu, host CG", dataclasses.replace(gpu, check_every=1)))
             for label, backend in rows:
                 pool.free_all_blocks()
                 ours = run(pb, backend, sync)
                 diff = float(np.max(np.abs(ours["pressure"] - cpu["pressure"]))) / peak
                 print(f"| {case} | {n}² × {args.steps} | {label} | {ours['first']:.2f} | {1e3 * ours['step']:.1f} | "
-                      f"{cpu['step'] / ours['step']:.1f} | {ours['iterations']:.1f} | {diff:.1e} | "
+                      f"{cpu['step'] / ours['step']:.1f} | {ours['iterations']:.1f} | "
+                      f"{1e3 * ours['step'] / ours['iterations']:.2f} | {diff:.1e} | "
                       f"{pool.total_bytes() / 2**20:.0f} (CuPy pool) |")
 
 

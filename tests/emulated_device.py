@@ -45,6 +45,25 @@ class Transfer:
 
 #: the open :func:`transfers` logs (each copy is appended to every one)
 _LOGS: list[list[Transfer]] = []
+#: the open :func:`scalar_reads` counters (one list each, one entry a read)
+_READS: list[list[str]] = []
+
+
+@contextlib.contextmanager
+def scalar_reads() -> Iterator[list[str]]:
+    """The reads of device values by the host while the block runs (``float``, ``int``, ``bool``,
+    ``tolist``, ``item`` of a device array: on a GPU each waits for the device's queue), by name."""
+    log: list[str] = []
+    _READS.append(log)
+    try:
+        yield log
+    finally:
+        _READS.remove(log)
+
+
+def _read(name: str) -> None:
+    for log in _READS:
+        log.append(name)
 
 
 @contextlib.contextmanager
@@ -113,7 +132,10 @@ class DeviceArray(NDArrayOperatorsMixin):
         if name == "flat" or name.startswith("__"):  # no host protocols (__array_interface__, ...)
             raise AttributeError(f"no {name!r} on the device")
         attr = getattr(self._data, name)
-        if name in ("tolist", "item") or not callable(attr):  # explicit host values
+        if name in ("tolist", "item"):  # explicit host values: a read of the device
+            _read(name)
+            return attr
+        if not callable(attr):
             return attr
 
         def method(*args: Any, **kwargs: Any) -> Any:
@@ -135,15 +157,19 @@ class DeviceArray(NDArrayOperatorsMixin):
         return (_wrap(row) for row in self._data)
 
     def __float__(self) -> float:
+        _read("float")
         return float(self._data)
 
     def __int__(self) -> int:
+        _read("int")
         return int(self._data)
 
     def __index__(self) -> int:
+        _read("index")
         return self._data.__index__()
 
     def __bool__(self) -> bool:
+        _read("bool")
         return bool(self._data)
 
     def __repr__(self) -> str:

@@ -11,7 +11,8 @@
 #    the GPU (solver.device = "gpu"), timed, their results compared;
 # 5. runs benchmarks/device/plan_cost.py: what a new transform length (a new cuFFT plan) costs;
 # 6. runs benchmarks/bench_device.py at 1024^2 and at 2048^2 (BENCH_STEPS steps, CPU rows and GPU
-#    rows, on the device ladder and on scipy's lengths); without a CUDA device only at 128^2 (the CPU
+#    rows: the device ladder, scipy's lengths at 1024^2, and the CG deciding on the host every iteration
+#    against its resident scalars, --host-cg); without a CUDA device only at 128^2 (the CPU
 #    rows and "no CUDA device"), to check the path.
 #
 # Every stage runs under `timeout` within CHECK_BUDGET seconds in all; logs go to $OUT/ (or
@@ -125,8 +126,8 @@ else
     wanted cli && stage cli 90 "$OUT/cli.md" "$PYTHON" -u benchmarks/device/cli_check.py
     wanted plans && stage plans 40 "$OUT/plans.md" "$PYTHON" -u benchmarks/device/plan_cost.py
     if wanted bench; then
-        stage bench_1024 120 "$OUT/bench_1024.md" "$PYTHON" -u benchmarks/bench_device.py --n 1024 --steps "$BENCH_STEPS" --scipy-lengths
-        stage bench_2048 200 "$OUT/bench_2048.md" "$PYTHON" -u benchmarks/bench_device.py --n 2048 --steps "$BENCH_STEPS" --scipy-lengths
+        stage bench_1024 120 "$OUT/bench_1024.md" "$PYTHON" -u benchmarks/bench_device.py --n 1024 --steps "$BENCH_STEPS" --scipy-lengths --host-cg
+        stage bench_2048 200 "$OUT/bench_2048.md" "$PYTHON" -u benchmarks/bench_device.py --n 2048 --steps "$BENCH_STEPS" --host-cg
     fi
 fi
 echo "== summary ($SECONDS s in all; logs in $OUT)"

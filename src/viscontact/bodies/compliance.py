@@ -131,7 +131,9 @@ class ElasticOperator:
     (float32 transforms), for the search directions of a mixed-precision solve; None where an
     operator has none (then every product is in double).
     ``sparse_limit``: the non-zeros up to which ``apply_sparse`` costs less than ``apply`` (its
-    convolver's :attr:`~viscontact.numerics.convolution.Convolver.sparse_limit`)."""
+    convolver's :attr:`~viscontact.numerics.convolution.Convolver.sparse_limit`); ``check_every``: its
+    backend's (:attr:`~viscontact.numerics.arrays.ArrayBackend.check_every`: above 1, the solves keep
+    their scalars on the device)."""
 
     apply: Operator
     preconditioner: Operator
@@ -141,6 +143,7 @@ class ElasticOperator:
     single_preconditioner: Operator | None = None
     fast_length: Callable[[int], int] = cpu_fast_length
     sparse_limit: int = Convolver.sparse_limit
+    check_every: int = 1
 
     def cg_options(self, mixed_precision: bool = True) -> dict[str, Operator | None]:
         """Keyword arguments of :func:`~viscontact.numerics.constrained.constrained_cg` besides the action:
@@ -474,7 +477,8 @@ def _operator(factors: Sequence[tuple[str, float]], conv: Convolver,
               window: Callable[[int], ElasticOperator] | None, backend: ArrayBackend = CPU) -> ElasticOperator:
     """K x = sum over ``factors`` (kernel name, J_inst [1/Pa]) of J_inst K_name x through ``conv``, with
     the Fourier preconditioner of the summed symbols and their single-precision variants
-    (:class:`ElasticOperator`); ``backend``: where the fields live (its window sides)."""
+    (:class:`ElasticOperator`); ``backend``: where the fields live (its window sides, how often its
+    CG reads its stopping test)."""
     if len(factors) == 1:
         (kernel, j_inst), = factors
         base = preconditioners[kernel]
@@ -498,7 +502,7 @@ def _operator(factors: Sequence[tuple[str, float]], conv: Convolver,
             return sum(conv.apply_sparse(k, x, j) for k, j in factors)
 
     return ElasticOperator(product, precond, sparse, window, lambda x: product(x, True), precond.single(),
-                           backend.fast_length, conv.sparse_limit)
+                           backend.fast_length, conv.sparse_limit, backend.check_every)
 
 
 @dataclass(frozen=True)

@@ -138,6 +138,8 @@ class FullDomain:
     window: None = None
     #: its "direct sums" are the action itself
     sparse_limit: ClassVar[int] = 0
+    #: its solves decide on the host (:func:`~viscontact.numerics.constrained.constrained_cg`)
+    check_every: ClassVar[int] = 1
 
     def apply_sparse(self, field: np.ndarray) -> np.ndarray:
         return self.apply(field)
@@ -311,6 +313,10 @@ class _Boxed:
     @property
     def sparse_limit(self) -> int:
         return self.box.sparse_limit
+
+    @property
+    def check_every(self) -> int:
+        return self.box.check_every
 
     @property
     def window(self) -> Callable[[int], Any]:

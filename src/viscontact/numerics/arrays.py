@@ -45,7 +45,7 @@ from typing import Any, Callable
 import numpy as np
 import scipy.fft
 
-__all__ = ["ArrayBackend", "CPU", "array_backend", "cpu_fast_length", "cupy_backend", "device_fast_length",
+__all__ = ["ArrayBackend", "CPU", "DEVICE_CHECK_EVERY", "array_backend", "cpu_fast_length", "cupy_backend", "device_fast_length",
            "device_free_memory"]
 
 
@@ -81,6 +81,12 @@ class ArrayBackend:
     #: On the CPU every 2^a 3^b 5^c length (:func:`cpu_fast_length`); on a GPU the coarse
     #: ladder of :func:`device_fast_length`, so that a creeping contact re-plans its transforms seldom.
     fast_length: Callable[[int], int] = cpu_fast_length
+    #: Iterations of the constrained CG between two reads of its stopping test by the host: 1 on the
+    #: CPU (:func:`~viscontact.numerics.constrained.constrained_cg` decides on the host every iteration, at
+    #: no cost there); above 1 the solves of the support windows keep their scalars on the device
+    #: (:func:`~viscontact.numerics.resident_cg.resident_cg`: no host round trip inside a block of
+    #: ``check_every`` iterations).
+    check_every: int = 1
 
     def to_device(self, array: Any) -> Any:
         """``array`` (numpy, built on the host) as a field of this backend (on the CPU: itself)."""
@@ -111,6 +117,9 @@ def device_fast_length(length: int) -> int:
 
 #: numpy and scipy.fft (pocketfft)
 CPU = ArrayBackend("cpu", np, scipy.fft, np.asarray)
+#: a GPU's :attr:`ArrayBackend.check_every`: one read of three numbers every four iterations instead of
+#: about twenty reads an iteration (each waits for the device's queue to drain)
+DEVICE_CHECK_EVERY = 4
 
 
 def array_backend(device: str) -> ArrayBackend:
@@ -171,7 +180,7 @@ def cupy_backend() -> ArrayBackend:
         cupyx.scipy.fft.rfft2(cupy.zeros((4, 4)))
     except Exception as exc:  # CuPy's and CUDA's own error types
         raise ImportError(f"CuPy's FFT (cuFFT) does not work: {_one_line(exc)}") from exc
-    return ArrayBackend("gpu", cupy, cupyx.scipy.fft, cupy.asnumpy, device_fast_length)
+    return ArrayBackend("gpu", cupy, cupyx.scipy.fft, cupy.asnumpy, device_fast_length, DEVICE_CHECK_EVERY)
 
 
 def device_free_memory() -> int | None:

@@ -44,6 +44,10 @@ move along the float32 direction exactly, in double), which halves their memory 
 in K x, amplified by the inverse operator and carried by the history over the steps, keeps the
 solution within the tolerance of an all-double solve (tested against a solve 1000 times tighter);
 measured at 128^2 and 256^2 it is as close as all-double (BENCHMARKS.md), with the same iterations.
+
+Every decision above reads a scalar on the host, which on a GPU waits for the device: there the
+support windows' solves run :func:`viscontact.numerics.resident_cg.resident_cg`, the same iteration
+with its scalars kept on the device and its stopping test read every few iterations.
 """
 from __future__ import annotations
 

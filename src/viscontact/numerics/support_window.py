@@ -37,6 +37,7 @@ import numpy as np
 from viscontact.numerics.arrays import cpu_fast_length
 from viscontact.numerics.constrained import ConstrainedSolution, constrained_cg
 from viscontact.numerics.grid import mask_span
+from viscontact.numerics.resident_cg import resident_cg
 
 #: margin [cells] at least around the support of the warm start (the extrapolated warm start already
 #: holds the contact's growth to first order: 4 cells and 3 % gave the same solves as 3 cells and 2 %
@@ -79,6 +80,19 @@ def _box(mask: np.ndarray, fast_length: Callable[[int], int]) -> tuple[int, tupl
     return m, (slice(r0, r0 + m), slice(c0, c0 + m))
 
 
+def _solve(op, b, x0, lower, upper, mixed_precision: bool, **options) -> ConstrainedSolution:
+    """:func:`~viscontact.numerics.constrained.constrained_cg` with ``op``'s action and options, or where the
+    operator's backend keeps the CG's scalars on the device (``op.check_every`` above 1: a GPU)
+    :func:`~viscontact.numerics.resident_cg.resident_cg`, which needs no direct sums (it corrects every
+    iteration's clip by a product)."""
+    cg = op.cg_options(mixed_precision)
+    if op.check_every > 1:
+        return resident_cg(op.apply, b, x0, lower, upper, check_every=op.check_every,
+                           preconditioner=cg["preconditioner"], apply_k_increment=cg.get("apply_k_increment"),
+                           **options)
+    return constrained_cg(op.apply, b, x0, lower, upper, **cg, **options)
+
+
 def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None, cell_area: float = 1.0,
                 tolerance: float = 1e-10, max_iterations: int = 2000,
                 what: str = "constrained conjugate gradient", mixed_precision: bool = True,
@@ -113,9 +127,8 @@ def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None
     n = b.shape[0]
 
     def full(start: np.ndarray, done: int) -> ConstrainedSolution:
-        sol = constrained_cg(op.apply, b, start, 0.0, np.inf, total=total, cell_area=cell_area, tolerance=tolerance,
-                             max_iterations=max_iterations, what=what, start_product=start_product,
-                             **op.cg_options(mixed_precision))
+        sol = _solve(op, b, start, 0.0, np.inf, mixed_precision, total=total, cell_area=cell_area,
+                     tolerance=tolerance, max_iterations=max_iterations, what=what, start_product=start_product)
         return replace(sol, iterations=sol.iterations + done)
 
     support = x0 > 0
@@ -128,10 +141,9 @@ def windowed_cg(op, b: np.ndarray, x0: np.ndarray, *, total: float | None = None
             break
         m, box = window
         sub = op.window(m)
-        sol = constrained_cg(sub.apply, b[box], x0[box], 0.0, np.inf, total=total, cell_area=cell_area,
-                             tolerance=tolerance, max_iterations=max_iterations, what=what,
-                             start_product=None if start_product is None else start_product[box],
-                             **sub.cg_options(mixed_precision))
+        sol = _solve(sub, b[box], x0[box], 0.0, np.inf, mixed_precision, total=total, cell_area=cell_area,
+                     tolerance=tolerance, max_iterations=max_iterations, what=what,
+                     start_product=None if start_product is None else start_product[box])
         iterations += sol.iterations
         x = np.zeros_like(b)
         x[box] = sol.x
@@ -174,12 +186,12 @@ def windowed_bounded_cg(op, b: np.ndarray, x0: np.ndarray, lower: np.ndarray, up
     movable = lower < upper
     window = _box(movable, op.fast_length) if op.window is not None and movable.any() else None
     if window is None:
-        return constrained_cg(op.apply, b, x0, lower, upper, tolerance=tolerance, max_iterations=max_iterations,
-                              what=what, **op.cg_options(mixed_precision))
+        return _solve(op, b, x0, lower, upper, mixed_precision, tolerance=tolerance, max_iterations=max_iterations,
+                      what=what)
     m, box = window
     sub = op.window(m)
-    sol = constrained_cg(sub.apply, b[box], x0[box], lower[box], upper[box], tolerance=tolerance,
-                         max_iterations=max_iterations, what=what, **sub.cg_options(mixed_precision))
+    sol = _solve(sub, b[box], x0[box], lower[box], upper[box], mixed_precision, tolerance=tolerance,
+                 max_iterations=max_iterations, what=what)
     x = np.clip(x0, lower, upper)
     x[box] = sol.x
     gradient = op.apply(x)
