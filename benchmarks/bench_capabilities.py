@@ -84,12 +84,10 @@ def child(kind: str, n: int) -> None:
         return sol
 
     contact_laws.windowed_cg = counted  # the normal solves of the transient
-    iterations = []
     cpu = time.process_time()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        for _, record in transient.steps(problem):
-            iterations.append(record.iterations)
+        iterations = [record.iterations for _, record in transient.steps(problem)]
     cpu = time.process_time() - cpu
     print(json.dumps({"steps": len(iterations), "cpu": cpu, "iterations": sum(iterations) / max(len(iterations), 1),
                       "solves": windowed[0], "windowed": windowed[1]}))

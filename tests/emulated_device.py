@@ -50,15 +50,20 @@ _READS: list[list[str]] = []
 
 
 @contextlib.contextmanager
-def scalar_reads() -> Iterator[list[str]]:
-    """The reads of device values by the host while the block runs (``float``, ``int``, ``bool``,
-    ``tolist``, ``item`` of a device array: on a GPU each waits for the device's queue), by name."""
-    log: list[str] = []
-    _READS.append(log)
+def _recorded(logs: list[list]) -> Iterator[list]:
+    """A new log in ``logs`` while the block runs (nested blocks each see theirs)."""
+    log: list = []
+    logs.append(log)
     try:
         yield log
     finally:
-        _READS.remove(log)
+        logs.remove(log)
+
+
+def scalar_reads() -> contextlib.AbstractContextManager[list[str]]:
+    """The reads of device values by the host while the block runs (``float``, ``int``, ``bool``,
+    ``tolist``, ``item`` of a device array: on a GPU each waits for the device's queue), by name."""
+    return _recorded(_READS)
 
 
 def _read(name: str) -> None:
@@ -66,15 +71,9 @@ def _read(name: str) -> None:
         log.append(name)
 
 
-@contextlib.contextmanager
-def transfers() -> Iterator[list[Transfer]]:
+def transfers() -> contextlib.AbstractContextManager[list[Transfer]]:
     """The host-device copies made while the block runs, in order (nested blocks each see theirs)."""
-    log: list[Transfer] = []
-    _LOGS.append(log)
-    try:
-        yield log
-    finally:
-        _LOGS.remove(log)
+    return _recorded(_LOGS)
 
 
 def _logged(direction: str, data: np.ndarray) -> None:

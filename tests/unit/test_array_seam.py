@@ -394,9 +394,9 @@ TRANSIENT_MODES = ["creep", "displacement", "frictionless_sliding", "gross_slidi
                    "line_partial_slip_incremental", "adhesive_retraction", "adhesive_load", "adhesive_sliding",
                    "adhesive_partial_slip", "adhesive_periodic"]
 #: the modes run with the device-resident CG: each kind of solve it takes (load and displacement
-#: control, windows, periodic, partial slip's array bounds, rolling, a line, the adhesive rounds)
+#: control, windows, periodic, partial slip's array bounds, rolling, the adhesive rounds)
 RESIDENT_MODES = ["creep", "displacement", "frictionless_sliding", "partial_slip_incremental", "rough_periodic",
-                  "rolling", "line_partial_slip_incremental", "adhesive_retraction"]
+                  "rolling", "adhesive_retraction"]
 
 
 def _with_modes(backends: list, modes: list) -> list:

@@ -117,7 +117,7 @@ def device_fast_length(length: int) -> int:
 
 #: numpy and scipy.fft (pocketfft)
 CPU = ArrayBackend("cpu", np, scipy.fft, np.asarray)
-#: a GPU's :attr:`ArrayBackend.check_every`: one read of three numbers every four iterations instead of
+#: a GPU's :attr:`ArrayBackend.check_every`: one read of four numbers every four iterations instead of
 #: about twenty reads an iteration (each waits for the device's queue to drain)
 DEVICE_CHECK_EVERY = 4
 

@@ -18,8 +18,9 @@ every decision made by the arithmetic itself:
   conjugacy restarts whenever the correction or the release is not empty;
 * a step that breaks down (no curvature above round-off, or longer than
   :data:`~viscontact.numerics.constrained.BREAKDOWN_STEP`) moves nothing and restarts conjugacy;
-* the host reads the relative change (the stopping test), the drift bound and the size of the
-  free gradient once every ``check_every`` iterations, in one transfer of three numbers: the solve
+* the host reads the relative change (the stopping test), the drift bound, the size of the free
+  gradient and whether a release is pending once every ``check_every`` iterations, in one transfer
+  of four numbers: the solve
   ends at the first check whose change is below the tolerance (at most ``check_every - 1``
   iterations past the host version's stop, each of which only refines the solution), and K x is
   recomputed in double there when the drift bound has passed its limit.
@@ -58,8 +59,7 @@ def resident_cg(apply_k: Operator, b, x0, lower, upper, *, total: float | None =
 
     Parameters
     ----------
-    apply_k, b, x0, lower, upper, total, cell_area, tolerance, max_iterations, what, preconditioner,
-    apply_k_increment, start_product
+    apply_k, b, x0, lower, upper, total, cell_area, tolerance, max_iterations, what, preconditioner, apply_k_increment, start_product
         As for :func:`~viscontact.numerics.constrained.constrained_cg` (b [m], x [Pa]); the bounds are
         scalars (Python floats, ``upper`` possibly ``inf``) or fields of b's library.
     check_every
@@ -163,8 +163,10 @@ def resident_cg(apply_k: Operator, b, x0, lower, upper, *, total: float | None =
         if it % check_every and it < max_iterations:
             continue
         # the host's one read of this block of iterations: the change, the drift bound, the free gradient
-        residual, drift_now, gradient_max = np.stack([relative, drift, np.abs(free_gradient).max()]).tolist()
-        if residual < tolerance or gradient_max <= ROUNDOFF * b_scale:
+        # and whether points wait for their release (a gradient at round-off ends the solve only without)
+        residual, drift_now, gradient_max, pending = np.stack(
+            [relative, drift, np.abs(free_gradient).max(), released.any().astype(float)]).tolist()
+        if residual < tolerance or gradient_max <= ROUNDOFF * b_scale and not pending:
             return _solution(x, kx, b, lower, total, cell_area, it, residual, multiplier)
         if drift_now > drift_limit:
             kx = apply_k(x).astype(float)
