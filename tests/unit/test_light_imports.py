@@ -1,9 +1,10 @@
 """A run imports what it uses (issue 35: peak memory): ``viscontact run`` of a creep case loads no
 ``scipy.optimize`` (nor ``scipy.linalg``, ``.sparse``, ``.spatial``, which it pulls in: about 23 MiB, a
-fifth of the run's peak at 256^2), their users importing them where used; the creep spectrum's root
-finder (:func:`viscontact.physics.prony.brent_root`) is scipy's ``brentq`` step for step: the same
-roots to the last bit, on the secular equations of random Prony series and on plain functions, and
-the same errors."""
+fifth of the run's peak at 256^2), their users importing them where used; the creep spectrum's
+roots (:func:`viscontact.physics.prony.secular_roots`, bisection) are those of scipy's ``brentq`` on
+the same secular equations (an independent root finder) to 1e-13 (measured: at most 51 ulp in the
+times, 73 in the amplitudes), over random
+Prony series of up to 8 terms and 9 decades of relaxation times."""
 from __future__ import annotations
 
 import json
@@ -17,7 +18,6 @@ import pytest
 from scipy.optimize import brentq
 
 from viscontact.physics.materials import Material
-from viscontact.physics.prony import brent_root
 
 SRC = Path(__file__).resolve().parents[2] / "src"
 NOT_LOADED = ("scipy.optimize", "scipy.linalg", "scipy.sparse", "scipy.spatial", "xarray", "matplotlib")
@@ -38,53 +38,47 @@ def test_a_creep_run_loads_no_scipy_optimize(tmp_path):
     assert code == 0 and loaded == [], loaded
 
 
-def _secular(rates: np.ndarray, weights: np.ndarray, origin: float):
-    diff = rates - origin
-    return lambda delta: 1.0 - float(np.sum(weights / (diff - delta)))
+def _brentq_spectrum(g_inf: float, g: np.ndarray, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Retardation times [s] and amplitudes [1/Pa] of G = g_inf + sum g_i exp(-t/tau_i) by scipy's brentq
+    on the secular equation 1 - sum_i w_i / (r_i - x) = 0 (w_i = g_i r_i / G(0), r_i = 1/tau_i), each
+    root sought as the offset from the nearer pole of its bracket (full relative precision)."""
+    rates = np.sort(1.0 / tau)
+    g = g[np.argsort(1.0 / tau)]
+    g0 = g_inf + g.sum()
+    weights = g * rates / g0
+    roots, amplitudes = [], []
+    for lo, hi in zip(np.concatenate([[0.0], rates[:-1]]), rates):
+        mid = lo + 0.5 * (hi - lo)
+        above = 1.0 - np.sum(weights / (rates - mid)) > 0  # decreasing: the root lies above mid
+        origin = hi if above else lo
+        diff = rates - origin
+
+        def secular(delta, diff=diff):
+            return 1.0 - float(np.sum(weights / (diff - delta)))
+
+        span = mid - origin
+        a, b = (span, -abs(span) * 1e-300) if above else (abs(span) * 1e-300 if origin > 0 else 0.0, span)
+        with np.errstate(all="ignore"):
+            delta = brentq(secular, a, b, xtol=abs(span) * 1e-300 + 1e-320, rtol=4 * np.finfo(float).eps,
+                           maxiter=400) if secular(a) * secular(b) < 0 else span
+        x = origin + delta
+        roots.append(x)
+        amplitudes.append(1.0 / (x * g0 * np.sum(weights / (diff - delta) ** 2)))
+    order = np.argsort(1.0 / np.array(roots))
+    return 1.0 / np.array(roots)[order], np.array(amplitudes)[order]
 
 
 @pytest.mark.parametrize("seed", range(6))
-def test_brent_root_is_scipys_brentq_to_the_last_bit(seed):
+def test_the_creep_spectrum_is_that_of_an_independent_root_finder(seed):
     rng = np.random.default_rng(seed)
-    eps = 4 * np.finfo(float).eps
-    compared = 0
-    for _ in range(40):
+    for _ in range(20):
         size = int(rng.integers(1, 9))
-        rates = np.sort(10.0 ** rng.uniform(-3, 6, size))
-        weights = rng.uniform(0.01, 1.0, size) * rates / size
-        lows = np.concatenate([[0.0], rates[:-1]])
-        for lo, hi in zip(lows, rates):
-            for origin, a, b in ((lo, 1e-300 * (hi - lo), 0.5 * (hi - lo)), (hi, -0.5 * (hi - lo), -1e-300 * hi)):
-                f = _secular(rates, weights, origin)
-                with np.errstate(all="ignore"):
-                    if not f(a) * f(b) < 0:
-                        continue
-                xtol = abs(b - a) * 1e-300 + 1e-320
-                ours = brent_root(f, a, b, xtol=xtol, rtol=eps, maxiter=400)
-                theirs = brentq(f, a, b, xtol=xtol, rtol=eps, maxiter=400)
-                assert ours == theirs, (ours, theirs)
-                compared += 1
-    assert compared > 100
-    for f, a, b in ((lambda x: x**3 - 2 * x - 5, 2.0, 3.0), (np.cos, 0.0, 3.0), (lambda x: np.exp(x) - 1e3, 0, 20)):
-        for xtol in (2e-12, 1e-3):
-            assert brent_root(f, a, b, xtol=xtol, rtol=eps) == brentq(f, a, b, xtol=xtol, rtol=eps)
-
-
-def test_brent_root_refuses_what_brentq_refuses():
-    with pytest.raises(ValueError, match="different signs"):
-        brent_root(np.cos, 0.0, 1.0, xtol=1e-12, rtol=1e-15)
-    with pytest.raises(RuntimeError, match="no convergence in 3 steps"):
-        brent_root(lambda x: x**3 - 2 * x - 5, 2.0, 3.0, xtol=1e-15, rtol=1e-15, maxiter=3)
-
-
-def test_a_material_creep_spectrum_is_unchanged(monkeypatch):
-    """Material.creep (its retardation times and amplitudes) by brent_root equals brentq's: the spectrum
-    computed with scipy's root finder swapped in."""
-    from viscontact.physics import prony
-
-    material = Material.prony(0.193e6, [1.0e6, 0.5e6, 0.237e6], [1e-4, 3e-3, 0.2], 0.3)
-    ours = prony.retardation_spectrum(0.193e6, np.array([1.0e6, 0.5e6, 0.237e6]), np.array([1e-4, 3e-3, 0.2]))
-    monkeypatch.setattr(prony, "brent_root", lambda f, a, b, **kw: brentq(f, a, b, **kw))
-    theirs = prony.retardation_spectrum(0.193e6, np.array([1.0e6, 0.5e6, 0.237e6]), np.array([1e-4, 3e-3, 0.2]))
-    assert np.array_equal(ours[0], theirs[0]) and np.array_equal(ours[1], theirs[1])
-    assert material.creep.instantaneous == pytest.approx(1 / 1.93e6, rel=1e-12)
+        tau = np.unique(10.0 ** rng.uniform(-5, 4, size))
+        g = rng.uniform(0.05, 1.0, tau.size) * 1e6
+        material = Material.prony(0.1e6, list(g), list(tau), 0.3)
+        times, amplitudes = _brentq_spectrum(0.1e6, g, tau)
+        creep = material.creep
+        np.testing.assert_allclose(creep.retardation_times, times, rtol=1e-13, atol=0)
+        np.testing.assert_allclose(creep.amplitudes, amplitudes, rtol=1e-13, atol=0)
+        assert creep.instantaneous == pytest.approx(1 / (0.1e6 + g.sum()), rel=1e-14)
+        assert creep.instantaneous + creep.amplitudes.sum() == pytest.approx(1 / 0.1e6, rel=1e-11)  # J(inf) = 1/G(inf)

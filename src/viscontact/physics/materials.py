@@ -30,7 +30,7 @@ import numpy as np
 
 from viscontact.errors import ParameterError
 from viscontact.numerics.exponentials import CreepSpectrum
-from viscontact.physics.prony import retardation_spectrum
+from viscontact.physics.prony import prony_creep_spectrum
 
 #: multipliers of the modulus units of a Prony table (Pa, kPa, MPa, GPa) to Pa
 MODULUS_UNITS = {"Pa": 1.0, "kPa": 1.0e3, "MPa": 1.0e6, "GPa": 1.0e9}
@@ -209,14 +209,12 @@ class Material:
         s G^(s) = g_inf + sum_i g_i s / (s + 1/tau_i); J^(s) = 1/(s * sG^(s)) has its poles
         s_m = -1/lambda_m at the zeros of sG^(s), one between each pair of neighbouring
         relaxation rates and one below the smallest, and the residue there is -J_m
-        (:func:`viscontact.physics.prony.retardation_spectrum`). Terms with equal relaxation times are merged first.
+        (:func:`viscontact.physics.prony.prony_creep_spectrum`, which merges terms of equal relaxation times).
         """
         if self.is_elastic:
             return CreepSpectrum(1.0 / self.g_inf, np.zeros(0), np.zeros(0))
-        tau, index = np.unique(np.asarray(self.tau), return_inverse=True)
-        g = np.bincount(index, weights=np.asarray(self.g), minlength=tau.size)
-        amplitudes, lam = retardation_spectrum(self.g_inf, g, tau)
-        return CreepSpectrum(1.0 / self.shear_modulus_instantaneous, amplitudes, lam)
+        spectrum = prony_creep_spectrum(self.g_inf, np.asarray(self.g, dtype=float), np.asarray(self.tau, dtype=float))
+        return CreepSpectrum(1.0 / self.shear_modulus_instantaneous, spectrum.amplitudes, spectrum.retardation_times)
 
     def creep_compliance(self, t: np.ndarray | float) -> np.ndarray:
         """J(t) [1/Pa] (:meth:`CreepSpectrum.compliance` of :attr:`creep`)."""
