@@ -133,3 +133,37 @@ def elastic_pull_off_run(shear_modulus: float, poisson_ratio: float, radius: flo
             except StopIteration as stop:
                 return records, stop.value
             records.append(record)
+
+
+def rolling_cylinder_case(n: int, *, shear_modulus: float, poisson_ratio: float, radius: float, load: float,
+                          speed: float, friction: float, half_width: float, held: str, t_end: float,
+                          extra: str = ""):
+    """A rigid cylinder rolling on an elastic half-plane in line contact (``grid.dimension = 1``): the
+    case of the rolling validations (Carter's problem). ``held``: the ``[tangential]`` line that holds
+    the creepage or the tangential force; ``half_width`` [m] of the grid; ``t_end`` [s] of the run;
+    ``extra``: more case text (e.g. a ``[solver]`` table)."""
+    from viscontact.io.case import Case
+
+    return Case.from_toml_text(f"""
+[material]
+type = "elastic"
+shear_modulus = {shear_modulus}
+poisson_ratio = {poisson_ratio}
+[indenter]
+shape = "cylinder"
+radius = {radius}
+[grid]
+dimension = 1
+n = {n}
+half_width = {half_width}
+[normal]
+control = "load"
+value = {load}
+[tangential]
+mode = "rolling"
+rolling_speed = {speed}
+{held}
+friction_coefficient = {friction}
+[time]
+t_end = {t_end}
+{extra}""")

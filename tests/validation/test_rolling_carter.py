@@ -13,36 +13,15 @@ from viscontact.io.case import Case
 from viscontact.physics.reference import carter
 from viscontact.running.api import run_steady
 from viscontact.running.loop import simulate
+from vc_testing import rolling_cylinder_case
 
 G, W, R, MU, V = 20e6, 2000.0, 0.01, 0.3, 0.1  # Pa, N/m, m, -, m/s
 REF = carter(W, R, MU, G, 0.5)
 
 
 def _case(n: int, held: str, widths: float = 1.0) -> Case:
-    a = REF.half_width
-    return Case.from_toml_text(f"""
-[material]
-type = "elastic"
-shear_modulus = {G}
-poisson_ratio = 0.5
-[indenter]
-shape = "cylinder"
-radius = {R}
-[grid]
-dimension = 1
-n = {n}
-half_width = {2.0 * a}
-[normal]
-control = "load"
-value = {W}
-[tangential]
-mode = "rolling"
-rolling_speed = {V}
-{held}
-friction_coefficient = {MU}
-[time]
-t_end = {widths * 2 * a / V}
-""")
+    return rolling_cylinder_case(n, shear_modulus=G, poisson_ratio=0.5, radius=R, load=W, speed=V, friction=MU,
+                                 half_width=2.0 * REF.half_width, held=held, t_end=widths * 2 * REF.half_width / V)
 
 
 @pytest.mark.parametrize("share", [0.3, 0.7, -0.5])

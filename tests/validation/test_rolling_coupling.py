@@ -21,41 +21,19 @@ four contact widths to 3e-7 (traction) and 7e-7 of the peak pressure.
 import numpy as np
 import pytest
 
-from viscontact.io.case import Case
 from viscontact.physics.reference import carter
 from viscontact.running.loop import simulate
 from viscontact.solvers.steady_rolling import solve_steady_rolling
+from vc_testing import rolling_cylinder_case
 
 G, W, R, MU, V, NU, XI = 20e6, 2000.0, 0.01, 0.3, 0.1, 0.3, -0.02  # Pa, N/m, m, -, m/s, -, -
 A = carter(W, R, MU, G, 0.5).half_width  # Hertz half-width [m] with nu = 0.5, the domain's scale
 
 
 def _problem(n: int, coupling: bool = True, widths: float = 1.0):
-    return Case.from_toml_text(f"""
-[material]
-type = "elastic"
-shear_modulus = {G}
-poisson_ratio = {NU}
-[indenter]
-shape = "cylinder"
-radius = {R}
-[grid]
-dimension = 1
-n = {n}
-half_width = {2.0 * A}
-[normal]
-control = "load"
-value = {W}
-[tangential]
-mode = "rolling"
-rolling_speed = {V}
-creepage = {XI!r}
-friction_coefficient = {MU}
-[time]
-t_end = {widths * 2 * A / V}
-[solver]
-coupling = {str(coupling).lower()}
-""").to_problem()
+    return rolling_cylinder_case(n, shear_modulus=G, poisson_ratio=NU, radius=R, load=W, speed=V, friction=MU,
+                                 half_width=2.0 * A, held=f"creepage = {XI!r}", t_end=widths * 2 * A / V,
+                                 extra=f"[solver]\ncoupling = {str(coupling).lower()}\n").to_problem()
 
 
 def _dense_rolling(x: np.ndarray, gap: np.ndarray, datum: float, creep: float):
