@@ -3,10 +3,13 @@ difference of their results (issue 35: fewer iterations a step).
 
     .venv/bin/python benchmarks/bench_iterations.py --tree old=/work/main/src --tree new=src \\
         --case creep_indentation --case seed_table1_v0.8 --n 256 [--steps 40] [--repeats 2]
+    .venv/bin/python benchmarks/bench_iterations.py --tree old=/tmp/old/src --tree new=src \\
+        --case rough_periodic_sliding --n 512 --steps 100 --repeats 5 --set tangential.mode=frictionless_sliding
 
 Each ``--tree NAME=PATH`` puts PATH first on ``PYTHONPATH`` (a ``src`` folder). Every run is a fresh
 subprocess running the shipped case file (``src/viscontact/cases/CASE.toml`` of the first tree) at
-``grid.n = N`` through :func:`viscontact.solvers.transient.steps` (no records kept, no files: the
+``grid.n = N`` (and the ``--set KEY=VALUE`` overrides, as ``viscontact run --set``) through
+:func:`viscontact.solvers.transient.steps` (no records kept, no files: the
 solver alone), the trees alternated (A, B, A, B...) so that the load of a shared machine falls on
 both alike. Printed per case: the CG iterations per step (mean over the run, the first step apart,
 and the mean of the later half), the process CPU time per step (user + sys, median over the
@@ -27,13 +30,15 @@ import numpy as np
 from compare_tamaas import peak_rss_mib, run_child
 
 
-def child(case_file: str, n: int, steps: int | None, result: str) -> None:
+def child(case_file: str, n: int, steps: int | None, result: str, overrides: list[str]) -> None:
     import warnings
 
+    from viscontact.cli.arguments import parse_overrides
     from viscontact.io.case import load_case
     from viscontact.solvers import transient
 
-    problem = load_case(case_file).with_overrides({"grid.n": n, "output.fields": []}).to_problem()
+    changes = {"grid.n": n, "output.fields": [], **parse_overrides(overrides)}
+    problem = load_case(case_file).with_overrides(changes).to_problem()
     iterations, scalars, pressures = [], [], []
     wall = time.perf_counter()
     with warnings.catch_warnings():
@@ -62,11 +67,13 @@ def main() -> None:
     ap.add_argument("--n", type=int, default=256)
     ap.add_argument("--steps", type=int, default=None, help="steps (default: the whole case)")
     ap.add_argument("--repeats", type=int, default=1, help="alternated rounds (default 1)")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a case-file override for every run (repeatable), as viscontact run --set")
     ap.add_argument("--child", nargs=4, help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.child:
         case_file, n, steps, result = args.child
-        child(case_file, int(n), None if steps == "all" else int(steps), result)
+        child(case_file, int(n), None if steps == "all" else int(steps), result, args.set)
         return
     trees = [tuple(t.split("=", 1)) for t in args.tree]
     if len(trees) < 2 or not args.case:
@@ -86,7 +93,7 @@ def main() -> None:
                     env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(Path(path).resolve()),
                                                                        str(Path(__file__).parent)]))
                     cmd = [sys.executable, __file__, "--child", str(cases_dir / f"{case}.toml"), str(args.n),
-                           str(args.steps or "all"), str(result)]
+                           str(args.steps or "all"), str(result), *(f"--set={item}" for item in args.set)]
                     runs[name].append(run_child(cmd, result, f"bench_iterations: {case} on {name}", env))
             ref = runs[trees[0][0]][-1]
             for name, rs in runs.items():

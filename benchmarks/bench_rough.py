@@ -2,7 +2,6 @@
 
     .venv/bin/python benchmarks/bench_rough.py             # 512^2 x 400 steps (issue 11's target)
     .venv/bin/python benchmarks/bench_rough.py --n 128     # quicker
-    .venv/bin/python benchmarks/bench_rough.py --steps 100 --rounds 5 --tree old=/tmp/old/src --tree new=src
 
 The shipped case ``cases/rough_periodic_sliding.toml`` (Zener elastomer, G(0) = 1.93 MPa, periodic
 self-affine surface H = 0.8, h'_rms = 0.1, period 1 mm, W = 10 mN) in frictionless sliding at
@@ -12,19 +11,14 @@ iterations per step), and the exact periodic steady state at the same speed for 
 The system load average at the start and the end is printed: wall times on a loaded machine are
 longer; the process CPU time (all FFT threads) is less sensitive to the load.
 
-With ``--tree NAME=PATH`` (two or more: PATH, a ``src`` folder, first on ``PYTHONPATH``) the transient
-alone runs ``--rounds`` times per tree, each in a fresh subprocess, the trees alternated (A, B, A,
-B...) so that a machine whose speed drifts weighs on both alike; printed: each run's process CPU
-time, the medians and their ratio to the first tree, the CG iterations a step.
+Two source trees alternated on this case: ``bench_iterations.py --case rough_periodic_sliding --set
+tangential.mode=frictionless_sliding``.
 """
 from __future__ import annotations
 
 import argparse
 import os
 import platform
-import statistics
-import subprocess
-import sys
 import time
 import warnings
 from pathlib import Path
@@ -52,21 +46,7 @@ def main() -> None:
     parser.add_argument("--n", type=int, default=512, help="cells per side (default 512)")
     parser.add_argument("--steps", type=int, default=400, help="time steps (default 400)")
     parser.add_argument("--no-steady", action="store_true", help="skip the steady-state row")
-    parser.add_argument("--tree", action="append", default=[], help="NAME=PATH of a src folder (alternated runs)")
-    parser.add_argument("--rounds", type=int, default=3, help="runs per tree with --tree (default 3)")
-    parser.add_argument("--child", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args()
-    if args.child:
-        problem = rough_problem(args.n, args.steps)
-        cpu = time.process_time()
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            iterations = [r.iterations for _, r in transient.steps(problem)]
-        print(f"{time.process_time() - cpu:.3f} {np.mean(iterations):.3f}")
-        return
-    if args.tree:
-        alternate(args)
-        return
 
     load_start = os.getloadavg()[0]
     problem = rough_problem(args.n, args.steps)
@@ -100,29 +80,6 @@ def main() -> None:
     print("|---|---|---|---|")
     for row in rows:
         print("| " + " | ".join(row) + " |")
-
-
-def alternate(args: argparse.Namespace) -> None:
-    """The transient of each ``--tree`` alternated in fresh subprocesses (module docstring)."""
-    trees = [t.split("=", 1) for t in args.tree]
-    cpu: dict[str, list[float]] = {name: [] for name, _ in trees}
-    iterations: dict[str, float] = {}
-    print(f"# {args.n}^2 x {args.steps} steps, {args.rounds} rounds, load average {os.getloadavg()[0]:.1f} at the start")
-    for _ in range(args.rounds):
-        for name, path in trees:
-            env = {**os.environ, "PYTHONPATH": os.pathsep.join([path, os.environ.get("PYTHONPATH", "")])}
-            out = subprocess.run([sys.executable, __file__, "--child", "--n", str(args.n), "--steps", str(args.steps)],
-                                 capture_output=True, text=True, check=True, env=env).stdout.split()
-            cpu[name].append(float(out[0]))
-            iterations[name] = float(out[1])
-    first = statistics.median(cpu[trees[0][0]])
-    print("| tree | CPU per run [s] | median [s] | against the first | CG it/step |")
-    print("|---|---|---|---|---|")
-    for name, _ in trees:
-        median = statistics.median(cpu[name])
-        print(f"| {name} | {', '.join(f'{c:.1f}' for c in cpu[name])} | {median:.1f} | {median / first:.2f}× | "
-              f"{iterations[name]:.2f} |")
-    print(f"# load average {os.getloadavg()[0]:.1f} at the end")
 
 
 if __name__ == "__main__":
