@@ -142,10 +142,11 @@ def resident_cg(apply_k: Operator, b, x0, lower, upper, *, total: float | None =
         kx = kx - k_direction * step + k_correction
         if single:
             drift = drift + SINGLE_ERROR * (np.abs(step) * np.abs(k_direction).max() + np.abs(k_correction).max())
-        change = change + np.abs(correction).sum()
+        corrected = np.abs(correction).sum()
+        change = change + corrected
         # release: bound points (not fixed) whose gradient points inwards join the next iteration's free set
         released = _inward(x, g, lower, upper, bounded_above, movable) & ~free
-        clipped = np.abs(correction).max() > 0
+        clipped = corrected > 0
         conjugate = ~(released.any() | clipped | broke_down)
         if total is not None:
             s = x.sum()
