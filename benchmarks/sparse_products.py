@@ -5,7 +5,7 @@
 The constrained CG adds the product of its bound corrections (a few points) by direct sums of
 kernel blocks (``apply_sparse``: two passes over the grid a point) while they cost less than a
 product (``apply``: transforms). Each operator says up to how many points that holds
-(``ElasticOperator.sparse_limit``, from its convolver: 48 for the padded DC-FFT, 4 for the unpadded
+(``ElasticOperator.sparse_limit``, from its convolver: 48 for the padded DC-FFT, 6 for the unpadded
 periodic convolution). Printed per operator (the shipped seed Table 1 case on the full grid and on a
 window of about half its side, and the shipped rough periodic case): the time of a double and a
 single-precision product, of the preconditioner, and of the direct sums of 1 to 48 random points

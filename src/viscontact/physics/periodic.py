@@ -241,9 +241,11 @@ class PeriodicConvolver(Convolver):
     :meth:`apply_sparse` takes plain slices."""
 
     #: an unpadded product costs a quarter of a padded one: direct sums pay only up to a few points
-    #: (512^2: a product 3.1 ms, direct sums 1.6 ms for one point, 2.7 ms for four, 4.6 ms for eight;
-    #: ``benchmarks/sparse_products.py``)
-    sparse_limit: ClassVar[int] = 4
+    #: (512^2: a product 3.9 ms, 2.5 ms in float32, direct sums 0.61 ms for one point, 1.8 ms for four,
+    #: 3.4 ms for eight; 256^2: 0.57 ms in float32, 0.35 ms for four points, 0.61 ms for eight;
+    #: ``benchmarks/sparse_products.py``): up to about six points against the float32 product of a
+    #: mixed-precision solve
+    sparse_limit: ClassVar[int] = 6
 
     @classmethod
     def from_kernels(cls, n: int, kernels: Mapping[str, np.ndarray], workers: int = -1, *,
