@@ -9,7 +9,13 @@ R = 10 mm; through :func:`viscontact.solvers.transient.steps`, each step's recor
 
 ``creep``   W = 0.15 N held on +-1.5 mm (``compare_tamaas.py``'s case), 0.2 ms steps;
 ``table1``  seed Table 1: frictionless sliding at v = 0.8 a0/tau on +-2.56 a0, W = 0.148 N, one cell
-            per step (the support window and frame shifts).
+            per step (the support window and frame shifts);
+``rough``   the shipped rough periodic case (``bench_rough.py``'s, its own material and surface) in gross
+            sliding with its friction (mu_f = 0.5, nu = 0.3: the normal-tangential coupling iterated)
+            from t = 0, one cell per step: the periodic grid, its float32 products and the wrapping
+            frame on the device. At 4096^2 with ``--gpu-only`` (a CPU step there takes many seconds):
+
+                .venv/bin/python benchmarks/bench_device.py --n 4096 --steps 6 --cases rough --gpu-only
 
 ``--scipy-lengths`` adds GPU rows with the CPU's window sides (a new cuFFT plan for every side a
 creeping contact walks through) beside those on the device ladder. ``--host-cg`` adds GPU rows whose
@@ -22,7 +28,7 @@ Prints, per case, grid and backend: the first step (kernels, spectra, plans), th
 later steps, their speed-up over the CPU, the CG iterations, the largest pressure difference
 against the CPU run (relative to the peak) and the memory: the process's peak resident set (CPU)
 or CuPy's memory pool (GPU). Without CuPy or a CUDA device the GPU rows say so and the CPU rows are
-printed alone.
+printed alone. ``--gpu-only`` skips the CPU rows (speed-up and difference then "–").
 """
 from __future__ import annotations
 
@@ -47,6 +53,10 @@ MATERIAL = Material.zener(1.93e6, 0.193e6, TAU, 0.3)
 
 
 def problem(case: str, n: int, n_steps: int) -> Problem:
+    if case == "rough":
+        from bench_rough import rough_problem  # the shipped case's surface (SurfaceTopography)
+
+        return rough_problem(n, n_steps, mode="gross_sliding")
     if case == "creep":
         grid, load, tangential, dt = Grid(n, 1.5e-3), 0.15, TangentialLoading(), 2e-4
     else:
@@ -83,6 +93,8 @@ def main() -> None:
     parser.add_argument("--scipy-lengths", action="store_true",
                         help="also run the GPU with the CPU's window sides (scipy.fft.next_fast_len) instead of "
                              "the device ladder (viscontact.numerics.arrays.device_fast_length)")
+    parser.add_argument("--gpu-only", action="store_true",
+                        help="no CPU rows (grids where a CPU step takes too long); needs a CUDA device")
     parser.add_argument("--host-cg", action="store_true",
                         help="also run the GPU with the CG's decisions on the host every iteration (check_every = 1)")
     args = parser.parse_args()
@@ -105,12 +117,13 @@ def main() -> None:
     for case in args.cases.split(","):
         for n in args.n:
             pb = problem(case, n, args.steps)
-            cpu = run(pb, CPU, lambda: None)
-            rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-            peak = float(np.max(cpu["pressure"]))
-            print(f"| {case} | {n}² × {args.steps} | cpu | {cpu['first']:.2f} | {1e3 * cpu['step']:.1f} | 1 | "
-                  f"{cpu['iterations']:.1f} | {1e3 * cpu['step'] / cpu['iterations']:.2f} | 0 | "
-                  f"{rss:.0f} (process peak) |")
+            cpu = None
+            if not (args.gpu_only and gpu is not None):
+                cpu = run(pb, CPU, lambda: None)
+                rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+                print(f"| {case} | {n}² × {args.steps} | cpu | {cpu['first']:.2f} | {1e3 * cpu['step']:.1f} | 1 | "
+                      f"{cpu['iterations']:.1f} | {1e3 * cpu['step'] / cpu['iterations']:.2f} | 0 | "
+                      f"{rss:.0f} (process peak) |")
             if gpu is None:
                 print(f"| {case} | {n}² × {args.steps} | gpu | no CUDA device | | | | | | |")
                 continue
@@ -122,10 +135,14 @@ def main() -> None:
             for label, backend in rows:
                 pool.free_all_blocks()
                 ours = run(pb, backend, sync)
-                diff = float(np.max(np.abs(ours["pressure"] - cpu["pressure"]))) / peak
+                if cpu is None:
+                    diff = speedup = "–"
+                else:
+                    diff = f"{float(np.max(np.abs(ours['pressure'] - cpu['pressure']))) / np.max(cpu['pressure']):.1e}"
+                    speedup = f"{cpu['step'] / ours['step']:.1f}"
                 print(f"| {case} | {n}² × {args.steps} | {label} | {ours['first']:.2f} | {1e3 * ours['step']:.1f} | "
-                      f"{cpu['step'] / ours['step']:.1f} | {ours['iterations']:.1f} | "
-                      f"{1e3 * ours['step'] / ours['iterations']:.2f} | {diff:.1e} | "
+                      f"{speedup} | {ours['iterations']:.1f} | "
+                      f"{1e3 * ours['step'] / ours['iterations']:.2f} | {diff} | "
                       f"{pool.total_bytes() / 2**20:.0f} (CuPy pool) |")
 
 

@@ -33,11 +33,12 @@ from viscontact.solvers.steady import solve_steady
 CASE = Path(__file__).resolve().parents[1] / "cases" / "rough_periodic_sliding.toml"
 
 
-def rough_problem(n: int, steps: int):
-    """The shipped rough case at n^2 in frictionless sliding, one cell per step, ``steps`` steps."""
+def rough_problem(n: int, steps: int, mode: str = "frictionless_sliding"):
+    """The shipped rough case at n^2 sliding from t = 0 in ``mode`` (``"gross_sliding"``: with its
+    friction, mu_f = 0.5), one cell per step, ``steps`` steps."""
     case = load_case(CASE)
     dt = 2 * case.grid.half_width / n / case.tangential.sliding_speed
-    return case.with_overrides({"grid.n": n, "tangential.mode": "frictionless_sliding",
+    return case.with_overrides({"grid.n": n, "tangential.mode": mode,
                                 "time.t_end": (steps - 0.5) * dt, "output.fields": []}).to_problem()
 
 

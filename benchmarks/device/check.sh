@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Run THERE, on the lent GPU machine, in ONE call (about 8 minutes at most; docs/gpu.md):
+# Run THERE, on the lent GPU machine, in ONE call (about 9 minutes at most; docs/gpu.md):
 #
-#     run(carry=[".whl"], timeout_s=560, command="bash benchmarks/device/check.sh")
+#     run(carry=[".whl"], timeout_s=590, command="bash benchmarks/device/check.sh")
 #
 # 1. installs the carried wheels the image lacks (.whl/, from prepare.sh) into /tmp/site;
 # 2. prints the GPU (nvidia-smi -L), the versions, and a CuPy smoke test (a transform on the device);
@@ -13,20 +13,23 @@
 # 6. runs benchmarks/bench_device.py at 1024^2 and at 2048^2 (BENCH_STEPS steps, CPU rows and GPU
 #    rows: the device ladder, scipy's lengths at 1024^2, and the CG deciding on the host every iteration
 #    against its resident scalars, --host-cg); without a CUDA device only at 128^2 (the CPU
-#    rows and "no CUDA device"), to check the path.
+#    rows and "no CUDA device"), to check the path;
+# 7. runs benchmarks/bench_device.py --cases rough --gpu-only at 4096^2: the shipped rough periodic case in
+#    gross sliding with friction on the GPU alone (time a step, CG iterations, CuPy's pool); its set-up
+#    (the surface and the periodic kernels, on the host) takes a minute or two. Without a device: at 64^2.
 #
 # Every stage runs under `timeout` within CHECK_BUDGET seconds in all; logs go to $OUT/ (or
 # out/device/ where $OUT is unset): env.txt, install.log, seam.log, seam.xml, bench_<n>.md,
-# cli.md, plans.md, summary.txt. CHECK_STAGES (default "seam cli plans bench") reruns some (install and
+# cli.md, plans.md, rough_4096.md, summary.txt. CHECK_STAGES (default "seam cli plans bench rough") reruns some (install and
 # environment, a few seconds, always run). Exit status: the first failing stage's (a stage timed out: 124), else 0 (no CUDA
 # device: the tests skipped, the status 0).
 set -uo pipefail
 cd "$(dirname "$0")/../.."
 OUT=${OUT:-$PWD/out/device}
 mkdir -p "$OUT"
-BUDGET=${CHECK_BUDGET:-480}
+BUDGET=${CHECK_BUDGET:-540}
 BENCH_STEPS=${BENCH_STEPS:-6}
-STAGES=${CHECK_STAGES:-seam cli plans bench}  # a rerun of some: CHECK_STAGES="seam", "bench", ... (install and environment always run)
+STAGES=${CHECK_STAGES:-seam cli plans bench rough}  # a rerun of some: CHECK_STAGES="seam", "bench", ... (install and environment always run)
 if [ -z "${PYTHON:-}" ]; then
     if [ -x /opt/torch/.venv/bin/python3 ]; then PYTHON=/opt/torch/.venv/bin/python3; else PYTHON=python3; fi
 fi
@@ -122,6 +125,8 @@ wanted seam && stage seam 240 "$OUT/seam.log" env VISCONTACT_TEST_DEVICE=gpu "$P
 if ! has_device; then
     echo "no CUDA device: the benchmark runs at 128^2 only, to check its path" | tee -a "$OUT/summary.txt"
     wanted bench && stage bench_128 120 "$OUT/bench_128.md" "$PYTHON" -u benchmarks/bench_device.py --n 128 --steps 3
+    wanted rough && stage rough_64 60 "$OUT/rough_64.md" "$PYTHON" -u benchmarks/bench_device.py --n 64 --steps 3 \
+        --cases rough --gpu-only
 else
     wanted cli && stage cli 90 "$OUT/cli.md" "$PYTHON" -u benchmarks/device/cli_check.py
     wanted plans && stage plans 40 "$OUT/plans.md" "$PYTHON" -u benchmarks/device/plan_cost.py
@@ -129,6 +134,8 @@ else
         stage bench_1024 120 "$OUT/bench_1024.md" "$PYTHON" -u benchmarks/bench_device.py --n 1024 --steps "$BENCH_STEPS" --scipy-lengths --host-cg
         stage bench_2048 200 "$OUT/bench_2048.md" "$PYTHON" -u benchmarks/bench_device.py --n 2048 --steps "$BENCH_STEPS" --host-cg
     fi
+    wanted rough && stage rough_4096 180 "$OUT/rough_4096.md" "$PYTHON" -u benchmarks/bench_device.py --n 4096 \
+        --steps "$BENCH_STEPS" --cases rough --gpu-only
 fi
 echo "== summary ($SECONDS s in all; logs in $OUT)"
 cat "$OUT/summary.txt"

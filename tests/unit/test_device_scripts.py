@@ -103,8 +103,10 @@ def test_check_sh_without_a_cuda_device_skips_the_device_tests_and_succeeds(tmp_
                          cwd=ROOT)
     assert out.returncode == 0, out.stdout + out.stderr
     summary = (tmp_path / "summary.txt").read_text()
-    for stage in ("install", "environment", "seam", "bench_128"):
+    for stage in ("install", "environment", "seam", "bench_128", "rough_64"):
         assert f"{stage}: status 0" in summary
     assert "no CuPy GPU backend" in (tmp_path / "seam.log").read_text()
     assert "| gpu | no CUDA device |" in (tmp_path / "bench_128.md").read_text()
+    assert "| rough | 64² × 3 | cpu |" in (tmp_path / "rough_64.md").read_text()  # the case builds and runs
+    assert "| rough | 64² × 3 | gpu | no CUDA device |" in (tmp_path / "rough_64.md").read_text()
     assert "no CUDA device" in (tmp_path / "env.txt").read_text()
