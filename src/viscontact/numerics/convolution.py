@@ -112,7 +112,7 @@ class Convolver:
             return out
         rows, cols = xp.divmod(flat, n)
         scaled = xp.empty((m, n))
-        for r, c, value in zip(rows.tolist(), cols.tolist(), (factor * field.ravel()[flat]).tolist()):
+        for r, c, value in zip(rows.tolist(), cols.tolist(), (factor * field[rows, cols]).tolist()):
             out += xp.multiply(kernel[m - 1 - r: 2 * m - 1 - r, n - 1 - c: 2 * n - 1 - c], value, out=scaled)
         return out
 
